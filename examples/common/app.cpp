@@ -1,0 +1,133 @@
+#include "app.hpp"
+
+#include <glad/gl.h>
+// glad first: GLFW must not include the system GL header.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "obscura/error.hpp"
+#include "obscura/headless.hpp"
+
+#include <EGL/egl.h>
+
+#include <cstdio>
+#include <cstring>
+
+namespace obscura::examples {
+namespace {
+
+void* glfwLoader(void*, const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+GLADapiproc glfwGladLoader(void*, const char* name) { return reinterpret_cast<GLADapiproc>(glfwGetProcAddress(name)); }
+GLADapiproc eglGladLoader(void*, const char* name) { return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name)); }
+
+std::pair<int, int> parseSize(const std::string& s) {
+    int w = 0, h = 0;
+    char x = 0;
+    if (std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 1 || h < 1)
+        throw Error(ErrorCode::Parse, "--size " + s + ": expected WxH");
+    return {w, h};
+}
+
+} // namespace
+
+void addAppOptions(CLI::App& cli, AppOptions& o) {
+    cli.add_option("--scene", o.scene, "Built-in scene, JSON scene or mesh file")->capture_default_str();
+    cli.add_option("--camera", o.camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg");
+    cli.add_option("--size", o.size, "WxH pixels")->capture_default_str();
+    cli.add_flag("--window", o.window, "Open a GLFW window (default: headless EGL)");
+    cli.add_option("--frames", o.frames, "Frames to render; 0 = until the window is closed")->capture_default_str();
+    cli.add_option("--out", o.out, "Write the last picture as PNG");
+}
+
+struct App::Impl {
+    std::unique_ptr<headless::HeadlessContext> headless;
+    GLFWwindow* window = nullptr;
+    GLuint texture = 0, framebuffer = 0;
+};
+
+App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frames) {
+    std::tie(width_, height_) = parseSize(o.size);
+    if (!o.window) {
+        if (frames_ < 1) throw Error(ErrorCode::InvalidArgument, "--frames 0 needs --window");
+        impl_->headless = std::make_unique<headless::HeadlessContext>();
+        if (!gladLoadGLUserPtr(eglGladLoader, nullptr)) throw Error(ErrorCode::UnsupportedFeature, "glad: no GL");
+        return;
+    }
+    if (!glfwInit()) throw Error(ErrorCode::UnsupportedFeature, "glfwInit failed (no display? try xvfb-run)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    impl_->window = glfwCreateWindow(width_, height_, "Obscura", nullptr, nullptr);
+    if (!impl_->window) {
+        glfwTerminate();
+        throw Error(ErrorCode::UnsupportedFeature, "glfwCreateWindow: no OpenGL 4.5 core window");
+    }
+    glfwMakeContextCurrent(impl_->window);
+    glfwSwapInterval(0);
+    if (!gladLoadGLUserPtr(glfwGladLoader, nullptr)) throw Error(ErrorCode::UnsupportedFeature, "glad: no GL");
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(impl_->window, &fw, &fh);
+    if (fw != width_ || fh != height_)
+        throw Error(ErrorCode::UnsupportedFeature, "the window's framebuffer is " + std::to_string(fw) + "x" +
+                                                       std::to_string(fh) + ", not the requested size");
+}
+
+App::~App() {
+    if (impl_->window) {
+        glDeleteFramebuffers(1, &impl_->framebuffer);
+        glDeleteTextures(1, &impl_->texture);
+        glfwDestroyWindow(impl_->window);
+        glfwTerminate();
+    }
+}
+
+ContextDesc App::contextDesc() const {
+    if (impl_->headless) return impl_->headless->contextDesc();
+    ContextDesc d;
+    d.getProcAddress = glfwLoader;
+    return d;
+}
+
+bool App::windowed() const { return impl_->window != nullptr; }
+
+bool App::done(int presented) const {
+    if (impl_->window && glfwWindowShouldClose(impl_->window)) return true;
+    return frames_ > 0 && presented >= frames_;
+}
+
+TextureImage App::present(const TextureImage& picture) {
+    if (!impl_->window) return picture;
+    if (picture.width != width_ || picture.height != height_)
+        throw Error(ErrorCode::InvalidArgument, "present: picture size differs from the window");
+    const std::size_t row = static_cast<std::size_t>(width_) * 4;
+    if (!impl_->texture) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &impl_->texture);
+        glTextureStorage2D(impl_->texture, 1, GL_RGBA8, width_, height_);
+        glCreateFramebuffers(1, &impl_->framebuffer);
+        glNamedFramebufferTexture(impl_->framebuffer, GL_COLOR_ATTACHMENT0, impl_->texture, 0);
+    }
+    // Pictures start at the top row, GL images at the bottom one.
+    std::vector<std::uint8_t> flipped(picture.rgba.size());
+    for (int y = 0; y < height_; ++y)
+        std::memcpy(&flipped[static_cast<std::size_t>(y) * row],
+                    &picture.rgba[static_cast<std::size_t>(height_ - 1 - y) * row], row);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(impl_->texture, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+    glBlitNamedFramebuffer(impl_->framebuffer, 0, 0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
+    // Read back what the window shows.
+    TextureImage shown = picture;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+    for (int y = 0; y < height_; ++y)
+        std::memcpy(&shown.rgba[static_cast<std::size_t>(y) * row],
+                    &flipped[static_cast<std::size_t>(height_ - 1 - y) * row], row);
+    glfwSwapBuffers(impl_->window);
+    glfwPollEvents();
+    return shown;
+}
+
+} // namespace obscura::examples

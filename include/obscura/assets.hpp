@@ -1,0 +1,73 @@
+#pragma once
+// obscura::assets: scenes and images for tools, tests, examples and benchmarks.
+//
+// Scene sources: built-in scenes (the Cornell box and analytic test scenes), a JSON scene
+// description (docs/scene-format.md), or any mesh file assimp reads (OBJ, PLY, glTF/GLB,
+// Collada, ...). Images: EXR/HDR/PNG/JPEG/TGA through OpenImageIO.
+#include "obscura/camera.hpp"
+#include "obscura/export.hpp"
+#include "obscura/scene.hpp"
+#include "obscura/texture.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura::assets {
+
+//! A viewpoint: where to look from and the vertical field of view.
+struct CameraSpec {
+    LookAt lookAt;
+    float fovyDegrees = 45.0f; //!< vertical, degrees, (0, 180)
+    float nearPlane = 0.1f;    //!< world units
+    float farPlane = 100.0f;   //!< world units
+};
+
+struct LoadedScene {
+    std::string name;
+    Scene scene;
+    CameraSpec camera;          //!< the scene's own camera, or one framing its bounds
+    float unitsPerMetre = 1.0f; //!< e.g. 1000 for the Cornell box (millimetres)
+};
+
+//! "cornell", "plane", "wall", "corner", "box_room".
+OBSCURA_API std::vector<std::string> builtinSceneNames();
+//! Throws Error{InvalidArgument} listing the names for an unknown one.
+OBSCURA_API LoadedScene builtinScene(const std::string& name);
+//! Throws Error{Io} or Error{Parse} with the file and the JSON path of the problem.
+OBSCURA_API LoadedScene loadJsonScene(const std::filesystem::path& path);
+//! Any format assimp reads; the node hierarchy is flattened. Throws Error{Io}/Error{Parse}.
+OBSCURA_API LoadedScene loadMeshFile(const std::filesystem::path& path);
+//! A built-in name, a .json file, or a mesh file.
+OBSCURA_API LoadedScene loadScene(const std::string& source);
+
+//! Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg" (lookAt + vertical fovy in degrees). Near
+//! and far planes are taken from `base`. Throws Error{Parse}.
+OBSCURA_API CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base);
+//! A standard-depth perspective camera for an image of width x height pixels.
+OBSCURA_API Camera makeCamera(const CameraSpec& spec, int width, int height, DepthMode mode = DepthMode::Standard);
+//! A spec that frames the bounds from a three-quarter view.
+OBSCURA_API CameraSpec framingCamera(const Bounds& bounds, float fovyDegrees = 45.0f);
+
+enum class PngEncoding {
+    Srgb,   //!< values are linear; apply the sRGB transfer function (colours, radiance)
+    Linear, //!< write values as they are (already display-mapped data: normals * 0.5 + 0.5, AO)
+};
+
+//! Reads an image as float (sRGB 8-bit files are linearized). Throws Error{Io}.
+OBSCURA_API Image readImage(const std::filesystem::path& path);
+//! Writes .exr (float, values as they are) or .png (8-bit, clamped to [0,1] after the
+//! encoding). Other extensions throw Error{InvalidArgument}; failures Error{Io}.
+OBSCURA_API void writeImage(const std::filesystem::path& path, const Image& image,
+                            PngEncoding encoding = PngEncoding::Srgb);
+//! The 8-bit RGBA picture a PNG of `image` contains (row 0 at the top): 1 channel becomes
+//! grey, 3 get alpha 255; values are encoded, clamped to [0,1] and rounded to nearest.
+OBSCURA_API TextureImage encodeDisplay(const Image& image, PngEncoding encoding);
+//! Writes an 8-bit RGBA picture as PNG. Throws Error{Io}.
+OBSCURA_API void writePng(const std::filesystem::path& path, const TextureImage& picture);
+
+//! An sRGB RGBA8 texture from any image file (for Material::albedoImage).
+OBSCURA_API TextureImage readTextureImage(const std::filesystem::path& path);
+
+} // namespace obscura::assets

@@ -1,0 +1,94 @@
+#pragma once
+// G-buffer: the per-pixel inputs every screen-space module reads.
+//
+// Either Obscura rasterizes the scene (render), or the host hands over its own depth buffer
+// and optionally its normals (adopt, post-process mode). Both give a GBufferView with the
+// same contract:
+//   depth           hardware depth of `camera` (32F when ours); background = clear depth
+//   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
+//                   toward the camera; alpha = 1 on geometry, 0 on background
+//   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours only)
+//   directRadiance  GL_RGBA16F, W/(sr·m²): emission + unshadowed Lambert from the scene's
+//                   lights with the interpolated shading normal (ours only). Saturates at
+//                   65504, the largest finite half float, instead of overflowing to Inf.
+// View-space positions are never stored: they are reconstructed from depth
+// (shaders/common/depth.glsl, DepthReconstruction in camera.hpp).
+#include "obscura/camera.hpp"
+#include "obscura/export.hpp"
+#include "obscura/scene.hpp"
+#include "obscura/texture.hpp"
+
+#include <cstddef>
+#include <memory>
+
+namespace obscura {
+
+class Context;
+
+struct GBufferView {
+    TextureView depth;
+    TextureView normal;
+    TextureView albedo;         //!< empty for adopted host buffers
+    TextureView directRadiance; //!< empty for adopted host buffers
+    Camera camera;
+    int width = 0;  //!< pixels
+    int height = 0; //!< pixels
+};
+
+struct GBufferSettings {
+    int width = 0;               //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
+    int height = 0;              //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
+    bool directLighting = true;  //!< fill directRadiance; off leaves it cleared to 0
+    glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²)
+};
+
+enum class NormalSpace { View, World };
+enum class NormalEncoding {
+    Signed,   //!< float formats holding n in [-1,1] (GL_RGB(A)16F/32F)
+    Unsigned, //!< n * 0.5 + 0.5 in a normalized format (GL_RGB(A)8, GL_RGB10_A2, GL_RGB(A)16)
+};
+
+//! The host's own buffers, for post-process use.
+struct HostGBuffer {
+    //! Required. GL_TEXTURE_2D, single-sampled, GL_DEPTH_COMPONENT16/24/32/32F or
+    //! GL_DEPTH24_STENCIL8/GL_DEPTH32F_STENCIL8 (then GL_DEPTH_STENCIL_TEXTURE_MODE must be
+    //! GL_DEPTH_COMPONENT). name, width and height are required; internalFormat is checked.
+    TextureView depth;
+    //! Optional, same size. Without it normals are reconstructed from depth.
+    TextureView normal;
+    NormalSpace normalSpace = NormalSpace::View;
+    NormalEncoding normalEncoding = NormalEncoding::Signed;
+};
+
+class OBSCURA_API GBuffer {
+public:
+    explicit GBuffer(Context& context);
+    ~GBuffer();
+    GBuffer(const GBuffer&) = delete;
+    GBuffer& operator=(const GBuffer&) = delete;
+
+    //! Rasterizes every mesh and mesh reference of the scene. Pass "gbuffer.render".
+    //! Throws Error{InvalidArgument} for a bad size, a non-finite camera or light, a material
+    //! index out of range, non-finite mesh positions or an unusable host buffer.
+    GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
+
+    //! Wraps the host's depth (and normal) textures. The depth texture is used in place;
+    //! normals are converted to the view-space contract above, or reconstructed from depth
+    //! when absent (pass "gbuffer.normals"). Throws Error{InvalidArgument} for a wrong
+    //! target, format, sample count or size.
+    GBufferView adopt(const HostGBuffer& host, const Camera& camera);
+
+    //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world
+    //! units, alpha = 1 on geometry, 0 on background with xyz = 0). Pass "gbuffer.positions".
+    //! For debugging, tests and tools; modules reconstruct on the fly instead.
+    TextureView positions(const GBufferView& view);
+
+    //! GPU memory this module holds right now, bytes.
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

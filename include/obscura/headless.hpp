@@ -1,0 +1,46 @@
+#pragma once
+// obscura::headless: an OpenGL 4.5 context without a window, through EGL.
+//
+// Used by Obscura's tests, examples, benchmarks and CLI. Platform order: the Mesa
+// surfaceless platform (llvmpipe on machines without a GPU), then the EGL device platform
+// (NVIDIA headless), then the default display. OBSCURA_EGL_PLATFORM=surfaceless|device|default
+// forces one. The context renders only into framebuffer objects.
+#include "obscura/context.hpp"
+#include "obscura/export.hpp"
+
+#include <memory>
+#include <string>
+
+namespace obscura::headless {
+
+struct HeadlessDesc {
+    int major = 4;          //!< requested GL version; drivers may return a newer one
+    int minor = 5;
+    bool coreProfile = true;
+    bool debug = false;     //!< EGL_CONTEXT_OPENGL_DEBUG: enables KHR_debug messages
+};
+
+class OBSCURA_API HeadlessContext {
+public:
+    //! Creates the context and makes it current on this thread. Throws obscura::Error
+    //! {UnsupportedFeature} naming the EGL step that failed.
+    explicit HeadlessContext(const HeadlessDesc& desc = {});
+    ~HeadlessContext();
+    HeadlessContext(const HeadlessContext&) = delete;
+    HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+    void makeCurrent();
+    //! "surfaceless", "device" or "default".
+    const std::string& platform() const noexcept;
+
+    //! eglGetProcAddress, in the form ContextDesc expects (userData unused).
+    static void* getProcAddress(void* userData, const char* name);
+    //! A ContextDesc for obscura::Context on this context.
+    ContextDesc contextDesc(StatePolicy policy = StatePolicy::Preserve) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura::headless

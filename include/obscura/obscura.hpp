@@ -1,0 +1,11 @@
+#pragma once
+// Obscura: real-time global-illumination approximations and visibility queries on the
+// host's OpenGL 4.5 context. One header per module; this one includes them all.
+#include "obscura/camera.hpp"
+#include "obscura/context.hpp"
+#include "obscura/error.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/profiler.hpp"
+#include "obscura/scene.hpp"
+#include "obscura/texture.hpp"
+#include "obscura/version.hpp"

@@ -1,0 +1,133 @@
+#pragma once
+// Scene description: meshes (CPU arrays we upload, or the host's own GL buffers), materials,
+// lights, and placeholders for the environment and participating media.
+//
+// Units: lengths in the scene's world units. Light is radiometric: radiance in
+// W/(sr·m²), radiant intensity in W/sr, irradiance in W/m² (with metres replaced by the
+// world unit). For photometric work pass cd and lux instead; every formula is linear in
+// the light, so outputs are then luminance (cd/m²). Colours are linear RGB.
+#include "obscura/export.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura {
+
+//! Triangle mesh in CPU memory. Obscura uploads it on first use and keeps the GPU copy for as
+//! long as this object lives, so treat it as immutable once shared: to change a mesh, make
+//! a new MeshData. Non-finite positions are rejected with Error{InvalidArgument}.
+struct MeshData {
+    std::vector<glm::vec3> positions;     //!< object space, world units
+    std::vector<glm::vec3> normals;       //!< empty, or one per position (need not be unit)
+    std::vector<glm::vec2> texcoords;     //!< empty, or one per position
+    std::vector<std::uint32_t> indices;   //!< triangle list; empty means positions are a triangle list
+};
+
+struct Mesh {
+    std::shared_ptr<const MeshData> data;
+    glm::mat4 model{1.0f};      //!< object → world
+    std::uint32_t material = 0; //!< index into Scene::materials
+    std::string name;
+};
+
+//! One vertex attribute in a host GL buffer.
+struct VertexStream {
+    unsigned buffer = 0;       //!< GL buffer name; 0 = absent
+    std::size_t offset = 0;    //!< bytes to the first element
+    unsigned stride = 0;       //!< bytes between elements, > 0
+    int components = 3;        //!< 2 for texcoords, 3 for positions and normals
+    unsigned type = 0x1406;    //!< GL_FLOAT, GL_HALF_FLOAT, GL_SHORT, ... (GL_FLOAT default)
+    bool normalized = false;   //!< for integer types
+};
+
+//! A mesh that lives in the host's GL buffers, drawn as a triangle list. Either give the
+//! host's vertex array object and the attribute locations it uses, or the streams directly.
+//! Obscura never binds or modifies the host VAO: it reads its layout and builds its own.
+struct MeshRef {
+    unsigned vao = 0;             //!< host VAO; when non-zero, the *Location fields are used
+    int positionLocation = 0;     //!< attribute location of positions in `vao`
+    int normalLocation = -1;      //!< -1 = none
+    int texcoordLocation = -1;    //!< -1 = none
+    VertexStream position;        //!< used when vao == 0; required
+    VertexStream normal;          //!< used when vao == 0; optional
+    VertexStream texcoord;        //!< used when vao == 0; optional
+    unsigned indexBuffer = 0;     //!< vao == 0: element buffer, 0 = non-indexed; with a VAO its own element buffer is used
+    unsigned indexType = 0x1405;  //!< GL_UNSIGNED_INT, GL_UNSIGNED_SHORT or GL_UNSIGNED_BYTE
+    std::size_t indexOffset = 0;  //!< bytes into the element buffer
+    unsigned count = 0;           //!< indices (or vertices when non-indexed), a multiple of 3
+    glm::mat4 model{1.0f};        //!< object → world
+    std::uint32_t material = 0;   //!< index into Scene::materials
+};
+
+//! An sRGB-encoded RGBA8 image, row 0 at the top.
+struct TextureImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+};
+
+struct Material {
+    glm::vec3 albedo{0.8f};     //!< linear diffuse reflectance, [0,1] per channel
+    glm::vec3 emission{0.0f};   //!< emitted radiance, W/(sr·m²), [0, inf)
+    unsigned albedoTexture = 0; //!< optional host GL_TEXTURE_2D multiplying albedo (needs texcoords)
+    std::shared_ptr<const TextureImage> albedoImage; //!< optional CPU image, used when albedoTexture == 0
+    std::string name;
+};
+
+enum class LightType { Point, Spot, Directional };
+
+struct Light {
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};   //!< linear RGB factor, [0, inf)
+    //! Point and spot: radiant intensity, W/sr. Directional: irradiance on a surface facing
+    //! the light, W/m². [0, inf).
+    float intensity = 1.0f;
+    glm::vec3 position{0.0f};           //!< point, spot: world units
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; //!< spot axis / direction light travels (directional); any length > 0
+    float innerAngle = 0.3f;  //!< spot: half-angle of full intensity, radians, [0, outerAngle]
+    float outerAngle = 0.5f;  //!< spot: half-angle where intensity reaches 0, radians, (0, pi/2)
+    //! Point and spot: radius of the emitting sphere, world units, [0, inf). Irradiance uses
+    //! 1/max(d², radius²), so a surface touching a light of radius > 0 stays finite. With
+    //! radius 0 a point exactly at the light receives nothing (the direction is undefined).
+    float radius = 0.0f;
+    bool castsShadows = true; //!< for the shadow-map module
+};
+
+//! Placeholder for the image-based lighting module: an equirectangular HDR environment.
+struct Environment {
+    std::string path;        //!< EXR/HDR file
+    float intensity = 1.0f;  //!< radiance scale, [0, inf)
+    float rotation = 0.0f;   //!< about +y, radians
+};
+
+//! Placeholder for the participating-media module: a homogeneous medium in a box.
+struct Medium {
+    glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units
+    glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
+    glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
+    float anisotropy = 0.0f;              //!< Henyey-Greenstein g, (-1, 1)
+};
+
+struct Scene {
+    std::vector<Mesh> meshes;
+    std::vector<MeshRef> meshRefs;
+    std::vector<Material> materials; //!< a mesh whose material index is out of range is an error
+    std::vector<Light> lights;
+    std::optional<Environment> environment;
+    std::vector<Medium> media;
+};
+
+struct Bounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+    bool empty = true;
+};
+
+//! World-space bounds of the CPU meshes (host MeshRefs are not read back).
+OBSCURA_API Bounds sceneBounds(const Scene& scene);
+
+} // namespace obscura

@@ -1,0 +1,24 @@
+# Shared by scripts/demo.sh and scripts/test.sh: install what is missing, configure, build.
+# OBSCURA_BUILD_DIR overrides the build directory (default: build/ in the checkout).
+set -euo pipefail
+OBSCURA_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+OBSCURA_BUILD_DIR=${OBSCURA_BUILD_DIR:-$OBSCURA_ROOT/build}
+OBSCURA_JOBS=$(nproc 2>/dev/null || echo 2)
+
+obscura_setup() {
+  "$OBSCURA_ROOT/scripts/setup-debian.sh"
+}
+
+# obscura_build [cmake configure args...] -- [targets...]
+obscura_build() {
+  local configure=() targets=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do configure+=("$1"); shift; done
+  [ $# -gt 0 ] && shift
+  targets=("$@")
+  cmake -S "$OBSCURA_ROOT" -B "$OBSCURA_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${configure[@]}"
+  if [ ${#targets[@]} -gt 0 ]; then
+    cmake --build "$OBSCURA_BUILD_DIR" --parallel "$OBSCURA_JOBS" --target "${targets[@]}"
+  else
+    cmake --build "$OBSCURA_BUILD_DIR" --parallel "$OBSCURA_JOBS"
+  fi
+}

@@ -1,0 +1,33 @@
+// Shared between C++ and GLSL: binding points and the per-frame uniform block layout.
+// Every member is a vec4/ivec4/mat4 so that std140 and the C++ layout agree.
+#ifndef OBSCURA_COMMON_BINDINGS_H
+#define OBSCURA_COMMON_BINDINGS_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace obscura::shader {
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+#endif
+
+#define OBSCURA_FRAME_UBO_BINDING 0
+
+#define OBSCURA_PROJECTION_PERSPECTIVE 0
+#define OBSCURA_PROJECTION_ORTHOGRAPHIC 1
+
+struct FrameData {
+    mat4 view;        // world -> view
+    mat4 projection;  // view -> clip
+    mat4 viewInverse; // view -> world
+    vec4 depthXY;     // DepthReconstruction: xyScale.xy, xyOffset.xy
+    vec4 depthZ;      // DepthReconstruction: zScale, zBiasHi, zBiasLo, clearDepth
+    ivec4 viewport;   // width, height (pixels), projection kind, reversed-Z (0/1)
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(FrameData) == 3 * 64 + 3 * 16, "FrameData must match std140");
+} // namespace obscura::shader
+#endif
+
+#endif

@@ -1,0 +1,33 @@
+// View-space positions from hardware depth (see DepthReconstruction in camera.hpp).
+// Works for standard and reversed-Z, [-1,1] and [0,1] clip depth, perspective (including an
+// infinite far plane) and orthographic projections.
+#include "frame.glsl"
+
+bool isBackground(float depth) { return depth == frame.depthZ.w; }
+
+// View-space z (negative in front of the camera) of a non-background depth value.
+float viewZFromDepth(float depth) {
+    if (isPerspective()) {
+        // The bias is a float pair: d + hi is exact where standard depth cancels near d = 1,
+        // and `precise` forbids the compiler from reassociating the sum.
+        precise float denominator = (depth + frame.depthZ.y) + frame.depthZ.z;
+        return frame.depthZ.x / denominator;
+    }
+    return frame.depthZ.x * depth + frame.depthZ.y;
+}
+
+// uv: [0,1]^2 texture coordinates of the pixel (centre = (pixel + 0.5) / size).
+vec3 viewPositionFromDepth(vec2 uv, float depth) {
+    float z = viewZFromDepth(depth);
+    vec2 xy = (uv * 2.0 - 1.0) * frame.depthXY.xy + frame.depthXY.zw;
+    return isPerspective() ? vec3(-z * xy, z) : vec3(xy, z);
+}
+
+vec2 pixelCenterUv(ivec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frameSize()); }
+
+// Unit vector from the surface point toward the camera.
+vec3 viewDirectionTo(vec3 viewPosition) {
+    if (!isPerspective()) return vec3(0.0, 0.0, 1.0);
+    float len = length(viewPosition);
+    return len > 0.0 ? -viewPosition / len : vec3(0.0, 0.0, 1.0);
+}

@@ -1,0 +1,9 @@
+// The per-frame uniform block (camera, depth reconstruction, viewport).
+#include "common_bindings.h"
+
+layout(std140, binding = OBSCURA_FRAME_UBO_BINDING) uniform FrameBlock {
+    FrameData frame;
+};
+
+ivec2 frameSize() { return frame.viewport.xy; }
+bool isPerspective() { return frame.viewport.z == OBSCURA_PROJECTION_PERSPECTIVE; }

@@ -1,0 +1,26 @@
+// Small numerically guarded helpers.
+#ifndef OBSCURA_PI
+#define OBSCURA_PI 3.14159265358979323846
+#endif
+
+// Largest finite half float: radiance written to RGBA16F targets is clamped to it, so a
+// very bright value saturates instead of turning into Inf.
+const float kHalfMax = 65504.0;
+
+bool allFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// Normalizes v; returns `fallback` for zero, NaN or Inf input. Scaling by the largest
+// component first avoids overflow and underflow in dot(v, v).
+vec3 safeNormalize(vec3 v, vec3 fallback) {
+    if (!allFinite(v)) return fallback;
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    if (!(m > 0.0)) return fallback;
+    v /= m;
+    return v * inversesqrt(dot(v, v));
+}
+
+// NaN becomes 0 (min/max do not define what they return for NaN).
+vec3 clampRadiance(vec3 radiance) {
+    radiance = mix(radiance, vec3(0.0), isnan(radiance));
+    return clamp(radiance, vec3(0.0), vec3(kHalfMax));
+}

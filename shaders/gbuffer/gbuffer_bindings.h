@@ -1,0 +1,49 @@
+// G-buffer module: binding points, attribute/uniform locations and the light layout,
+// shared by src/gbuffer/*.cpp and shaders/gbuffer/*.glsl.
+#ifndef OBSCURA_GBUFFER_BINDINGS_H
+#define OBSCURA_GBUFFER_BINDINGS_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace obscura::shader {
+using vec4 = glm::vec4;
+#endif
+
+// Vertex attributes of the meshes we draw (our own VAOs always use these).
+#define GBUFFER_ATTRIB_POSITION 0
+#define GBUFFER_ATTRIB_NORMAL 1
+#define GBUFFER_ATTRIB_TEXCOORD 2
+
+// Per-draw uniforms (explicit locations).
+#define GBUFFER_LOC_MODEL_VIEW 0
+#define GBUFFER_LOC_NORMAL_MATRIX 1
+#define GBUFFER_LOC_ALBEDO 2
+#define GBUFFER_LOC_EMISSION 3
+#define GBUFFER_LOC_LIGHT_COUNT 4
+#define GBUFFER_LOC_WORLD_TO_VIEW 5
+
+#define GBUFFER_ALBEDO_TEXTURE_UNIT 0
+#define GBUFFER_DEPTH_TEXTURE_UNIT 1
+#define GBUFFER_NORMAL_TEXTURE_UNIT 2
+#define GBUFFER_LIGHTS_SSBO_BINDING 0
+#define GBUFFER_OUTPUT_IMAGE_UNIT 0
+#define GBUFFER_WORKGROUP_SIZE 8
+
+#define GBUFFER_LIGHT_POINT 0
+#define GBUFFER_LIGHT_SPOT 1
+#define GBUFFER_LIGHT_DIRECTIONAL 2
+
+// One light in view space (std430).
+struct LightData {
+    vec4 positionType;     // xyz: position (view space, world units), w: type
+    vec4 directionRadius;  // xyz: unit direction the light travels (view space), w: source radius
+    vec4 radiance;         // rgb: colour * intensity (W/sr, or W/m^2 for directional)
+    vec4 cone;             // x: cos(inner angle), y: cos(outer angle)
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(LightData) == 64, "LightData must match std430");
+} // namespace obscura::shader
+#endif
+
+#endif

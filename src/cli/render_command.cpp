@@ -1,0 +1,154 @@
+// obscura render: one technique (or all of them) on a scene, headless, written as EXR + PNG,
+// with the per-pass times of the frames it rendered.
+#include "commands.hpp"
+#include "obscura/assets.hpp"
+#include "obscura/error.hpp"
+#include "obscura/headless.hpp"
+#include "obscura/profiler.hpp"
+#include "technique_registry.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace obscura::cli {
+namespace {
+
+struct RenderOptions {
+    std::string scene = "cornell";
+    std::string camera;
+    std::string size = "256x256";
+    std::string technique = "gbuffer";
+    std::vector<std::string> sets;
+    std::string output;
+    std::string out;
+    std::string depth = "standard";
+    int frames = 5;
+};
+
+std::pair<int, int> parseSize(const std::string& s) {
+    int w = 0, h = 0;
+    char x = 0;
+    if (std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 1 || h < 1)
+        throw Error(ErrorCode::Parse, "--size " + s + ": expected WxH with W, H >= 1 (e.g. 256x256)");
+    return {w, h};
+}
+
+DepthMode parseDepth(const std::string& s) {
+    if (s == "standard") return DepthMode::Standard;
+    if (s == "zero_to_one") return DepthMode::StandardZeroToOne;
+    if (s == "reversed") return DepthMode::Reversed;
+    throw Error(ErrorCode::Parse, "--depth " + s + ": expected standard, zero_to_one or reversed");
+}
+
+void writeOutput(const TechniqueOutput& o, const std::filesystem::path& exr, const std::filesystem::path& png) {
+    if (!exr.empty()) assets::writeImage(exr, o.image);
+    if (!png.empty()) assets::writeImage(png, o.display, o.encoding);
+}
+
+void printTimings(const std::string& technique, Profiler& profiler) {
+    for (const PassStatistics& s : profiler.statistics(/*wait=*/true))
+        std::printf("%-12s %-22s %10.3f %10.3f %10.3f %7zu  %s\n", technique.c_str(), s.name.c_str(), s.medianMs, s.minMs,
+                    s.maxMs, s.samples, toString(s.clock));
+}
+
+void runRender(const RenderOptions& o) {
+    const auto [width, height] = parseSize(o.size);
+    if (o.frames < 1) throw Error(ErrorCode::Parse, "--frames must be >= 1");
+    const assets::LoadedScene scene = assets::loadScene(o.scene);
+    const assets::CameraSpec spec = o.camera.empty() ? scene.camera : assets::parseCameraSpec(o.camera, scene.camera);
+    const Camera camera = assets::makeCamera(spec, width, height, parseDepth(o.depth));
+
+    std::vector<const TechniqueInfo*> selected;
+    if (o.technique == "all") {
+        for (const auto& entry : techniques()) selected.push_back(&entry.second);
+    } else {
+        const auto it = techniques().find(o.technique);
+        if (it == techniques().end()) {
+            std::string known;
+            for (const auto& e : techniques()) known += " " + e.first;
+            throw Error(ErrorCode::InvalidArgument, "unknown technique \"" + o.technique + "\" (known:" + known + ", all)");
+        }
+        selected.push_back(&it->second);
+    }
+    const std::filesystem::path out(o.out.empty() ? "out" : o.out);
+    const std::string ext = out.extension().string();
+    const bool toDirectory = ext != ".exr" && ext != ".png";
+    if (!toDirectory && selected.size() > 1)
+        throw Error(ErrorCode::InvalidArgument, "--technique all writes several images: --out must be a directory");
+
+    headless::HeadlessContext gl;
+    Context ctx(gl.contextDesc());
+    std::printf("scene %s, %dx%d, %s on %s (%s)\n", scene.name.c_str(), width, height, ctx.info().version.c_str(),
+                ctx.info().renderer.c_str(), toString(ctx.profiler().clock()));
+    std::printf("%-12s %-22s %10s %10s %10s %7s  %s\n", "technique", "pass", "median ms", "min ms", "max ms", "frames",
+                "clock");
+    for (const TechniqueInfo* t : selected) {
+        auto run = t->create(ctx);
+        for (const auto& kv : o.sets) {
+            const auto eq = kv.find('=');
+            if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected key=value");
+            run->set(kv.substr(0, eq), kv.substr(eq + 1));
+        }
+        const FrameSetup frame{scene, camera, width, height};
+        run->run(frame); // warm-up: shader compilation and allocation are not timed
+        ctx.profiler().reset();
+        for (int i = 0; i < o.frames; ++i) run->run(frame);
+        printTimings(t->name, ctx.profiler());
+        const std::vector<std::string> names =
+            toDirectory ? (o.output.empty() ? t->outputs : std::vector<std::string>{o.output})
+                        : std::vector<std::string>{o.output.empty() ? t->outputs.front() : o.output};
+        for (const TechniqueOutput& output : run->outputs(names)) {
+            if (toDirectory) {
+                const std::string stem = t->name + "_" + output.name;
+                writeOutput(output, out / (stem + ".exr"), out / (stem + ".png"));
+            } else {
+                writeOutput(output, ext == ".exr" ? out : std::filesystem::path{}, ext == ".png" ? out : std::filesystem::path{});
+            }
+        }
+    }
+    std::printf("wrote %s\n", out.string().c_str());
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a technique's output buffers headless (EXR and/or PNG)");
+    cmd->add_option("--scene", options->scene, "Built-in scene name, JSON scene file, or mesh file")->capture_default_str();
+    cmd->add_option("--camera", options->camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg (default: the scene's camera)");
+    cmd->add_option("--size", options->size, "Image size WxH in pixels")->capture_default_str();
+    cmd->add_option("--technique", options->technique, "Technique name, or 'all'")->capture_default_str();
+    cmd->add_option("--set", options->sets, "Technique setting key=value (repeatable)");
+    cmd->add_option("--output", options->output, "Output buffer (default: the technique's first; a directory gets all)");
+    cmd->add_option("--out", options->out, "FILE.exr, FILE.png, or a directory")->required();
+    cmd->add_option("--depth", options->depth, "Depth convention: standard, zero_to_one, reversed")->capture_default_str();
+    cmd->add_option("--frames", options->frames, "Timed frames after one warm-up frame")->capture_default_str();
+    cmd->callback([options] { runRender(*options); });
+}
+
+void addInfoCommand(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand("info", "Show the GL context, techniques and built-in scenes");
+    cmd->callback([] {
+        headless::HeadlessContext gl;
+        Context ctx(gl.contextDesc());
+        const ContextInfo& i = ctx.info();
+        std::printf("GL %s (%s profile), GLSL %s\nrenderer %s, vendor %s, EGL platform %s\nprofiler clock %s\n",
+                    i.version.c_str(), i.coreProfile ? "core" : "compatibility", i.glslVersion.c_str(), i.renderer.c_str(),
+                    i.vendor.c_str(), gl.platform().c_str(), toString(ctx.profiler().clock()));
+        std::printf("\ntechniques:\n");
+        for (const auto& [name, t] : techniques()) {
+            std::printf("  %-16s %s\n", name.c_str(), t.description.c_str());
+            std::string outs;
+            for (const auto& o : t.outputs) outs += " " + o;
+            std::printf("  %-16s outputs:%s\n", "", outs.c_str());
+            for (const auto& s : t.settings)
+                std::printf("  %-16s --set %s (%s%s%s): %s\n", "", s.key.c_str(), s.range.c_str(), s.unit.empty() ? "" : " ",
+                            s.unit.c_str(), s.description.c_str());
+        }
+        std::printf("\nbuilt-in scenes:");
+        for (const auto& n : assets::builtinSceneNames()) std::printf(" %s", n.c_str());
+        std::printf("\n");
+    });
+}
+
+} // namespace obscura::cli

@@ -1,0 +1,41 @@
+#include "technique_registry.hpp"
+
+#include "obscura/error.hpp"
+
+namespace obscura::cli {
+namespace {
+std::map<std::string, TechniqueInfo>& registry() {
+    static std::map<std::string, TechniqueInfo> r;
+    return r;
+}
+} // namespace
+
+const std::map<std::string, TechniqueInfo>& techniques() { return registry(); }
+
+void registerTechnique(TechniqueInfo info) {
+    const std::string name = info.name;
+    registry().emplace(name, std::move(info));
+}
+
+bool parseBool(const std::string& key, const std::string& value) {
+    if (value == "1" || value == "true" || value == "on") return true;
+    if (value == "0" || value == "false" || value == "off") return false;
+    throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected 1/0, true/false or on/off");
+}
+
+double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
+    double v = 0;
+    try {
+        std::size_t used = 0;
+        v = std::stod(value, &used);
+        if (used != value.size()) throw std::invalid_argument(value);
+    } catch (const std::exception&) {
+        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": not a number");
+    }
+    if (!(v >= lo && v <= hi))
+        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be in [" + std::to_string(lo) + ", " +
+                                          std::to_string(hi) + "] " + unit);
+    return v;
+}
+
+} // namespace obscura::cli

@@ -1,0 +1,110 @@
+// "gbuffer": the G-buffer's own buffers as a technique, so they can be rendered, written and
+// timed like every other technique.
+#include "obscura/gbuffer.hpp"
+#include "obscura/error.hpp"
+#include "technique_registry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::cli {
+namespace {
+
+Image mapped(const Image& src, int channels, const std::function<float(const Image&, int, int, int)>& f) {
+    Image out;
+    out.width = src.width;
+    out.height = src.height;
+    out.channels = channels;
+    out.pixels.resize(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) *
+                      static_cast<std::size_t>(channels));
+    for (int y = 0; y < src.height; ++y)
+        for (int x = 0; x < src.width; ++x)
+            for (int c = 0; c < channels; ++c) out.at(x, y, c) = f(src, x, y, c);
+    return out;
+}
+
+Image rgb(const Image& src) { return mapped(src, 3, [](const Image& s, int x, int y, int c) { return s.at(x, y, c); }); }
+
+class GBufferRun final : public TechniqueRun {
+public:
+    explicit GBufferRun(Context& ctx) : ctx_(ctx), gbuffer_(ctx) {}
+
+    void set(const std::string& key, const std::string& value) override {
+        if (key == "direct_lighting") settings_.directLighting = parseBool(key, value);
+        else throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting)");
+    }
+
+    void run(const FrameSetup& frame) override {
+        settings_.width = frame.width;
+        settings_.height = frame.height;
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, settings_);
+    }
+
+    std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
+        std::vector<TechniqueOutput> out;
+        for (const auto& name : names) out.push_back(output(name));
+        return out;
+    }
+
+private:
+    TechniqueOutput output(const std::string& name) {
+        TechniqueOutput o;
+        o.name = name;
+        if (name == "direct") {
+            o.image = rgb(readTexture(ctx_, view_.directRadiance));
+            o.display = o.image;
+        } else if (name == "albedo") {
+            o.image = rgb(readTexture(ctx_, view_.albedo));
+            o.display = o.image;
+        } else if (name == "normal") {
+            o.image = rgb(readTexture(ctx_, view_.normal));
+            o.display = mapped(o.image, 3, [](const Image& s, int x, int y, int c) { return s.at(x, y, c) * 0.5f + 0.5f; });
+            o.encoding = assets::PngEncoding::Linear;
+        } else if (name == "depth") {
+            o.image = readTexture(ctx_, view_.depth);
+            o.display = o.image;
+            o.encoding = assets::PngEncoding::Linear;
+        } else if (name == "position" || name == "distance") {
+            const Image p = readTexture(ctx_, gbuffer_.positions(view_));
+            if (name == "position") {
+                o.image = rgb(p);
+            } else {
+                o.image = mapped(p, 1, [](const Image& s, int x, int y, int) {
+                    return s.at(x, y, 3) > 0.0f ? std::sqrt(s.at(x, y, 0) * s.at(x, y, 0) + s.at(x, y, 1) * s.at(x, y, 1) +
+                                                            s.at(x, y, 2) * s.at(x, y, 2))
+                                                : 0.0f;
+                });
+            }
+            // Display: distance scaled to the farthest visible point.
+            float far = 0.0f;
+            for (int y = 0; y < p.height; ++y)
+                for (int x = 0; x < p.width; ++x)
+                    far = std::max(far, std::sqrt(p.at(x, y, 0) * p.at(x, y, 0) + p.at(x, y, 1) * p.at(x, y, 1) +
+                                                  p.at(x, y, 2) * p.at(x, y, 2)));
+            o.display = mapped(o.image, o.image.channels, [far](const Image& s, int x, int y, int c) {
+                return far > 0.0f ? std::abs(s.at(x, y, c)) / far : 0.0f;
+            });
+            o.encoding = assets::PngEncoding::Linear;
+        } else {
+            throw Error(ErrorCode::InvalidArgument,
+                        "gbuffer has no output \"" + name + "\" (outputs: direct, albedo, normal, depth, position, distance)");
+        }
+        return o;
+    }
+
+    Context& ctx_;
+    GBuffer gbuffer_;
+    GBufferSettings settings_;
+    GBufferView view_;
+};
+
+const TechniqueRegistrar registrar({
+    "gbuffer",
+    "G-buffer: hardware depth, view-space face normal, albedo, unshadowed direct radiance",
+    {"direct", "albedo", "normal", "depth", "position", "distance"},
+    {{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert, unshadowed)"}},
+    [](Context& ctx) { return std::make_unique<GBufferRun>(ctx); },
+});
+
+} // namespace
+} // namespace obscura::cli

@@ -1,0 +1,28 @@
+#include "core/frame_uniforms.hpp"
+
+#include "shaders/common/common_bindings.h"
+#include "core/context_impl.hpp"
+
+namespace obscura::detail {
+
+void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int height) {
+    const DepthReconstruction r = depthReconstruction(camera);
+    const ProjectionInfo info = analyzeProjection(camera);
+    shader::FrameData data;
+    data.view = camera.view;
+    data.projection = camera.projection;
+    data.viewInverse = glm::mat4(glm::inverse(glm::dmat4(camera.view)));
+    data.depthXY = glm::vec4(r.xyScale, r.xyOffset);
+    data.depthZ = glm::vec4(r.zScale, r.zBiasHi, r.zBiasLo, r.clearDepth);
+    data.viewport = glm::ivec4(width, height,
+                               r.kind == ProjectionKind::Perspective ? OBSCURA_PROJECTION_PERSPECTIVE
+                                                                     : OBSCURA_PROJECTION_ORTHOGRAPHIC,
+                               info.reversedZ ? 1 : 0);
+    if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
+    ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
+    ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());
+}
+
+std::size_t FrameUniforms::memoryBytes() const { return buffer_ ? sizeof(shader::FrameData) : 0; }
+
+} // namespace obscura::detail

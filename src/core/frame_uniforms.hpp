@@ -1,0 +1,20 @@
+#pragma once
+// The per-frame uniform block (shaders/common/frame.glsl) filled from a Camera.
+#include "core/gl_objects.hpp"
+#include "obscura/camera.hpp"
+
+namespace obscura::detail {
+
+struct ContextImpl;
+
+class FrameUniforms {
+public:
+    //! Uploads the camera and viewport and binds the block at OBSCURA_FRAME_UBO_BINDING.
+    void bind(ContextImpl& ctx, const Camera& camera, int width, int height);
+    std::size_t memoryBytes() const;
+
+private:
+    Buffer buffer_;
+};
+
+} // namespace obscura::detail

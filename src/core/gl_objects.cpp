@@ -1,0 +1,132 @@
+#include "core/gl_objects.hpp"
+
+#include "core/context_impl.hpp"
+
+#include <string>
+
+namespace obscura::detail {
+namespace {
+
+GLenum labelNamespace(ObjectKind kind) {
+    switch (kind) {
+    case ObjectKind::Buffer: return GL_BUFFER;
+    case ObjectKind::Texture: return GL_TEXTURE;
+    case ObjectKind::Framebuffer: return GL_FRAMEBUFFER;
+    case ObjectKind::VertexArray: return GL_VERTEX_ARRAY;
+    case ObjectKind::Sampler: return GL_SAMPLER;
+    case ObjectKind::Query: return GL_QUERY;
+    case ObjectKind::Program: return GL_PROGRAM;
+    }
+    return GL_NONE;
+}
+
+void label(ContextImpl& ctx, ObjectKind kind, GLuint name, std::string_view text) {
+    if (!text.empty())
+        ctx.gl.ObjectLabel(labelNamespace(kind), name, static_cast<GLsizei>(text.size()), text.data());
+}
+
+template <ObjectKind Kind>
+Handle<Kind> track(ContextImpl& ctx, GLuint name, std::string_view text) {
+    ++ctx.liveObjects;
+    label(ctx, Kind, name, text);
+    return Handle<Kind>(ctx, name);
+}
+
+const char* glErrorName(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    default: return "unknown GL error";
+    }
+}
+
+} // namespace
+
+void destroyObject(ContextImpl& ctx, ObjectKind kind, GLuint name) noexcept {
+    auto& gl = ctx.gl;
+    switch (kind) {
+    case ObjectKind::Buffer: gl.DeleteBuffers(1, &name); break;
+    case ObjectKind::Texture: gl.DeleteTextures(1, &name); break;
+    case ObjectKind::Framebuffer: gl.DeleteFramebuffers(1, &name); break;
+    case ObjectKind::VertexArray: gl.DeleteVertexArrays(1, &name); break;
+    case ObjectKind::Sampler: gl.DeleteSamplers(1, &name); break;
+    case ObjectKind::Query: gl.DeleteQueries(1, &name); break;
+    case ObjectKind::Program: gl.DeleteProgram(name); break;
+    }
+    --ctx.liveObjects;
+}
+
+void checkAllocation(ContextImpl& ctx, std::string_view what) {
+    GLenum first = ctx.gl.GetError();
+    if (first == GL_NO_ERROR) return;
+    while (ctx.gl.GetError() != GL_NO_ERROR) {
+    }
+    if (first == GL_OUT_OF_MEMORY)
+        throw Error(ErrorCode::OutOfMemory, "out of GPU memory allocating " + std::string(what));
+    throw Error(ErrorCode::InvalidState,
+                std::string(glErrorName(first)) + " while creating " + std::string(what) + " (a bug in Obscura)");
+}
+
+Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
+                        std::string_view name) {
+    GLuint t = 0;
+    ctx.gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
+    Texture tex = track<ObjectKind::Texture>(ctx, t, name);
+    ctx.gl.TextureStorage2D(t, levels, internalFormat, width, height);
+    checkAllocation(ctx, std::string(name) + " (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    return tex;
+}
+
+Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view name) {
+    GLuint b = 0;
+    ctx.gl.CreateBuffers(1, &b);
+    Buffer buf = track<ObjectKind::Buffer>(ctx, b, name);
+    ctx.gl.NamedBufferStorage(b, bytes > 0 ? bytes : 1, data, flags);
+    checkAllocation(ctx, std::string(name) + " (" + std::to_string(bytes) + " bytes)");
+    return buf;
+}
+
+Framebuffer createFramebuffer(ContextImpl& ctx, std::string_view name) {
+    GLuint f = 0;
+    ctx.gl.CreateFramebuffers(1, &f);
+    return track<ObjectKind::Framebuffer>(ctx, f, name);
+}
+
+VertexArray createVertexArray(ContextImpl& ctx, std::string_view name) {
+    GLuint v = 0;
+    ctx.gl.CreateVertexArrays(1, &v);
+    return track<ObjectKind::VertexArray>(ctx, v, name);
+}
+
+Sampler createSampler(ContextImpl& ctx, GLenum filter, GLenum wrap, std::string_view name) {
+    GLuint s = 0;
+    ctx.gl.CreateSamplers(1, &s);
+    Sampler sampler = track<ObjectKind::Sampler>(ctx, s, name);
+    auto& gl = ctx.gl;
+    // Magnification has no mipmap modes: it takes the base filter of the minification one.
+    const bool nearest = filter == GL_NEAREST || filter == GL_NEAREST_MIPMAP_NEAREST || filter == GL_NEAREST_MIPMAP_LINEAR;
+    gl.SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+    gl.SamplerParameteri(s, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
+    gl.SamplerParameteri(s, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+    gl.SamplerParameteri(s, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    gl.SamplerParameteri(s, GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
+    // Samplers override the texture's own compare mode, so a host depth texture set up
+    // for shadow lookups still returns depth values through ours.
+    gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    return sampler;
+}
+
+Query createQuery(ContextImpl& ctx, GLenum target) {
+    GLuint q = 0;
+    ctx.gl.CreateQueries(target, 1, &q);
+    return track<ObjectKind::Query>(ctx, q, {});
+}
+
+Program adoptProgram(ContextImpl& ctx, GLuint name) { return track<ObjectKind::Program>(ctx, name, {}); }
+
+} // namespace obscura::detail

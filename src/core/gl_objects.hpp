@@ -1,0 +1,71 @@
+#pragma once
+// RAII ownership of GL objects, created with DSA (glCreate*), labelled for KHR_debug, and
+// counted per context so that tests can prove no call leaks an object.
+#include "core/gl.hpp"
+
+#include <string_view>
+#include <utility>
+
+namespace obscura::detail {
+
+struct ContextImpl;
+
+enum class ObjectKind { Buffer, Texture, Framebuffer, VertexArray, Sampler, Query, Program };
+
+//! Deletes a GL object of the given kind and decrements the context's live count.
+void destroyObject(ContextImpl& ctx, ObjectKind kind, GLuint name) noexcept;
+
+template <ObjectKind Kind>
+class Handle {
+public:
+    Handle() = default;
+    Handle(ContextImpl& ctx, GLuint name) noexcept : ctx_(&ctx), name_(name) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : ctx_(o.ctx_), name_(std::exchange(o.name_, 0)) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) {
+            reset();
+            ctx_ = o.ctx_;
+            name_ = std::exchange(o.name_, 0);
+        }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+
+    GLuint get() const noexcept { return name_; }
+    explicit operator bool() const noexcept { return name_ != 0; }
+    void reset() noexcept {
+        if (name_ != 0) destroyObject(*ctx_, Kind, std::exchange(name_, 0));
+    }
+
+private:
+    ContextImpl* ctx_ = nullptr;
+    GLuint name_ = 0;
+};
+
+using Buffer = Handle<ObjectKind::Buffer>;
+using Texture = Handle<ObjectKind::Texture>;
+using Framebuffer = Handle<ObjectKind::Framebuffer>;
+using VertexArray = Handle<ObjectKind::VertexArray>;
+using Sampler = Handle<ObjectKind::Sampler>;
+using Query = Handle<ObjectKind::Query>;
+using Program = Handle<ObjectKind::Program>;
+
+// Creation. `label` names the object in debuggers (KHR_debug); use the pass name.
+// Allocations check GL_OUT_OF_MEMORY and throw Error{OutOfMemory} without leaking.
+Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
+                        std::string_view label);
+Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view label);
+Framebuffer createFramebuffer(ContextImpl& ctx, std::string_view label);
+VertexArray createVertexArray(ContextImpl& ctx, std::string_view label);
+//! `filter` is the minification filter; magnification uses its non-mipmap part.
+Sampler createSampler(ContextImpl& ctx, GLenum filter, GLenum wrap, std::string_view label);
+Query createQuery(ContextImpl& ctx, GLenum target);
+Program adoptProgram(ContextImpl& ctx, GLuint name);
+
+//! Throws Error{OutOfMemory} if the last allocation failed; any other pending error is a bug
+//! in Obscura and throws Error{InvalidState} with the GL error name and `what`.
+void checkAllocation(ContextImpl& ctx, std::string_view what);
+
+} // namespace obscura::detail

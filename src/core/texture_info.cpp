@@ -1,0 +1,88 @@
+#include "core/texture_info.hpp"
+
+#include "core/context_impl.hpp"
+#include "obscura/error.hpp"
+
+#include <cstdio>
+
+namespace obscura::detail {
+
+std::string formatName(GLenum f) {
+    switch (f) {
+    case GL_DEPTH_COMPONENT16: return "GL_DEPTH_COMPONENT16";
+    case GL_DEPTH_COMPONENT24: return "GL_DEPTH_COMPONENT24";
+    case GL_DEPTH_COMPONENT32: return "GL_DEPTH_COMPONENT32";
+    case GL_DEPTH_COMPONENT32F: return "GL_DEPTH_COMPONENT32F";
+    case GL_DEPTH24_STENCIL8: return "GL_DEPTH24_STENCIL8";
+    case GL_DEPTH32F_STENCIL8: return "GL_DEPTH32F_STENCIL8";
+    case GL_RGBA8: return "GL_RGBA8";
+    case GL_RGB8: return "GL_RGB8";
+    case GL_SRGB8_ALPHA8: return "GL_SRGB8_ALPHA8";
+    case GL_RGBA16F: return "GL_RGBA16F";
+    case GL_RGB16F: return "GL_RGB16F";
+    case GL_RGBA32F: return "GL_RGBA32F";
+    case GL_RGB32F: return "GL_RGB32F";
+    case GL_R32F: return "GL_R32F";
+    case GL_R16F: return "GL_R16F";
+    case GL_RG16F: return "GL_RG16F";
+    case GL_RGB10_A2: return "GL_RGB10_A2";
+    case GL_RGBA16: return "GL_RGBA16";
+    case GL_RGB16: return "GL_RGB16";
+    case GL_R8: return "GL_R8";
+    case GL_RGBA32UI: return "GL_RGBA32UI";
+    case GL_R32UI: return "GL_R32UI";
+    default: {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "0x%04X", f);
+        return buf;
+    }
+    }
+}
+
+TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who) {
+    auto& gl = ctx.gl;
+    if (name == 0 || !gl.IsTexture(name))
+        throw Error(ErrorCode::InvalidArgument, who + ": " + std::to_string(name) + " is not a GL texture name");
+    GLint target = 0;
+    gl.GetTextureParameteriv(name, GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + ": texture " + std::to_string(name) + " is not a GL_TEXTURE_2D (multisampled, array "
+                    "and cube textures are not accepted; resolve or copy to a 2D texture first)");
+    TextureInfo t;
+    GLint v = 0;
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_INTERNAL_FORMAT, &v);
+    t.internalFormat = static_cast<GLenum>(v);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_WIDTH, &t.width);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_HEIGHT, &t.height);
+    if (t.width < 1 || t.height < 1)
+        throw Error(ErrorCode::InvalidArgument, who + ": texture " + std::to_string(name) + " has no level 0 image");
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_COMPRESSED, &v);
+    if (v) throw Error(ErrorCode::InvalidArgument, who + ": compressed textures are not accepted");
+
+    GLint depthSize = 0, stencilSize = 0, sizes[4] = {}, redType = 0;
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_DEPTH_SIZE, &depthSize);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_STENCIL_SIZE, &stencilSize);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_RED_SIZE, &sizes[0]);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_GREEN_SIZE, &sizes[1]);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_BLUE_SIZE, &sizes[2]);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_ALPHA_SIZE, &sizes[3]);
+    gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_RED_TYPE, &redType);
+    if (depthSize > 0) {
+        t.depth = true;
+        t.stencil = stencilSize > 0;
+        t.channels = 1;
+        t.pixelFormat = GL_DEPTH_COMPONENT;
+        return t;
+    }
+    t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
+    t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
+    t.isSigned = redType == GL_INT;
+    t.channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
+    static constexpr GLenum floatFormats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static constexpr GLenum intFormats[4] = {GL_RED_INTEGER, GL_RG_INTEGER, GL_RGB_INTEGER, GL_RGBA_INTEGER};
+    t.pixelFormat = (t.integer ? intFormats : floatFormats)[t.channels - 1];
+    return t;
+}
+
+} // namespace obscura::detail

@@ -1,0 +1,30 @@
+#pragma once
+// Facts about a texture name, queried without changing any binding (DSA queries), after
+// checking that the name is a texture (querying a non-texture would raise a GL error).
+#include "core/gl.hpp"
+
+#include <string>
+
+namespace obscura::detail {
+
+struct ContextImpl;
+
+struct TextureInfo {
+    GLenum internalFormat = 0;
+    int width = 0, height = 0;
+    int channels = 0;          //!< 1..4 (depth = 1)
+    bool depth = false;        //!< a depth or depth-stencil format
+    bool stencil = false;      //!< depth-stencil
+    bool integer = false;      //!< *I / *UI formats
+    bool isSigned = false;     //!< for integer formats
+    bool srgb = false;         //!< sRGB-encoded storage (GL_SRGB8, GL_SRGB8_ALPHA8)
+    GLenum pixelFormat = 0;    //!< glGetTextureImage format matching `channels`
+};
+
+//! Throws Error{InvalidArgument} mentioning `who` unless `name` is a single-sampled,
+//! uncompressed GL_TEXTURE_2D with a level 0.
+TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who);
+
+std::string formatName(GLenum internalFormat);
+
+} // namespace obscura::detail

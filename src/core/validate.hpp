@@ -1,0 +1,52 @@
+#pragma once
+// Input validation shared by every module: checks run before any GL work and throw
+// Error{InvalidArgument} with what was given and what is accepted.
+#include "obscura/error.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace obscura::detail {
+
+template <glm::length_t N, typename T, glm::qualifier Q>
+bool allFinite(const glm::vec<N, T, Q>& v) {
+    for (glm::length_t i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+template <glm::length_t C, glm::length_t R, typename T, glm::qualifier Q>
+bool allFinite(const glm::mat<C, R, T, Q>& m) {
+    for (glm::length_t i = 0; i < C; ++i)
+        if (!allFinite(m[i])) return false;
+    return true;
+}
+
+template <typename V>
+void requireFinite(const V& value, const std::string& what) {
+    if (!allFinite(value)) throw Error(ErrorCode::InvalidArgument, what + " contains NaN or Inf");
+}
+
+inline void requireFinite(float value, const std::string& what) {
+    if (!std::isfinite(value)) throw Error(ErrorCode::InvalidArgument, what + " is NaN or Inf");
+}
+
+//! lo <= value <= hi, reported with the unit.
+inline void requireInRange(double value, double lo, double hi, const std::string& what, const std::string& unit = {}) {
+    if (!(value >= lo && value <= hi))
+        throw Error(ErrorCode::InvalidArgument, what + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                                    "]" + (unit.empty() ? "" : " " + unit) + ", got " +
+                                                    std::to_string(value));
+}
+
+//! A render-target size: [1, maxSize] on each axis.
+inline void requireImageSize(int width, int height, int maxSize, const std::string& what) {
+    if (width < 1 || height < 1 || width > maxSize || height > maxSize)
+        throw Error(ErrorCode::InvalidArgument, what + " size must be in [1, " + std::to_string(maxSize) +
+                                                    "] pixels on each axis (GL_MAX_TEXTURE_SIZE), got " +
+                                                    std::to_string(width) + "x" + std::to_string(height));
+}
+
+} // namespace obscura::detail

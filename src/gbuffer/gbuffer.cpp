@@ -1,0 +1,370 @@
+#include "obscura/gbuffer.hpp"
+
+#include "core/context_impl.hpp"
+#include "core/frame_uniforms.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/texture_info.hpp"
+#include "core/validate.hpp"
+#include "gbuffer/mesh_cache.hpp"
+#include "obscura/context.hpp"
+#include "shaders/gbuffer/gbuffer_bindings.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+namespace obscura {
+namespace {
+
+using namespace detail;
+
+constexpr std::size_t kBytesPerPixel = 4 /*depth 32F*/ + 8 /*normal RGBA16F*/ + 4 /*albedo*/ + 8 /*direct*/;
+
+std::string lightName(std::size_t i) { return "Scene::lights[" + std::to_string(i) + "]"; }
+
+void validateLight(const Light& l, std::size_t i) {
+    const std::string what = lightName(i);
+    requireFinite(l.color, what + ".color");
+    requireFinite(l.position, what + ".position");
+    requireFinite(l.direction, what + ".direction");
+    requireInRange(l.intensity, 0.0, FLT_MAX, what + ".intensity", l.type == LightType::Directional ? "W/m^2" : "W/sr");
+    if (glm::any(glm::lessThan(l.color, glm::vec3(0.0f))))
+        throw Error(ErrorCode::InvalidArgument, what + ".color must be >= 0 per channel");
+    requireInRange(l.radius, 0.0, FLT_MAX, what + ".radius", "world units");
+    if (l.type != LightType::Point && !(glm::length(glm::dvec3(l.direction)) > 0.0))
+        throw Error(ErrorCode::InvalidArgument, what + ".direction must be non-zero");
+    if (l.type == LightType::Spot) {
+        requireInRange(l.outerAngle, 1e-6, 1.5707963, what + ".outerAngle", "radians, (0, pi/2)");
+        requireInRange(l.innerAngle, 0.0, l.outerAngle, what + ".innerAngle", "radians, [0, outerAngle]");
+    }
+}
+
+void validateMaterial(const Material& m, std::size_t i) {
+    const std::string what = "Scene::materials[" + std::to_string(i) + "]";
+    requireFinite(m.albedo, what + ".albedo");
+    requireFinite(m.emission, what + ".emission");
+    if (glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
+        throw Error(ErrorCode::InvalidArgument, what + ".albedo must be in [0,1] per channel");
+    if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
+        throw Error(ErrorCode::InvalidArgument, what + ".emission must be >= 0 per channel");
+}
+
+void validateScene(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) validateLight(scene.lights[i], i);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) validateMaterial(scene.materials[i], i);
+    const auto checkMaterial = [&](std::uint32_t index, const std::string& what) {
+        if (index >= scene.materials.size())
+            throw Error(ErrorCode::InvalidArgument, what + ".material = " + std::to_string(index) + " but the scene has " +
+                                                        std::to_string(scene.materials.size()) + " materials");
+    };
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const std::string what = "Scene::meshes[" + std::to_string(i) + "]";
+        if (!scene.meshes[i].data) throw Error(ErrorCode::InvalidArgument, what + ".data is null");
+        requireFinite(scene.meshes[i].model, what + ".model");
+        checkMaterial(scene.meshes[i].material, what);
+        validateMeshData(*scene.meshes[i].data, i);
+    }
+    for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) {
+        const std::string what = "Scene::meshRefs[" + std::to_string(i) + "]";
+        requireFinite(scene.meshRefs[i].model, what + ".model");
+        checkMaterial(scene.meshRefs[i].material, what);
+    }
+}
+
+shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
+    shader::LightData d{};
+    const glm::dvec3 p = glm::dvec3(view * glm::dvec4(glm::dvec3(l.position), 1.0));
+    const glm::dvec3 dir = glm::normalize(glm::dmat3(view) * glm::dvec3(l.direction));
+    const int type = l.type == LightType::Point ? GBUFFER_LIGHT_POINT
+                     : l.type == LightType::Spot ? GBUFFER_LIGHT_SPOT
+                                                 : GBUFFER_LIGHT_DIRECTIONAL;
+    d.positionType = glm::vec4(glm::vec3(p), static_cast<float>(type));
+    d.directionRadius = glm::vec4(l.type == LightType::Point ? glm::vec3(0.0f) : glm::vec3(dir), l.radius);
+    d.radiance = glm::vec4(l.color * l.intensity, 0.0f);
+    d.cone = glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), 0.0f, 0.0f);
+    return d;
+}
+
+void dispatchOverImage(ContextImpl& ctx, int width, int height) {
+    const auto groups = [](int n) { return static_cast<GLuint>((n + GBUFFER_WORKGROUP_SIZE - 1) / GBUFFER_WORKGROUP_SIZE); };
+    ctx.gl.DispatchCompute(groups(width), groups(height), 1);
+    // Results are read by later passes, by the host (sampling) or by readTexture.
+    ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                         GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+} // namespace
+
+struct GBuffer::Impl {
+    explicit Impl(ContextImpl& c) : ctx(c), meshes(c) {}
+
+    ContextImpl& ctx;
+    MeshCache meshes;
+    FrameUniforms frame;
+    int width = 0, height = 0;
+    Texture depth, normal, albedo, direct;
+    Framebuffer fbo;
+    Buffer lights;
+    std::size_t lightCapacity = 0;
+    Sampler materialSampler;
+    // adopt() and positions() outputs
+    Texture adoptedNormal;
+    int adoptedWidth = 0, adoptedHeight = 0;
+    Texture positions;
+    int positionsWidth = 0, positionsHeight = 0;
+
+    void ensureTargets(int w, int h) {
+        if (fbo && w == width && h == height) return;
+        fbo.reset();
+        depth = createTexture2D(ctx, GL_DEPTH_COMPONENT32F, w, h, 1, "gbuffer.depth");
+        normal = createTexture2D(ctx, GL_RGBA16F, w, h, 1, "gbuffer.normal");
+        albedo = createTexture2D(ctx, GL_SRGB8_ALPHA8, w, h, 1, "gbuffer.albedo");
+        direct = createTexture2D(ctx, GL_RGBA16F, w, h, 1, "gbuffer.direct");
+        Framebuffer f = createFramebuffer(ctx, "gbuffer.render");
+        auto& gl = ctx.gl;
+        gl.NamedFramebufferTexture(f.get(), GL_DEPTH_ATTACHMENT, depth.get(), 0);
+        gl.NamedFramebufferTexture(f.get(), GL_COLOR_ATTACHMENT0, normal.get(), 0);
+        gl.NamedFramebufferTexture(f.get(), GL_COLOR_ATTACHMENT1, albedo.get(), 0);
+        gl.NamedFramebufferTexture(f.get(), GL_COLOR_ATTACHMENT2, direct.get(), 0);
+        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        gl.NamedFramebufferDrawBuffers(f.get(), 3, buffers);
+        if (gl.CheckNamedFramebufferStatus(f.get(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(ErrorCode::UnsupportedFeature, "the G-buffer framebuffer (32F depth, RGBA16F, SRGB8_ALPHA8, "
+                                                       "RGBA16F) is not complete on this driver");
+        fbo = std::move(f);
+        width = w;
+        height = h;
+    }
+
+    void uploadLights(const Scene& scene, const glm::dmat4& view) {
+        std::vector<shader::LightData> data;
+        data.reserve(scene.lights.size());
+        for (const Light& l : scene.lights) data.push_back(toViewSpace(l, view));
+        const std::size_t needed = std::max<std::size_t>(1, data.size());
+        if (!lights || lightCapacity < needed) {
+            lights = createBuffer(ctx, static_cast<GLsizeiptr>(needed * sizeof(shader::LightData)), nullptr,
+                                  GL_DYNAMIC_STORAGE_BIT, "gbuffer.lights");
+            lightCapacity = needed;
+        }
+        if (!data.empty())
+            ctx.gl.NamedBufferSubData(lights.get(), 0, static_cast<GLsizeiptr>(data.size() * sizeof(data[0])), data.data());
+        ctx.state.bindStorageBuffer(ctx, GBUFFER_LIGHTS_SSBO_BINDING, lights.get());
+    }
+
+    GLuint materialTexture(const Material& m) {
+        if (m.albedoTexture != 0) return m.albedoTexture;
+        if (m.albedoImage) return meshes.albedoTexture(m.albedoImage);
+        return 0;
+    }
+
+    void draw(const DrawableMesh& mesh, const glm::mat4& model, const Material& material, const glm::dmat4& view,
+              bool directLighting, int lightCount) {
+        auto& gl = ctx.gl;
+        const GLuint texture = mesh.hasTexcoords ? materialTexture(material) : 0;
+        Defines defines;
+        if (mesh.hasNormals) defines.push_back("HAS_NORMALS");
+        if (mesh.hasTexcoords) defines.push_back("HAS_TEXCOORDS");
+        if (texture) defines.push_back("ALBEDO_TEXTURE");
+        if (!directLighting) defines.push_back("NO_DIRECT_LIGHTING");
+        const GLuint program = ctx.shaders->program(
+            {"gbuffer/gbuffer.vert.glsl", "gbuffer/gbuffer.geom.glsl", "gbuffer/gbuffer.frag.glsl"}, defines);
+        gl.UseProgram(program);
+        // Model-view in double: a scene far from the origin keeps its precision near the camera.
+        const glm::dmat4 modelView = view * glm::dmat4(model);
+        const glm::mat4 mv(modelView);
+        const glm::mat4 normalMatrix(glm::transpose(glm::inverse(glm::dmat3(modelView))));
+        gl.ProgramUniformMatrix4fv(program, GBUFFER_LOC_MODEL_VIEW, 1, GL_FALSE, glm::value_ptr(mv));
+        gl.ProgramUniformMatrix4fv(program, GBUFFER_LOC_NORMAL_MATRIX, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        gl.ProgramUniform3fv(program, GBUFFER_LOC_ALBEDO, 1, glm::value_ptr(material.albedo));
+        gl.ProgramUniform3fv(program, GBUFFER_LOC_EMISSION, 1, glm::value_ptr(material.emission));
+        gl.ProgramUniform1i(program, GBUFFER_LOC_LIGHT_COUNT, lightCount);
+        if (texture) {
+            if (!materialSampler)
+                materialSampler = createSampler(ctx, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT, "gbuffer.material_sampler");
+            ctx.state.bindTexture(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, texture);
+            ctx.state.bindSampler(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, materialSampler.get());
+        }
+        gl.BindVertexArray(mesh.vao);
+        if (mesh.indexType != GL_NONE)
+            gl.DrawElements(GL_TRIANGLES, mesh.count, mesh.indexType,
+                            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(mesh.indexOffset)));
+        else
+            gl.DrawArrays(GL_TRIANGLES, 0, mesh.count);
+    }
+
+    void validateHostTexture(GLuint name, const std::string& who) {
+        const TextureInfo t = queryTexture2D(ctx, name, who);
+        if (t.depth || t.integer)
+            throw Error(ErrorCode::InvalidArgument, who + ": needs a colour format that can be sampled as float, got " +
+                                                        formatName(t.internalFormat));
+    }
+};
+
+GBuffer::GBuffer(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+GBuffer::~GBuffer() = default;
+
+GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
+    auto& ctx = impl_->ctx;
+    requireImageSize(settings.width, settings.height, ctx.info.maxTextureSize, "GBufferSettings");
+    requireFinite(settings.background, "GBufferSettings::background");
+    const ProjectionInfo projection = analyzeProjection(camera);
+    validateScene(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (scene.materials[i].albedoTexture != 0)
+            impl_->validateHostTexture(scene.materials[i].albedoTexture,
+                                       "Scene::materials[" + std::to_string(i) + "].albedoTexture");
+
+    StateScope scope(ctx);
+    PassScope pass(ctx, "gbuffer.render");
+    auto& gl = ctx.gl;
+    impl_->meshes.collectGarbage();
+    // Host meshes first: reading a host VAO's layout binds it.
+    std::vector<DrawableMesh> hostMeshes;
+    for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) hostMeshes.push_back(impl_->meshes.hostMesh(i, scene.meshRefs[i]));
+    impl_->ensureTargets(settings.width, settings.height);
+    const glm::dmat4 view(camera.view);
+    impl_->frame.bind(ctx, camera, settings.width, settings.height);
+    impl_->uploadLights(scene, view);
+
+    const GLuint fbo = impl_->fbo.get();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    setViewport(ctx, 0, 0, settings.width, settings.height);
+    const bool zeroToOne = camera.clipDepth == ClipDepth::ZeroToOne;
+    applyDrawState(ctx, {true, true, static_cast<GLenum>(projection.reversedZ ? GL_GREATER : GL_LESS), false, true,
+                         static_cast<GLenum>(zeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE), false});
+    const float zero[4] = {0, 0, 0, 0};
+    const float background[4] = {settings.background.r, settings.background.g, settings.background.b, 0.0f};
+    gl.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &projection.clearDepth);
+    gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+    gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
+    gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 2, background);
+
+    const int lightCount = static_cast<int>(scene.lights.size());
+    for (const Mesh& mesh : scene.meshes) {
+        const DrawableMesh d = impl_->meshes.cpuMesh(mesh.data);
+        if (d.count > 0)
+            impl_->draw(d, mesh.model, scene.materials[mesh.material], view, settings.directLighting, lightCount);
+    }
+    for (std::size_t i = 0; i < scene.meshRefs.size(); ++i)
+        impl_->draw(hostMeshes[i], scene.meshRefs[i].model, scene.materials[scene.meshRefs[i].material], view,
+                    settings.directLighting, lightCount);
+
+    GBufferView v;
+    v.depth = {impl_->depth.get(), GL_DEPTH_COMPONENT32F, settings.width, settings.height};
+    v.normal = {impl_->normal.get(), GL_RGBA16F, settings.width, settings.height};
+    v.albedo = {impl_->albedo.get(), GL_SRGB8_ALPHA8, settings.width, settings.height};
+    v.directRadiance = {impl_->direct.get(), GL_RGBA16F, settings.width, settings.height};
+    v.camera = camera;
+    v.width = settings.width;
+    v.height = settings.height;
+    return v;
+}
+
+GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
+    auto& ctx = impl_->ctx;
+    analyzeProjection(camera);
+    const TextureInfo depth = queryTexture2D(ctx, host.depth.name, "HostGBuffer::depth");
+    if (!depth.depth)
+        throw Error(ErrorCode::InvalidArgument,
+                    "HostGBuffer::depth must have a depth format (GL_DEPTH_COMPONENT16/24/32/32F, GL_DEPTH24_STENCIL8, "
+                    "GL_DEPTH32F_STENCIL8), got " + formatName(depth.internalFormat));
+    if (depth.stencil) {
+        GLint mode = 0;
+        ctx.gl.GetTextureParameteriv(host.depth.name, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+        if (mode != GL_DEPTH_COMPONENT)
+            throw Error(ErrorCode::InvalidArgument, "HostGBuffer::depth samples stencil: set its "
+                                                    "GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
+    }
+    requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
+    Defines defines;
+    if (host.normal.name != 0) {
+        const TextureInfo n = queryTexture2D(ctx, host.normal.name, "HostGBuffer::normal");
+        if (n.width != depth.width || n.height != depth.height)
+            throw Error(ErrorCode::InvalidArgument, "HostGBuffer::normal is " + std::to_string(n.width) + "x" +
+                                                        std::to_string(n.height) + " but depth is " +
+                                                        std::to_string(depth.width) + "x" + std::to_string(depth.height));
+        GLint componentType = 0;
+        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
+        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && componentType == GL_FLOAT;
+        const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned && componentType == GL_UNSIGNED_NORMALIZED;
+        if (n.depth || n.channels < 3 || !(signedOk || unsignedOk))
+            throw Error(ErrorCode::InvalidArgument,
+                        "HostGBuffer::normal has format " + formatName(n.internalFormat) + "; accepted: " +
+                            (host.normalEncoding == NormalEncoding::Signed
+                                 ? "a float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) with "
+                                   "NormalEncoding::Signed"
+                                 : "a normalized unsigned RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) "
+                                   "with NormalEncoding::Unsigned"));
+        if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
+        if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
+    } else {
+        defines.push_back("FROM_DEPTH");
+    }
+
+    StateScope scope(ctx);
+    PassScope pass(ctx, "gbuffer.normals");
+    const int w = depth.width, h = depth.height;
+    if (!impl_->adoptedNormal || impl_->adoptedWidth != w || impl_->adoptedHeight != h) {
+        impl_->adoptedNormal = createTexture2D(ctx, GL_RGBA16F, w, h, 1, "gbuffer.normal");
+        impl_->adoptedWidth = w;
+        impl_->adoptedHeight = h;
+    }
+    const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
+    ctx.gl.UseProgram(program);
+    impl_->frame.bind(ctx, camera, w, h);
+    ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, host.depth.name);
+    ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
+    if (host.normal.name != 0) {
+        ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, host.normal.name);
+        ctx.state.bindSampler(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, ctx.nearestClampSampler());
+    }
+    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, impl_->adoptedNormal.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                        GL_RGBA16F);
+    dispatchOverImage(ctx, w, h);
+
+    GBufferView v;
+    v.depth = {host.depth.name, depth.internalFormat, w, h};
+    v.normal = {impl_->adoptedNormal.get(), GL_RGBA16F, w, h};
+    v.camera = camera;
+    v.width = w;
+    v.height = h;
+    return v;
+}
+
+TextureView GBuffer::positions(const GBufferView& view) {
+    auto& ctx = impl_->ctx;
+    analyzeProjection(view.camera);
+    const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
+    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
+    StateScope scope(ctx);
+    PassScope pass(ctx, "gbuffer.positions");
+    const int w = depth.width, h = depth.height;
+    if (!impl_->positions || impl_->positionsWidth != w || impl_->positionsHeight != h) {
+        impl_->positions = createTexture2D(ctx, GL_RGBA32F, w, h, 1, "gbuffer.positions");
+        impl_->positionsWidth = w;
+        impl_->positionsHeight = h;
+    }
+    ctx.gl.UseProgram(ctx.shaders->program({"gbuffer/positions.comp.glsl"}));
+    impl_->frame.bind(ctx, view.camera, w, h);
+    ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, view.depth.name);
+    ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
+    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, impl_->positions.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    dispatchOverImage(ctx, w, h);
+    return {impl_->positions.get(), GL_RGBA32F, w, h};
+}
+
+std::size_t GBuffer::memoryBytes() const {
+    const auto& i = *impl_;
+    std::size_t total = i.meshes.memoryBytes() + i.frame.memoryBytes();
+    if (i.fbo) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * kBytesPerPixel;
+    total += i.lightCapacity * sizeof(shader::LightData);
+    if (i.adoptedNormal) total += static_cast<std::size_t>(i.adoptedWidth) * static_cast<std::size_t>(i.adoptedHeight) * 8;
+    if (i.positions) total += static_cast<std::size_t>(i.positionsWidth) * static_cast<std::size_t>(i.positionsHeight) * 16;
+    return total;
+}
+
+} // namespace obscura

@@ -1,0 +1,184 @@
+// Bad input: every case gives an obscura::Error with the right code and a message naming what
+// was wrong, leaves no GL error pending and no GL object behind.
+#include "gl_fixture.hpp"
+#include "obscura/obscura.hpp"
+#include "scene_builders.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <climits>
+#include <cmath>
+#include <functional>
+
+using namespace obscura;
+
+namespace {
+
+struct BadInputFixture {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Scene scene = test::quadScene({{{{{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}}}});
+    Camera camera = Camera::perspective({{0, 2, 2}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f);
+    GBufferView good;
+
+    BadInputFixture() {
+        // Warm up, so that caches a successful call creates are not mistaken for leaks.
+        good = gbuffer.render(scene, camera, {16, 16, true, {}});
+        gbuffer.positions(good);
+        HostGBuffer host;
+        host.depth = good.depth;
+        gbuffer.adopt(host, camera);
+    }
+
+    // Runs `call`, which must throw an Error with `code` whose message contains `needle`.
+    void expectError(const std::function<void()>& call, ErrorCode code, const std::string& needle) {
+        const auto objectsBefore = test::liveGlObjects();
+        const std::size_t countBefore = ctx.liveObjectCount();
+        try {
+            call();
+            FAIL("no error; expected one mentioning \"" << needle << "\"");
+        } catch (const Error& e) {
+            INFO(e.what());
+            CHECK(e.code() == code);
+            CHECK_THAT(e.what(), Catch::Contains(needle));
+        }
+        CHECK(test::drainGlErrors().empty());
+        CHECK(test::liveGlObjects() == objectsBefore);
+        CHECK(ctx.liveObjectCount() == countBefore);
+    }
+};
+
+GLuint hostTexture(GLenum format, int w, int h) {
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, format, w, h);
+    return t;
+}
+
+} // namespace
+
+TEST_CASE_METHOD(BadInputFixture, "Zero negative and huge target sizes are refused", "[bad-input]") {
+    const int max = ctx.info().maxTextureSize;
+    for (auto [w, h] : {std::pair{0, 16}, std::pair{16, 0}, std::pair{-4, 16}, std::pair{max + 1, 16},
+                        std::pair{16, INT_MAX}}) {
+        CAPTURE(w, h);
+        expectError([&] { gbuffer.render(scene, camera, {w, h, true, {}}); }, ErrorCode::InvalidArgument,
+                    "GL_MAX_TEXTURE_SIZE");
+    }
+}
+
+TEST_CASE_METHOD(BadInputFixture, "NaN and Inf in matrices lights and materials are refused", "[bad-input]") {
+    const float nan = std::nanf(""), inf = INFINITY;
+    Camera c = camera;
+    c.view[1][2] = nan;
+    expectError([&] { gbuffer.render(scene, c, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "Camera::view");
+    c = camera;
+    c.projection[0][0] = inf;
+    expectError([&] { gbuffer.render(scene, c, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "Camera::projection");
+    Scene s = scene;
+    s.meshes[0].model[3][0] = nan;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "meshes[0].model");
+    s = scene;
+    auto data = std::make_shared<MeshData>(*s.meshes[0].data);
+    data->positions[2].y = nan;
+    s.meshes[0].data = data;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "position 2");
+    s = scene;
+    Light l;
+    l.position.x = nan;
+    s.lights.push_back(l);
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "lights[0].position");
+    s.lights[0] = Light{};
+    s.lights[0].intensity = inf;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "intensity");
+    s = scene;
+    s.materials[0].albedo = {0.5f, nan, 0.5f};
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "materials[0].albedo");
+    expectError([] { Camera::perspective({{0, 0, 0}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f); },
+                ErrorCode::InvalidArgument, "eye and target");
+    expectError([] { Camera::perspective({{0, 0, 1}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.0f, 10.0f); },
+                ErrorCode::InvalidArgument, "near");
+    expectError([] { Camera::perspective({{0, 0, 1}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, INFINITY); },
+                ErrorCode::InvalidArgument, "Reversed");
+}
+
+TEST_CASE_METHOD(BadInputFixture, "Inconsistent meshes and material indices are refused", "[bad-input]") {
+    Scene s = scene;
+    s.meshes[0].material = 3;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "material");
+    s = scene;
+    auto data = std::make_shared<MeshData>(*s.meshes[0].data);
+    data->indices.push_back(99);
+    s.meshes[0].data = data;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "multiple of 3");
+    data->indices = {0, 1, 7};
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, ">= 4 positions");
+    data->indices = {0, 1, 2};
+    data->normals.pop_back();
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "normals");
+    s = scene;
+    MeshRef ref;
+    ref.position = {12345, 0, 12, 3, GL_FLOAT, false};
+    ref.count = 3;
+    s.meshRefs.push_back(ref);
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "not a GL buffer");
+    s.meshRefs[0].vao = 777;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "not a GL vertex array");
+}
+
+TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are refused", "[bad-input]") {
+    const GLuint rgba8 = hostTexture(GL_RGBA8, 16, 16);
+    const GLuint depth = hostTexture(GL_DEPTH_COMPONENT32F, 16, 16);
+    const GLuint depthOdd = hostTexture(GL_DEPTH_COMPONENT24, 8, 8);
+    const GLuint rg16f = hostTexture(GL_RG16F, 16, 16);
+    const GLuint stencilled = hostTexture(GL_DEPTH24_STENCIL8, 16, 16);
+    glTextureParameteri(stencilled, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    GLuint multisample = 0;
+    glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &multisample);
+    glTextureStorage2DMultisample(multisample, 4, GL_DEPTH_COMPONENT32F, 16, 16, GL_TRUE);
+    const auto adopt = [&](GLuint d, GLuint n, NormalEncoding enc = NormalEncoding::Signed) {
+        HostGBuffer h;
+        h.depth = {d, 0, 0, 0};
+        h.normal = {n, 0, 0, 0};
+        h.normalEncoding = enc;
+        gbuffer.adopt(h, camera);
+    };
+    expectError([&] { adopt(rgba8, 0); }, ErrorCode::InvalidArgument, "depth format");
+    expectError([&] { adopt(0, 0); }, ErrorCode::InvalidArgument, "not a GL texture");
+    expectError([&] { adopt(4242, 0); }, ErrorCode::InvalidArgument, "not a GL texture");
+    expectError([&] { adopt(multisample, 0); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
+    expectError([&] { adopt(stencilled, 0); }, ErrorCode::InvalidArgument, "GL_DEPTH_STENCIL_TEXTURE_MODE");
+    expectError([&] { adopt(depth, depth); }, ErrorCode::InvalidArgument, "GL_DEPTH_COMPONENT32F");
+    expectError([&] { adopt(depth, rgba8); }, ErrorCode::InvalidArgument, "NormalEncoding::Signed");
+    expectError([&] { adopt(depth, rg16f); }, ErrorCode::InvalidArgument, "GL_RG16F");
+    expectError([&] { adopt(depthOdd, rgba8, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "8x8");
+    expectError([&] { readTexture(ctx, {multisample, 0, 16, 16}); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
+    Scene s = scene;
+    s.materials[0].albedoTexture = depth;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "albedoTexture");
+    for (GLuint t : {rgba8, depth, depthOdd, rg16f, stencilled, multisample}) glDeleteTextures(1, &t);
+}
+
+TEST_CASE_METHOD(BadInputFixture, "Light and camera parameters outside their ranges are refused", "[bad-input]") {
+    Scene s = scene;
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.innerAngle = 0.8f;
+    spot.outerAngle = 0.5f;
+    s.lights.push_back(spot);
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "innerAngle");
+    s.lights[0].innerAngle = 0.2f;
+    s.lights[0].direction = glm::vec3(0.0f);
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "direction");
+    s.lights[0] = Light{};
+    s.lights[0].radius = -1.0f;
+    expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "radius");
+    Camera skewed = camera;
+    skewed.projection[1][0] = 0.3f;
+    expectError([&] { gbuffer.render(scene, skewed, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "shear");
+    // A reversed-Z [0,1] projection declared as [-1,1] puts depth 0 behind the camera.
+    Camera wrongClip = Camera::perspective({{0, 2, 2}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f, DepthMode::Reversed);
+    wrongClip.clipDepth = ClipDepth::NegativeOneToOne;
+    expectError([&] { gbuffer.render(scene, wrongClip, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "ClipDepth");
+}

@@ -1,0 +1,470 @@
+// G-buffer: position reconstruction precision, normals, direct lighting, host inputs.
+#include "gl_fixture.hpp"
+#include "obscura/assets.hpp"
+#include "obscura/obscura.hpp"
+#include "scene_builders.hpp"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cfloat>
+#include <cmath>
+
+using namespace obscura;
+using test::AnalyticQuad;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Relative precision of a half float (11-bit significand): half an ulp is 2^-11.
+constexpr double kHalfRelative = 1.0 / 2048.0;
+
+// The "depth range" scene: a floor from 1.7 to ~110 units away, and in the upper half eight
+// camera-facing stripes at depths from 0.15 to 990 (near/far = 0.1/1000).
+struct DepthRangeScene {
+    std::vector<AnalyticQuad> quads;
+    static constexpr double depths[8] = {0.15, 0.5, 2.0, 10.0, 50.0, 200.0, 600.0, 990.0};
+
+    explicit DepthRangeScene(double tanHalfFovy, double aspect) {
+        quads.push_back({{{{-5000, -1, -0.05}, {5000, -1, -0.05}, {5000, -1, -999}, {-5000, -1, -999}}}});
+        for (int k = 0; k < 8; ++k) {
+            const double z = depths[k];
+            const double x0 = (-1.0 + k / 4.0) * tanHalfFovy * aspect * z, x1 = (-1.0 + (k + 1) / 4.0) * tanHalfFovy * aspect * z;
+            const double y0 = 0.02 * tanHalfFovy * z, y1 = 1.1 * tanHalfFovy * z;
+            quads.push_back({{{{x0, y0, -z}, {x1, y0, -z}, {x1, y1, -z}, {x0, y1, -z}}}});
+        }
+    }
+
+    // Nearest hit of a view-space ray, in double.
+    std::optional<glm::dvec3> trace(const test::ViewRay& ray) const {
+        std::optional<double> best;
+        for (const auto& q : quads)
+            if (auto t = q.intersect(ray.origin, ray.direction); t && (!best || *t < *best)) best = t;
+        if (!best) return std::nullopt;
+        return ray.origin + *best * ray.direction;
+    }
+};
+
+double relativeError(const glm::dvec3& a, const glm::dvec3& b) { return glm::length(a - b) / glm::length(b); }
+
+// ulp of a float value in [0, 1]
+double floatUlp(double v) { return std::nextafter(static_cast<float>(v), 2.0f) - static_cast<float>(v); }
+
+glm::dvec3 texel3(const Image& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
+
+} // namespace
+
+TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (near/far 0.1/1000)", "[gbuffer]") {
+    const auto mode = GENERATE(DepthMode::Standard, DepthMode::StandardZeroToOne, DepthMode::Reversed);
+    CAPTURE(static_cast<int>(mode));
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 64, H = 64;
+    const double fovy = kPi / 3.0;
+    const Camera camera = Camera::perspective({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, static_cast<float>(fovy), 1.0f, 0.1f,
+                                              1000.0f, mode);
+    const DepthRangeScene scene(std::tan(fovy / 2), 1.0);
+    const GBufferView view = gbuffer.render(test::quadScene(scene.quads), camera, {W, H, false, {}});
+    const Image depth = readTexture(ctx, view.depth);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const ProjectionInfo info = analyzeProjection(camera);
+
+    double worstReconstruction = 0, worstEndToEnd = 0, worstNaive = 0, farthest = 0;
+    int geometry = 0;
+    const glm::mat4 inverseProjection = glm::inverse(camera.projection);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const auto truth = scene.trace(test::pixelRay(camera, x, y, W, H));
+            const double d = depth.at(x, y, 0);
+            const glm::dvec3 gpu = texel3(positions, x, y);
+            if (!truth) {
+                CHECK(d == info.clearDepth);
+                CHECK(positions.at(x, y, 3) == 0.0f);
+                continue;
+            }
+            ++geometry;
+            CHECK(positions.at(x, y, 3) == 1.0f);
+            // (1) The reconstruction itself: GPU float result against the double-precision
+            //     inverse of the same stored depth value.
+            const glm::dvec2 ndc = test::pixelNdc(x, y, W, H);
+            const glm::dvec3 reference = viewPositionFromDepth(camera, ndc, d);
+            const double e = relativeError(gpu, reference);
+            worstReconstruction = std::max(worstReconstruction, e);
+            CHECK(e < 1e-5);
+            // (2) End to end, against the exact ray/plane intersection. The stored depth can
+            //     differ from the exact one by the rasterizer's rounding; allow 4 float ulps of
+            //     d (measured: at most 2 on llvmpipe) propagated through dz/dd.
+            const double zTrue = truth->z;
+            const double dzdd = std::abs(viewPositionFromDepth(camera, ndc, d + 1e-7).z - reference.z) / 1e-7;
+            const double quantization = 4.0 * floatUlp(d) * dzdd / std::abs(zTrue);
+            const double endToEnd = relativeError(gpu, *truth);
+            worstEndToEnd = std::max(worstEndToEnd, endToEnd);
+            farthest = std::max(farthest, -zTrue);
+            CHECK(endToEnd < 1e-5 + quantization);
+            // Reversed-Z stores depth precisely enough for 1e-5 everywhere.
+            if (mode == DepthMode::Reversed) CHECK(endToEnd < 1e-5);
+            // The textbook inverse-projection multiply, in float, for comparison.
+            const float zn = camera.clipDepth == ClipDepth::ZeroToOne ? static_cast<float>(d) : 2.0f * static_cast<float>(d) - 1.0f;
+            const glm::vec4 v = inverseProjection * glm::vec4(glm::vec2(ndc), zn, 1.0f);
+            worstNaive = std::max(worstNaive, relativeError(glm::dvec3(glm::vec3(v) / v.w), reference));
+        }
+    INFO("worst reconstruction " << worstReconstruction << ", end to end " << worstEndToEnd << ", naive float "
+                                 << worstNaive << ", farthest " << farthest);
+    CHECK(geometry > W * H / 2);
+    CHECK(farthest > 900.0);
+    // The test can tell a careful reconstruction from a naive one: with standard depth the
+    // plain inverse-projection multiply misses 1e-5 at the far end.
+    if (mode != DepthMode::Reversed) CHECK(worstNaive > 1e-5);
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("Orthographic reconstruction is exact to the depth buffer's resolution", "[gbuffer]") {
+    const auto mode = GENERATE(DepthMode::Standard, DepthMode::Reversed);
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 48, H = 32;
+    const float n = 0.1f, f = 1000.0f;
+    const Camera camera = Camera::orthographic({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 2.0f, 1.5f, n, f, mode);
+    // A slanted plane from z = -0.5 to z = -950 across the image.
+    const AnalyticQuad slope{{{{-4, -3, -0.5}, {4, -3, -950}, {4, 3, -950}, {-4, 3, -0.5}}}};
+    const GBufferView view = gbuffer.render(test::quadScene({slope}), camera, {W, H, false, {}});
+    const Image depth = readTexture(ctx, view.depth);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    // Orthographic depth is linear in z: one float ulp of d near 1 is (f - n) * 2^-24; the
+    // float reconstruction may add a few such steps.
+    const double bound = 4.0 * (f - n) * std::ldexp(1.0, -24);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            REQUIRE(positions.at(x, y, 3) == 1.0f);
+            const glm::dvec3 ref = viewPositionFromDepth(camera, test::pixelNdc(x, y, W, H), depth.at(x, y, 0));
+            CHECK(glm::length(texel3(positions, x, y) - ref) < bound);
+            const auto t = slope.intersect(test::pixelRay(camera, x, y, W, H).origin, {0, 0, -1});
+            REQUIRE(t);
+            CHECK(std::abs(ref.z + *t) < bound);
+        }
+}
+
+TEST_CASE("Normals are unit face normals turned toward the camera - background is marked", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 40, H = 30;
+    const Camera camera = Camera::perspective({{0, 2, 4}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 4.0f / 3.0f, 0.1f, 50.0f);
+    // The floor is wound so that its normal points down, away from the camera, the wall
+    // toward it: both must come out facing the camera.
+    const AnalyticQuad floor{{{{-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, {-3, 0, 3}}}};
+    const AnalyticQuad wall{{{{-1, 0, -1}, {1, 0, -1}, {1, 1.5, -1}, {-1, 1.5, -1}}}};
+    const GBufferView view = gbuffer.render(test::quadScene({floor, wall}), camera, {W, H, true, {}});
+    const Image normals = readTexture(ctx, view.normal);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat3 viewRotation(camera.view);
+    int floorPixels = 0, wallPixels = 0, sky = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const glm::dvec3 n = texel3(normals, x, y);
+            if (normals.at(x, y, 3) == 0.0f) {
+                ++sky;
+                CHECK(n == glm::dvec3(0.0));
+                continue;
+            }
+            CHECK(std::abs(glm::length(n) - 1.0) < 2 * kHalfRelative);
+            const glm::dvec3 p = texel3(positions, x, y);
+            CHECK(glm::dot(n, -p) > 0.0);
+            const glm::dvec3 up = viewRotation * glm::dvec3(0, 1, 0), towardCamera = viewRotation * glm::dvec3(0, 0, 1);
+            if (glm::length(n - up) < 2e-3) ++floorPixels;
+            else if (glm::length(n - towardCamera) < 2e-3) ++wallPixels;
+            else FAIL("normal " << n.x << "," << n.y << "," << n.z << " is neither the floor's nor the wall's");
+        }
+    CHECK(floorPixels > 100);
+    CHECK(wallPixels > 50);
+    CHECK(sky > 0);
+}
+
+TEST_CASE("Direct radiance follows Lambert's law for directional point and spot lights", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 32, H = 32;
+    const Camera camera = Camera::perspective({{0, 6, 0.01f}, {0, 0, 0}, {0, 1, 0}}, 1.2f, 1.0f, 0.1f, 100.0f);
+    const AnalyticQuad floor{{{{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}}};
+    Scene scene = test::quadScene({floor}, glm::vec3(0.6f, 0.4f, 0.2f));
+    const glm::dvec3 albedo(0.6, 0.4, 0.2);
+
+    Light light;
+    const auto lightKind = GENERATE(0, 1, 2);
+    if (lightKind == 0) {
+        light.type = LightType::Directional;
+        light.direction = glm::normalize(glm::vec3(1, -2, 0.5f));
+        light.intensity = 2.0f;
+    } else {
+        light.type = lightKind == 1 ? LightType::Point : LightType::Spot;
+        light.position = {1, 2, -1};
+        light.direction = {0, -1, 0};
+        light.intensity = 3.0f;
+        light.innerAngle = 0.4f;
+        light.outerAngle = 0.9f;
+    }
+    light.color = {1.0f, 0.5f, 2.0f};
+    scene.lights.push_back(light);
+    const GBufferView view = gbuffer.render(scene, camera, {W, H, true, {}});
+    const Image direct = readTexture(ctx, view.directRadiance);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat4 inverseView = glm::inverse(glm::dmat4(camera.view));
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            REQUIRE(positions.at(x, y, 3) == 1.0f);
+            const glm::dvec3 p = glm::dvec3(inverseView * glm::dvec4(texel3(positions, x, y), 1.0));
+            double e;
+            if (light.type == LightType::Directional) {
+                e = light.intensity * std::max(0.0, -glm::normalize(glm::dvec3(light.direction)).y);
+            } else {
+                const glm::dvec3 toLight = glm::dvec3(light.position) - p;
+                const double d2 = glm::dot(toLight, toLight);
+                const glm::dvec3 l = toLight / std::sqrt(d2);
+                e = light.intensity * l.y / d2;
+                if (light.type == LightType::Spot) {
+                    const double c = l.y /* dot(-l, axis = -y) */, c0 = std::cos(light.outerAngle), c1 = std::cos(light.innerAngle);
+                    const double s = std::clamp((c - c0) / (c1 - c0), 0.0, 1.0);
+                    e *= s * s * (3 - 2 * s);
+                }
+            }
+            for (int c = 0; c < 3; ++c) {
+                const double expected = albedo[c] / kPi * e * light.color[c];
+                INFO("light " << lightKind << " pixel " << x << "," << y << " channel " << c << ": got "
+                              << direct.at(x, y, c) << ", expected " << expected);
+                // Half-float storage plus float arithmetic: 2 half ulps, plus the effect of the
+                // reconstructed position's error on a point light (negligible at 1e-6).
+                CHECK(std::abs(direct.at(x, y, c) - expected) <= 2 * kHalfRelative * expected + 1e-6);
+            }
+        }
+}
+
+TEST_CASE("Albedo and emission come from the material - radiance saturates instead of overflowing", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    const Camera camera = Camera::perspective({{0, 0, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f);
+    const AnalyticQuad quad{{{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}}};
+    Scene scene = test::quadScene({quad}, glm::vec3(0.25f, 0.5f, 0.75f));
+    scene.materials[0].emission = {1.0f, 2.0f, 1e30f};
+    const GBufferView view = gbuffer.render(scene, camera, {8, 8, true, {}});
+    const Image albedo = readTexture(ctx, view.albedo);
+    const Image direct = readTexture(ctx, view.directRadiance);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            // sRGB8 storage: half a code step at the value, through the sRGB decode slope (< 1/255 linear).
+            CHECK(albedo.at(x, y, 0) == Approx(0.25).margin(1.0 / 255));
+            CHECK(albedo.at(x, y, 1) == Approx(0.5).margin(1.0 / 255));
+            CHECK(albedo.at(x, y, 2) == Approx(0.75).margin(1.0 / 255));
+            CHECK(direct.at(x, y, 0) == Approx(1.0).epsilon(kHalfRelative));
+            CHECK(direct.at(x, y, 1) == Approx(2.0).epsilon(kHalfRelative));
+            CHECK(direct.at(x, y, 2) == 65504.0f);
+        }
+}
+
+TEST_CASE("Tiny odd and non-square targets work and reversed-Z with an infinite far plane", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    const AnalyticQuad quad{{{{-50, -1, 0}, {50, -1, 0}, {50, -1, -100}, {-50, -1, -100}}}};
+    const Scene scene = test::quadScene({quad});
+    const auto size = GENERATE(std::pair{1, 1}, std::pair{7, 3}, std::pair{3, 17}, std::pair{129, 65});
+    const auto mode = GENERATE(DepthMode::Standard, DepthMode::Reversed);
+    const float far = mode == DepthMode::Reversed ? INFINITY : 500.0f;
+    const Camera camera = Camera::perspective({{0, 0, 1}, {0, -0.2f, -1}, {0, 1, 0}}, 1.0f,
+                                              float(size.first) / float(size.second), 0.05f, far, mode);
+    const GBufferView view = gbuffer.render(scene, camera, {size.first, size.second, true, {}});
+    REQUIRE(view.width == size.first);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const Image normals = readTexture(ctx, view.normal);
+    REQUIRE(positions.width == size.first);
+    REQUIRE(positions.height == size.second);
+    for (float v : positions.pixels) CHECK(std::isfinite(v));
+    for (float v : normals.pixels) CHECK(std::isfinite(v));
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), host(ctx);
+    constexpr int W = 48, H = 40;
+    const Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, 1.2f, 0.1f, 50.0f,
+                                              DepthMode::Reversed);
+    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
+    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
+    const GBufferView rendered = ours.render(test::quadScene({floor, wall}), camera, {W, H, false, {}});
+    const Image expected = readTexture(ctx, rendered.normal);
+
+    SECTION("normals reconstructed from depth alone") {
+        HostGBuffer in;
+        in.depth = rendered.depth;
+        const GBufferView adopted = host.adopt(in, camera);
+        CHECK(adopted.depth.name == rendered.depth.name);
+        const Image n = readTexture(ctx, adopted.normal);
+        int compared = 0;
+        for (int y = 1; y < H - 1; ++y)
+            for (int x = 1; x < W - 1; ++x) {
+                CHECK(n.at(x, y, 3) == expected.at(x, y, 3));
+                if (expected.at(x, y, 3) == 0.0f) continue;
+                // Away from silhouettes the one-sided differences lie on one plane; the residual
+                // is the float error of differences of reconstructed positions.
+                if (glm::length(texel3(n, x, y) - texel3(expected, x, y)) < 1e-2) ++compared;
+            }
+        // Silhouette and crease pixels may take the other plane's normal; most must match.
+        CHECK(compared > 0.9 * W * H * 0.5);
+    }
+    SECTION("world-space normals in an RGBA8 texture") {
+        const glm::dmat3 toWorld = glm::transpose(glm::dmat3(camera.view));
+        std::vector<std::uint8_t> bytes(static_cast<std::size_t>(W * H * 4));
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const glm::dvec3 w = toWorld * texel3(expected, x, y);
+                for (int c = 0; c < 3; ++c)
+                    bytes[static_cast<std::size_t>(((H - 1 - y) * W + x) * 4 + c)] =
+                        static_cast<std::uint8_t>(std::lround((w[c] * 0.5 + 0.5) * 255));
+            }
+        GLuint tex = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+        glTextureStorage2D(tex, 1, GL_RGBA8, W, H);
+        glTextureSubImage2D(tex, 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+        HostGBuffer in;
+        in.depth = rendered.depth;
+        in.normal = {tex, GL_RGBA8, W, H};
+        in.normalSpace = NormalSpace::World;
+        in.normalEncoding = NormalEncoding::Unsigned;
+        const Image n = readTexture(ctx, host.adopt(in, camera).normal);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (expected.at(x, y, 3) == 0.0f) continue;
+                // 8-bit encoding: half a step (1/255) per component.
+                CHECK(glm::length(texel3(n, x, y) - texel3(expected, x, y)) < 2.0 / 255 * std::sqrt(3.0));
+            }
+        glDeleteTextures(1, &tex);
+    }
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("Host meshes in the host's buffers and VAO render like uploaded meshes", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    const Camera camera = Camera::perspective({{0.5f, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 20.0f);
+    const auto data = test::quadMesh({{{-1, -1, 0}, {1, -1, 0.5}, {1, 1, 0}, {-1, 1, -0.5}}});
+    Scene cpu = test::quadScene({});
+    cpu.meshes.push_back({data, glm::translate(glm::mat4(1), {0.1f, 0, 0}), 0, "quad"});
+    const Image expected = readTexture(ctx, gbuffer.render(cpu, camera, {32, 32, false, {}}).normal);
+
+    // Interleaved position+normal in one host buffer, 16-bit indices in another.
+    std::vector<float> interleaved;
+    for (std::size_t i = 0; i < 4; ++i)
+        for (const glm::vec3& v : {data->positions[i], data->normals[i]}) interleaved.insert(interleaved.end(), {v.x, v.y, v.z});
+    const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+    GLuint buffers[2];
+    glCreateBuffers(2, buffers);
+    glNamedBufferData(buffers[0], static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buffers[1], sizeof indices, indices, GL_STATIC_DRAW);
+
+    MeshRef ref;
+    ref.count = 6;
+    ref.indexType = GL_UNSIGNED_SHORT;
+    ref.model = glm::translate(glm::mat4(1), {0.1f, 0, 0});
+    SECTION("streams") {
+        ref.position = {buffers[0], 0, 24, 3, GL_FLOAT, false};
+        ref.normal = {buffers[0], 12, 24, 3, GL_FLOAT, false};
+        ref.indexBuffer = buffers[1];
+    }
+    GLuint vao = 0;
+    SECTION("host VAO with its own attribute locations") {
+        glCreateVertexArrays(1, &vao);
+        glVertexArrayVertexBuffer(vao, 3, buffers[0], 0, 24);
+        glVertexArrayAttribFormat(vao, 5, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribFormat(vao, 7, 3, GL_FLOAT, GL_FALSE, 12);
+        glVertexArrayAttribBinding(vao, 5, 3);
+        glVertexArrayAttribBinding(vao, 7, 3);
+        glEnableVertexArrayAttrib(vao, 5);
+        glEnableVertexArrayAttrib(vao, 7);
+        glVertexArrayElementBuffer(vao, buffers[1]);
+        ref.vao = vao;
+        ref.positionLocation = 5;
+        ref.normalLocation = 7;
+    }
+    Scene host = test::quadScene({});
+    host.meshRefs.push_back(ref);
+    const Image got = readTexture(ctx, gbuffer.render(host, camera, {32, 32, false, {}}).normal);
+    CHECK(got.pixels == expected.pixels);
+    if (vao) glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(2, buffers);
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("Degenerate triangles are skipped and NaN host vertices never reach the output", "[gbuffer][stability]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    const Camera camera = Camera::perspective({{0, 0, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f);
+    auto data = std::make_shared<MeshData>();
+    // A collapsed triangle, a line-like sliver, and one good triangle.
+    data->positions = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {-1, -1, 0}, {1, 1, 0}, {0, 0, 0}, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    data->normals = std::vector<glm::vec3>(9, glm::vec3(0.0f)); // zero normals fall back to the face normal
+    Scene scene = test::quadScene({});
+    scene.meshes.push_back({data, glm::mat4(1), 0, "degenerate"});
+    // A host buffer with a NaN vertex (validation cannot see GPU data).
+    const float nan = std::nanf("");
+    const float hostVertices[9] = {nan, 0, 0, 1, 0, 0, 0, 1, 0};
+    GLuint buffer = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, sizeof hostVertices, hostVertices, GL_STATIC_DRAW);
+    MeshRef ref;
+    ref.position = {buffer, 0, 12, 3, GL_FLOAT, false};
+    ref.count = 3;
+    scene.meshRefs.push_back(ref);
+    const GBufferView view = gbuffer.render(scene, camera, {16, 16, true, {}});
+    int covered = 0;
+    for (const TextureView& t : {view.normal, view.directRadiance, gbuffer.positions(view)}) {
+        const Image img = readTexture(ctx, t);
+        for (float v : img.pixels) CHECK(std::isfinite(v));
+    }
+    const Image normals = readTexture(ctx, view.normal);
+    for (int i = 0; i < 16 * 16; ++i) covered += normals.pixels[static_cast<std::size_t>(i) * 4 + 3] > 0.0f;
+    CHECK(covered > 0);
+    glDeleteBuffers(1, &buffer);
+}
+
+TEST_CASE("The built-in Cornell box renders its walls with their published colours", "[gbuffer][scenes]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    constexpr int W = 64, H = 64;
+    const Camera camera = assets::makeCamera(cornell.camera, W, H);
+    const GBufferView view = gbuffer.render(cornell.scene, camera, {W, H, true, {}});
+    const Image albedo = readTexture(ctx, view.albedo);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(camera.view));
+    int red = 0, green = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (positions.at(x, y, 3) == 0.0f) continue;
+            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(texel3(positions, x, y), 1.0));
+            const glm::dvec3 a = texel3(albedo, x, y);
+            // The red wall is x ~ 550 (image left), the green wall x = 0 (image right); the
+            // back wall (z = 559.2), floor and ceiling share their edges.
+            const bool inside = p.y > 1 && p.y < 547 && p.z < 558;
+            INFO("pixel " << x << "," << y << " world " << p.x << "," << p.y << "," << p.z << " albedo " << a.x << "," << a.y << "," << a.z);
+            if (p.x > 549.0 && inside) {
+                ++red;
+                CHECK(x < W / 2);
+                CHECK(glm::length(a - glm::dvec3(0.63, 0.065, 0.05)) < 2.0 / 255);
+            }
+            if (p.x < 0.5 && inside) {
+                ++green;
+                CHECK(x >= W / 2);
+                CHECK(glm::length(a - glm::dvec3(0.14, 0.45, 0.091)) < 2.0 / 255);
+            }
+        }
+    CHECK(red > 50);
+    CHECK(green > 50);
+}

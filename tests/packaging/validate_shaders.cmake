@@ -1,0 +1,27 @@
+# Runs glslangValidator on every resolved shader stage, once per permutation it declares
+# (manifest.txt and the files are written by obscura_embed_shaders). Fails listing each
+# failing permutation with the validator's messages.
+cmake_policy(SET CMP0007 NEW)
+file(STRINGS "${RESOLVED}/manifest.txt" lines)
+set(failures 0)
+set(count 0)
+foreach(line IN LISTS lines)
+  string(REPLACE "\t" ";" fields "${line}")
+  list(GET fields 0 stage)
+  list(GET fields 1 file)
+  list(GET fields 2 defines)
+  execute_process(COMMAND "${VALIDATOR}" -S ${stage} "${RESOLVED}/${file}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  math(EXPR count "${count} + 1")
+  if(NOT rc EQUAL 0)
+    math(EXPR failures "${failures} + 1")
+    message("FAILED: ${file} [${defines}]\n${out}${err}")
+  endif()
+endforeach()
+if(count EQUAL 0)
+  message(FATAL_ERROR "no shaders in ${RESOLVED}/manifest.txt")
+endif()
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} of ${count} shader permutations failed glslangValidator")
+endif()
+message(STATUS "${count} shader permutations passed glslangValidator")

@@ -1,0 +1,38 @@
+#pragma once
+// GL test fixture: an EGL surfaceless context plus the *test's own* global GL loader
+// (a non-mx glad, like a typical host application), so tests can set and read GL state
+// independently of Obscura's private function table.
+//
+// Catch2 lists test cases by running the binary at build time: never create a context at
+// static initialisation, only inside a test case through this fixture.
+#include <glad/gl.h>
+
+#include "obscura/context.hpp"
+#include "obscura/headless.hpp"
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace obscura::test {
+
+class GlFixture {
+public:
+    explicit GlFixture(bool debug = false);
+    explicit GlFixture(const headless::HeadlessDesc& desc);
+    ContextDesc desc(StatePolicy policy = StatePolicy::Preserve) const { return egl_.contextDesc(policy); }
+    headless::HeadlessContext& egl() { return egl_; }
+
+private:
+    headless::HeadlessContext egl_;
+};
+
+//! Names of GL objects of every kind that exist now, among names [1, limit]. Object names
+//! are generated in increasing order by Mesa, so a call that leaks an object leaves a name
+//! here that was not present before.
+std::set<std::string> liveGlObjects(unsigned limit = 4096);
+
+//! Drains and returns pending GL errors (GL_NO_ERROR-free list).
+std::vector<unsigned> drainGlErrors();
+
+} // namespace obscura::test

@@ -1,0 +1,39 @@
+#pragma once
+// Small scenes built in code for tests with a closed-form answer.
+#include "obscura/camera.hpp"
+#include "obscura/scene.hpp"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace obscura::test {
+
+using QuadCorners = std::array<glm::dvec3, 4>;
+
+//! Two triangles (0,1,2) and (0,2,3), with per-vertex normals = the face normal.
+std::shared_ptr<MeshData> quadMesh(const QuadCorners& corners, bool withNormals = true);
+
+//! A planar, convex quad in double precision, for ray casting the expected result.
+struct AnalyticQuad {
+    QuadCorners corners;
+    //! Ray (origin o, direction d) hit distance t > 0 inside the quad, if any.
+    std::optional<double> intersect(const glm::dvec3& o, const glm::dvec3& d) const;
+    glm::dvec3 normal() const;
+};
+
+//! Scene of the given quads, one grey material (albedo 0.5) and no lights.
+Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::vec3(0.5f));
+
+//! Ray through the centre of pixel (x, y) of a width x height image (row 0 at the top),
+//! in view space, computed in double from the camera's float projection matrix.
+struct ViewRay {
+    glm::dvec3 origin;
+    glm::dvec3 direction;
+};
+ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height);
+//! NDC of the centre of pixel (x, y), row 0 at the top.
+glm::dvec2 pixelNdc(int x, int y, int width, int height);
+
+} // namespace obscura::test

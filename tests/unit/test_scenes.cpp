@@ -1,0 +1,125 @@
+// Scene sources without GL: built-in scenes, the JSON format, assimp files, camera specs.
+#include "obscura/assets.hpp"
+#include "obscura/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace obscura;
+
+namespace {
+
+std::filesystem::path writeTemp(const std::string& name, const std::string& text) {
+    const auto path = std::filesystem::temp_directory_path() / ("obscura_test_" + name);
+    std::ofstream(path) << text;
+    return path;
+}
+
+std::size_t triangles(const Scene& s) {
+    std::size_t n = 0;
+    for (const Mesh& m : s.meshes) n += m.data->indices.size() / 3;
+    return n;
+}
+
+} // namespace
+
+TEST_CASE("The Cornell box matches the published measurements", "[unit][scenes]") {
+    const assets::LoadedScene s = assets::builtinScene("cornell");
+    const Bounds b = sceneBounds(s.scene);
+    CHECK(b.min.x == 0.0f);
+    CHECK(b.min.y == 0.0f);
+    CHECK(b.min.z == 0.0f);
+    CHECK(b.max.x == 556.0f);
+    CHECK(b.max.y == 548.8f);
+    CHECK(b.max.z == 559.2f);
+    // 5 walls + light + 2 blocks of 5 quads: 16 quads.
+    CHECK(triangles(s.scene) == 32);
+    CHECK(s.scene.materials.size() == 4);
+    CHECK(s.scene.materials[1].albedo == glm::vec3(0.63f, 0.065f, 0.05f));
+    CHECK(s.scene.materials[3].emission == glm::vec3(17.0f, 12.0f, 4.0f));
+    CHECK(s.camera.lookAt.eye == glm::vec3(278, 273, -800));
+    CHECK(s.camera.fovyDegrees == Approx(39.31).margin(0.01));
+    CHECK(s.unitsPerMetre == 1000.0f);
+}
+
+TEST_CASE("Every built-in scene loads and is well formed", "[unit][scenes]") {
+    for (const std::string& name : assets::builtinSceneNames()) {
+        CAPTURE(name);
+        const assets::LoadedScene s = assets::loadScene(name);
+        CHECK(s.name == name);
+        CHECK(triangles(s.scene) > 0);
+        for (const Mesh& m : s.scene.meshes) {
+            CHECK(m.material < s.scene.materials.size());
+            CHECK(m.data->normals.size() == m.data->positions.size());
+        }
+    }
+    CHECK_THROWS_WITH(assets::builtinScene("nope"), Catch::Contains("cornell"));
+    CHECK_THROWS_WITH(assets::loadScene("nope"), Catch::Contains("neither a built-in scene"));
+}
+
+TEST_CASE("A JSON scene gives meshes materials lights camera and media", "[unit][scenes]") {
+    const assets::LoadedScene s = assets::loadJsonScene(OBSCURA_TEST_DATA "/two_quads.json");
+    CHECK(s.name == "two quads");
+    REQUIRE(s.scene.materials.size() == 2);
+    CHECK(s.scene.materials[1].emission == glm::vec3(4.0f));
+    CHECK(s.scene.materials[1].albedo == glm::vec3(0.5f));
+    REQUIRE(s.scene.meshes.size() >= 3);
+    CHECK(s.scene.meshes[1].material == 1);
+    // translate(0,2,0) * rotate_x(180) * scale(0.25) applied to (1, 0, 1): (0.25, 2, -0.25)
+    const glm::vec4 p = s.scene.meshes[1].model * glm::vec4(1, 0, 1, 1);
+    CHECK(p.x == Approx(0.25));
+    CHECK(p.y == Approx(2.0));
+    CHECK(p.z == Approx(-0.25));
+    for (std::size_t i = 2; i < s.scene.meshes.size(); ++i) CHECK(s.scene.meshes[i].material == 0);
+    REQUIRE(s.scene.lights.size() == 2);
+    CHECK(s.scene.lights[0].type == LightType::Spot);
+    CHECK(s.scene.lights[0].outerAngle == Approx(30.0 * 3.14159265 / 180));
+    CHECK(s.camera.fovyDegrees == 50.0f);
+    CHECK(s.camera.nearPlane == 0.05f);
+    REQUIRE(s.scene.media.size() == 1);
+    CHECK(s.scene.media[0].scattering == glm::vec3(0.1f));
+}
+
+TEST_CASE("JSON errors name the file and the path of the bad value", "[unit][scenes]") {
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad1.json", "{\"meshes\": [{\"positions\": [0,0]}]}")),
+                      Catch::Contains("meshes[0].positions") && Catch::Contains("multiple of 3"));
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad2.json", "{\"materials\": {\"a\": {\"albedo\": [1, 2]}}}")),
+                      Catch::Contains("materials.a.albedo"));
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad3.json", "{\"meshes\": [{\"material\": \"x\", \"positions\": []}]}")),
+                      Catch::Contains("no material named \"x\""));
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad4.json", "{\"lights\": [{\"type\": \"area\"}]}")),
+                      Catch::Contains("lights[0].type"));
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad5.json", "{ not json")), Catch::Contains("bad5.json"));
+    CHECK_THROWS_AS(assets::loadJsonScene("/nonexistent/scene.json"), Error);
+}
+
+TEST_CASE("Real models load through assimp", "[unit][scenes]") {
+    for (const char* file : {"/PLY/Wuson.ply", "/OBJ/spider.obj", "/Collada/duck.dae",
+                             "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"}) {
+        CAPTURE(file);
+        const assets::LoadedScene s = assets::loadScene(std::string(OBSCURA_ASSIMP_MODELS) + file);
+        CHECK(triangles(s.scene) > 100);
+        const Bounds b = sceneBounds(s.scene);
+        CHECK_FALSE(b.empty);
+        CHECK(glm::length(s.camera.lookAt.eye - 0.5f * (b.min + b.max)) > 0.0f);
+        CHECK(s.camera.nearPlane > 0.0f);
+        CHECK(s.camera.farPlane > s.camera.nearPlane);
+    }
+    CHECK_THROWS_AS(assets::loadMeshFile("/nonexistent/model.obj"), Error);
+}
+
+TEST_CASE("Camera specs parse the lookAt/fovy convention", "[unit][scenes]") {
+    const assets::CameraSpec base;
+    const assets::CameraSpec c = assets::parseCameraSpec("1,2,3,0,0,0,0,1,0,45", base);
+    CHECK(c.lookAt.eye == glm::vec3(1, 2, 3));
+    CHECK(c.fovyDegrees == 45.0f);
+    CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,3", base), Catch::Contains("10 numbers"));
+    CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,x,0,0,0,0,1,0,45", base), Catch::Contains("\"x\""));
+    const Camera cam = assets::makeCamera(c, 64, 32);
+    CHECK(analyzeProjection(cam).kind == ProjectionKind::Perspective);
+    // Vertical fov 45 deg: projection[1][1] = 1 / tan(22.5 deg); aspect 2.
+    CHECK(cam.projection[1][1] == Approx(1.0 / std::tan(3.14159265 / 8)));
+    CHECK(cam.projection[0][0] == Approx(cam.projection[1][1] / 2));
+}
