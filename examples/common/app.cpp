@@ -20,14 +20,6 @@ void* glfwLoader(void*, const char* name) { return reinterpret_cast<void*>(glfwG
 GLADapiproc glfwGladLoader(void*, const char* name) { return reinterpret_cast<GLADapiproc>(glfwGetProcAddress(name)); }
 GLADapiproc eglGladLoader(void*, const char* name) { return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name)); }
 
-std::pair<int, int> parseSize(const std::string& s) {
-    int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 1 || h < 1)
-        throw Error(ErrorCode::Parse, "--size " + s + ": expected WxH");
-    return {w, h};
-}
-
 } // namespace
 
 void addAppOptions(CLI::App& cli, AppOptions& o) {
@@ -46,7 +38,7 @@ struct App::Impl {
 };
 
 App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frames) {
-    std::tie(width_, height_) = parseSize(o.size);
+    std::tie(width_, height_) = assets::parseImageSize(o.size);
     if (!o.window) {
         if (frames_ < 1) throw Error(ErrorCode::InvalidArgument, "--frames 0 needs --window");
         impl_->headless = std::make_unique<headless::HeadlessContext>();

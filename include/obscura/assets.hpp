@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace obscura::assets {
@@ -20,8 +21,8 @@ namespace obscura::assets {
 struct CameraSpec {
     LookAt lookAt;
     float fovyDegrees = 45.0f; //!< vertical, degrees, (0, 180)
-    float nearPlane = 0.1f;    //!< world units
-    float farPlane = 100.0f;   //!< world units
+    float nearPlane = 0.1f;    //!< world units, (0, farPlane)
+    float farPlane = 100.0f;   //!< world units, (nearPlane, inf)
 };
 
 struct LoadedScene {
@@ -45,6 +46,8 @@ OBSCURA_API LoadedScene loadScene(const std::string& source);
 //! Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg" (lookAt + vertical fovy in degrees). Near
 //! and far planes are taken from `base`. Throws Error{Parse}.
 OBSCURA_API CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base);
+//! Parses "WxH" (pixels, both >= 1). Throws Error{Parse}.
+OBSCURA_API std::pair<int, int> parseImageSize(const std::string& text);
 //! A standard-depth perspective camera for an image of width x height pixels.
 OBSCURA_API Camera makeCamera(const CameraSpec& spec, int width, int height, DepthMode mode = DepthMode::Standard);
 //! A spec that frames the bounds from a three-quarter view.

@@ -21,13 +21,15 @@
 //     GL_CULL_FACE, GL_SCISSOR_TEST (index 0), GL_COLOR_LOGIC_OP, GL_PRIMITIVE_RESTART,
 //     GL_PRIMITIVE_RESTART_FIXED_INDEX, GL_DEPTH_CLAMP, GL_FRAMEBUFFER_SRGB,
 //     GL_POLYGON_OFFSET_FILL/LINE/POINT, GL_RASTERIZER_DISCARD, GL_SAMPLE_ALPHA_TO_COVERAGE,
-//     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7
+//     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7,
+//     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and GL_CONSERVATIVE_RASTERIZATION_NV
+//     or _INTEL where the extension exists
 //   - blend func and equation (RGB and alpha, every draw buffer), blend color
 //   - color mask (every draw buffer), depth mask, stencil write masks (front and back)
 //   - stencil func, ref, value mask and ops (front and back), depth func, logic op mode
 //   - clip control (origin and depth mode)
 //   - polygon mode, polygon offset factor and units, front face, cull face mode, provoking
-//     vertex convention
+//     vertex convention, GL_CLAMP_READ_COLOR
 //   - active texture unit
 //   - texture bindings of every target (1D, 1D array, 2D, 2D array, 2D multisample,
 //     2D multisample array, 3D, cube, cube array, rectangle, buffer) and the sampler binding,
@@ -47,8 +49,10 @@
 // other viewport indices, the draw buffers of framebuffers we do not own are never touched).
 // Object state of host objects is never modified either.
 //
-// Creating a Context and destroying it or a module issue no state change. Destroying
-// deletes Obscura's own objects only.
+// Creating a Context and destroying it or a module issue no state change other than
+// deleting Obscura's own objects (where the host bound or attached one of our textures, GL
+// unbinds it as for any deleted object). Output textures are valid until the module's next
+// call that resizes them, or its destruction.
 //
 // With StatePolicy::Clobber nothing is saved: each other call leaves every item above at its GL
 // initial value (program 0, VAO 0, framebuffers 0, units unbound, enables off, stencil masks
@@ -56,8 +60,9 @@
 // the viewport and scissor box of index 0, which keep the last values we set. Engines that
 // keep their own state cache choose this and invalidate their cache after our calls.
 //
-// Obscura calls glGetError only after allocating textures and buffers (to report
-// GL_OUT_OF_MEMORY); an error the host left pending at that moment is consumed.
+// Obscura calls glGetError only around allocations of textures and buffers (to report
+// GL_OUT_OF_MEMORY); an error the host left pending at that moment is consumed. Allocations
+// happen on first use and when sizes change, not every frame.
 //
 // Preconditions of every call: the host's context is current on the calling thread,
 // transform feedback is not active (we throw InvalidState), and no conditional rendering
@@ -107,7 +112,8 @@ struct ContextDesc {
     StatePolicy statePolicy = StatePolicy::Preserve;
     //! Optional. When set, GL debug output is enabled during our calls and every message
     //! they raise is passed here (the host's own callback is restored afterwards). Messages
-    //! only arrive on debug contexts or drivers that report without one.
+    //! only arrive on debug contexts or drivers that report without one. It is called from
+    //! inside the driver: exceptions it throws are swallowed.
     DebugCallback debugOutput;
 };
 
@@ -115,18 +121,19 @@ struct ContextDesc {
 struct ContextInfo {
     std::string vendor, renderer, version, glslVersion;
     int major = 0, minor = 0;
-    bool coreProfile = false;      //!< false for a compatibility profile (also accepted)
+    bool coreProfile = false;      //!< always true: compatibility profiles are refused
     bool softwareRenderer = false; //!< llvmpipe, softpipe, SwiftShader, ...: the profiler uses wall clock
     int maxTextureSize = 0;        //!< GL_MAX_TEXTURE_SIZE, pixels
     int maxDrawBuffers = 0;
     int maxViewports = 0;
     bool conservativeRaster = false; //!< GL_NV_conservative_raster or GL_INTEL_conservative_rasterization
+    int timestampBits = 0;           //!< GL_QUERY_COUNTER_BITS of GL_TIMESTAMP; 0 = no GPU timer (wall clock used)
 };
 
 class OBSCURA_API Context {
 public:
-    //! Creates Obscura's context on the host's current GL context. Checks GL >= 4.5 (core or
-    //! compatibility) and every function, limit and format Obscura uses. Throws
+    //! Creates Obscura's context on the host's current GL context. Checks GL >= 4.5 core
+    //! profile and every function, limit and format Obscura uses. Throws
     //! Error{UnsupportedFeature} naming everything that is missing. Issues no state change.
     explicit Context(const ContextDesc& desc);
     //! Deletes every GL object Obscura still owns. The GL context must be current.

@@ -38,8 +38,8 @@ struct GBufferView {
 struct GBufferSettings {
     int width = 0;               //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
     int height = 0;              //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
-    bool directLighting = true;  //!< fill directRadiance; off leaves it cleared to 0
-    glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²)
+    bool directLighting = true;  //!< add the lights to directRadiance; off: emission only
+    glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²), [0, 65504] per channel
 };
 
 enum class NormalSpace { View, World };

@@ -1,10 +1,11 @@
 #pragma once
 // obscura::headless: an OpenGL 4.5 context without a window, through EGL.
 //
-// Used by Obscura's tests, examples, benchmarks and CLI. Platform order: the Mesa
-// surfaceless platform (llvmpipe on machines without a GPU), then the EGL device platform
-// (NVIDIA headless), then the default display. OBSCURA_EGL_PLATFORM=surfaceless|device|default
-// forces one. The context renders only into framebuffer objects.
+// Used by Obscura's tests, examples, benchmarks and CLI. Platform order: an EGL device that
+// is not Mesa's software device (a GPU, e.g. NVIDIA headless), then Mesa's surfaceless
+// platform (llvmpipe on machines without a GPU), then any EGL device, then the default
+// display. OBSCURA_EGL_PLATFORM=surfaceless|device|default forces one. The context renders
+// only into framebuffer objects.
 #include "obscura/context.hpp"
 #include "obscura/export.hpp"
 

@@ -41,6 +41,7 @@ struct PassStatistics {
     std::string name;
     std::size_t samples = 0; //!< frames measured (bounded by the history length)
     double medianMs = 0.0;
+    double meanMs = 0.0;
     double minMs = 0.0;
     double maxMs = 0.0;
     ClockSource clock = ClockSource::GpuTimestamp;

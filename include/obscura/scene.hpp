@@ -39,15 +39,19 @@ struct Mesh {
 struct VertexStream {
     unsigned buffer = 0;       //!< GL buffer name; 0 = absent
     std::size_t offset = 0;    //!< bytes to the first element
-    unsigned stride = 0;       //!< bytes between elements, > 0
-    int components = 3;        //!< 2 for texcoords, 3 for positions and normals
+    unsigned stride = 0;       //!< bytes between elements, [1, GL_MAX_VERTEX_ATTRIB_STRIDE]
+    int components = 3;        //!< 2 for texcoords, 3 (or 4, w ignored) for positions and normals; 4 for 2_10_10_10 types
     unsigned type = 0x1406;    //!< GL_FLOAT, GL_HALF_FLOAT, GL_SHORT, ... (GL_FLOAT default)
     bool normalized = false;   //!< for integer types
 };
 
 //! A mesh that lives in the host's GL buffers, drawn as a triangle list. Either give the
 //! host's vertex array object and the attribute locations it uses, or the streams directly.
-//! Obscura never binds or modifies the host VAO: it reads its layout and builds its own.
+//! Obscura never modifies the host VAO: it reads its layout (binding it for the query; the
+//! binding is restored with the rest of the host state) and draws through a VAO of its own
+//! that points at the host's buffers. Offsets, strides and counts are checked against the
+//! buffers' sizes; index values are not (they live on the GPU), so indices past the end of
+//! the vertex data are undefined behaviour as in GL itself.
 struct MeshRef {
     unsigned vao = 0;             //!< host VAO; when non-zero, the *Location fields are used
     int positionLocation = 0;     //!< attribute location of positions in `vao`
@@ -59,16 +63,16 @@ struct MeshRef {
     unsigned indexBuffer = 0;     //!< vao == 0: element buffer, 0 = non-indexed; with a VAO its own element buffer is used
     unsigned indexType = 0x1405;  //!< GL_UNSIGNED_INT, GL_UNSIGNED_SHORT or GL_UNSIGNED_BYTE
     std::size_t indexOffset = 0;  //!< bytes into the element buffer
-    unsigned count = 0;           //!< indices (or vertices when non-indexed), a multiple of 3
+    unsigned count = 0;           //!< indices (or vertices when non-indexed), a multiple of 3 in [3, INT_MAX]
     glm::mat4 model{1.0f};        //!< object → world
     std::uint32_t material = 0;   //!< index into Scene::materials
 };
 
 //! An sRGB-encoded RGBA8 image, row 0 at the top.
 struct TextureImage {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> rgba;
+    int width = 0;                  //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
+    int height = 0;                 //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
+    std::vector<std::uint8_t> rgba; //!< width * height * 4 bytes
 };
 
 struct Material {
@@ -100,14 +104,14 @@ struct Light {
 
 //! Placeholder for the image-based lighting module: an equirectangular HDR environment.
 struct Environment {
-    std::string path;        //!< EXR/HDR file
+    std::string path;        //!< EXR/HDR file, equirectangular (longitude along x)
     float intensity = 1.0f;  //!< radiance scale, [0, inf)
-    float rotation = 0.0f;   //!< about +y, radians
+    float rotation = 0.0f;   //!< about +y, radians, any value (taken modulo 2 pi)
 };
 
 //! Placeholder for the participating-media module: a homogeneous medium in a box.
 struct Medium {
-    glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units
+    glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units, boxMin <= boxMax per axis
     glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
     glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
     float anisotropy = 0.0f;              //!< Henyey-Greenstein g, (-1, 1)

@@ -6,6 +6,7 @@
 // Largest finite half float: radiance written to RGBA16F targets is clamped to it, so a
 // very bright value saturates instead of turning into Inf.
 const float kHalfMax = 65504.0;
+const float kFloatMax = 3.402823466e38;
 
 bool allFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 

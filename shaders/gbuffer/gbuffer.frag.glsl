@@ -28,6 +28,15 @@ layout(std430, binding = GBUFFER_LIGHTS_SSBO_BINDING) readonly buffer Lights {
     LightData lights[];
 };
 
+// Smooth cone from cos(outer) to cos(inner); a hard edge when they coincide (smoothstep
+// is undefined for equal edges).
+float spotCone(float c, float cosInner, float cosOuter) {
+    float width = cosInner - cosOuter;
+    if (!(width > 0.0)) return c >= cosOuter ? 1.0 : 0.0;
+    float t = clamp((c - cosOuter) / width, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
 // Irradiance from one light at view-space point p with shading normal ns; lights behind
 // the geometric surface (ng) contribute nothing.
 vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
@@ -42,11 +51,9 @@ vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
         if (!(d2 > 0.0)) return vec3(0.0); // at the light itself the direction is undefined
         l = toLight * inversesqrt(d2);
         float r = light.directionRadius.w;
-        falloff = 1.0 / max(d2, r * r);
-        if (type == GBUFFER_LIGHT_SPOT) {
-            float c = dot(-l, light.directionRadius.xyz);
-            falloff *= smoothstep(light.cone.y, light.cone.x, c);
-        }
+        // Bounded by the largest float so that falloff * cos is never Inf * 0 = NaN.
+        falloff = min(1.0 / max(d2, r * r), kFloatMax);
+        if (type == GBUFFER_LIGHT_SPOT) falloff *= spotCone(dot(-l, light.directionRadius.xyz), light.cone.x, light.cone.y);
     }
     if (dot(ng, l) <= 0.0) return vec3(0.0);
     return light.radiance.rgb * (falloff * max(dot(ns, l), 0.0));

@@ -4,6 +4,7 @@
 #include "obscura/error.hpp"
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <map>
 
@@ -96,12 +97,14 @@ LoadedScene cornell() {
         MeshBuilder().quad({{{343, 548.7f, 227}, {343, 548.7f, 332}, {213, 548.7f, 332}, {213, 548.7f, 227}}}).build(3, "light"));
     // Until area lights exist, the emitter is approximated for direct lighting by a point
     // light just below its centre with the emitter's on-axis intensity I = L * A
-    // (A = 130 mm x 105 mm); the cosine falloff of the real emitter is ignored.
+    // (A = 130 mm x 105 mm); the cosine falloff of the real emitter is ignored. Its radius is
+    // that of a disc of the same area, so irradiance stays bounded next to the emitter.
     Light l;
     l.type = LightType::Point;
     l.position = {278.0f, 548.0f, 279.5f};
     l.color = glm::vec3(17.0f, 12.0f, 4.0f);
     l.intensity = 130.0f * 105.0f;
+    l.radius = std::sqrt(130.0f * 105.0f / 3.14159265f);
     sc.lights.push_back(l);
     s.camera.lookAt = {{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
     s.camera.fovyDegrees = 39.3077f; // 2 atan(0.025 / (2 * 0.035))

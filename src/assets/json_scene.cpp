@@ -152,7 +152,11 @@ private:
             } else if (m.contains("builtin")) {
                 if (!m["builtin"].is_string()) fail(where + ".builtin", "expected a built-in scene name");
                 LoadedScene b = builtinScene(m["builtin"].get<std::string>());
-                for (auto& l : b.scene.lights) s.scene.lights.push_back(l);
+                for (Light l : b.scene.lights) {
+                    l.position = glm::vec3(t * glm::vec4(l.position, 1.0f));
+                    l.direction = glm::mat3(t) * l.direction;
+                    s.scene.lights.push_back(l);
+                }
                 merge(std::move(b), t, material, s);
             } else if (m.contains("positions")) {
                 s.scene.meshes.push_back(inlineMesh(m, where, t, material.value_or(0)));

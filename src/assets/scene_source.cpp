@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace obscura::assets {
@@ -43,6 +44,14 @@ CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base) {
     c.lookAt = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
     c.fovyDegrees = v[9];
     return c;
+}
+
+std::pair<int, int> parseImageSize(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 || h < 1)
+        throw Error(ErrorCode::Parse, "size \"" + text + "\": expected WxH with W, H >= 1 (e.g. 256x256)");
+    return {w, h};
 }
 
 Camera makeCamera(const CameraSpec& spec, int width, int height, DepthMode mode) {

@@ -25,14 +25,6 @@ struct RenderOptions {
     int frames = 5;
 };
 
-std::pair<int, int> parseSize(const std::string& s) {
-    int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 1 || h < 1)
-        throw Error(ErrorCode::Parse, "--size " + s + ": expected WxH with W, H >= 1 (e.g. 256x256)");
-    return {w, h};
-}
-
 DepthMode parseDepth(const std::string& s) {
     if (s == "standard") return DepthMode::Standard;
     if (s == "zero_to_one") return DepthMode::StandardZeroToOne;
@@ -52,7 +44,7 @@ void printTimings(const std::string& technique, Profiler& profiler) {
 }
 
 void runRender(const RenderOptions& o) {
-    const auto [width, height] = parseSize(o.size);
+    const auto [width, height] = assets::parseImageSize(o.size);
     if (o.frames < 1) throw Error(ErrorCode::Parse, "--frames must be >= 1");
     const assets::LoadedScene scene = assets::loadScene(o.scene);
     const assets::CameraSpec spec = o.camera.empty() ? scene.camera : assets::parseCameraSpec(o.camera, scene.camera);

@@ -157,16 +157,22 @@ Context::Context(const ContextDesc& desc) : impl_(std::make_unique<detail::Conte
     info.renderer = detail::glString(ctx.gl, GL_RENDERER);
     info.version = detail::glString(ctx.gl, GL_VERSION);
     if (info.major * 10 + info.minor < 45)
-        throw Error(ErrorCode::UnsupportedFeature, "Obscura needs OpenGL 4.5 (core or compatibility profile); the "
+        throw Error(ErrorCode::UnsupportedFeature, "Obscura needs OpenGL 4.5 core profile; the "
                                                    "current context is " + info.version + " on " + info.renderer);
     info.glslVersion = detail::glString(ctx.gl, GL_SHADING_LANGUAGE_VERSION);
     GLint profile = 0;
     ctx.gl.GetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
     info.coreProfile = (profile & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
+    // Compatibility profiles carry state that changes shader output (alpha test, colour
+    // clamping, separate back-face polygon modes) which the state guard does not cover.
+    if (!info.coreProfile)
+        throw Error(ErrorCode::UnsupportedFeature, "Obscura needs a core-profile context; the current context is " +
+                                                       info.version + " (compatibility profile)");
     info.softwareRenderer = detail::isSoftwareRenderer(info.renderer);
     ctx.gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &info.maxTextureSize);
     ctx.gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &info.maxDrawBuffers);
     ctx.gl.GetIntegerv(GL_MAX_VIEWPORTS, &info.maxViewports);
+    ctx.gl.GetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &info.timestampBits);
     info.conservativeRaster = detail::hasExtension(ctx.gl, "GL_NV_conservative_raster") ||
                               detail::hasExtension(ctx.gl, "GL_INTEL_conservative_rasterization");
 

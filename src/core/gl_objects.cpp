@@ -61,11 +61,15 @@ void destroyObject(ContextImpl& ctx, ObjectKind kind, GLuint name) noexcept {
     --ctx.liveObjects;
 }
 
+void drainGlErrors(ContextImpl& ctx) {
+    for (int i = 0; i < 32 && ctx.gl.GetError() != GL_NO_ERROR; ++i) {
+    }
+}
+
 void checkAllocation(ContextImpl& ctx, std::string_view what) {
     GLenum first = ctx.gl.GetError();
     if (first == GL_NO_ERROR) return;
-    while (ctx.gl.GetError() != GL_NO_ERROR) {
-    }
+    drainGlErrors(ctx);
     if (first == GL_OUT_OF_MEMORY)
         throw Error(ErrorCode::OutOfMemory, "out of GPU memory allocating " + std::string(what));
     throw Error(ErrorCode::InvalidState,
@@ -74,6 +78,7 @@ void checkAllocation(ContextImpl& ctx, std::string_view what) {
 
 Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
                         std::string_view name) {
+    drainGlErrors(ctx);
     GLuint t = 0;
     ctx.gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
     Texture tex = track<ObjectKind::Texture>(ctx, t, name);
@@ -83,6 +88,7 @@ Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int 
 }
 
 Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view name) {
+    drainGlErrors(ctx);
     GLuint b = 0;
     ctx.gl.CreateBuffers(1, &b);
     Buffer buf = track<ObjectKind::Buffer>(ctx, b, name);
@@ -125,6 +131,28 @@ Query createQuery(ContextImpl& ctx, GLenum target) {
     GLuint q = 0;
     ctx.gl.CreateQueries(target, 1, &q);
     return track<ObjectKind::Query>(ctx, q, {});
+}
+
+std::size_t bytesPerTexel(GLenum f) {
+    switch (f) {
+    case GL_R8: return 1;
+    case GL_R16F: case GL_RG8: return 2;
+    case GL_R32F: case GL_R32UI: case GL_RG16F: case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_RGB10_A2:
+    case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
+    case GL_RG32F: case GL_RGBA16F: case GL_DEPTH32F_STENCIL8: return 8;
+    case GL_RGBA32F: case GL_RGBA32UI: return 16;
+    default: return 0;
+    }
+}
+
+GLuint SizedTexture::ensure(ContextImpl& ctx, GLenum internalFormat, int width, int height, std::string_view label) {
+    if (!texture_ || format_ != internalFormat || width_ != width || height_ != height) {
+        texture_ = createTexture2D(ctx, internalFormat, width, height, 1, label);
+        format_ = internalFormat;
+        width_ = width;
+        height_ = height;
+    }
+    return texture_.get();
 }
 
 Program adoptProgram(ContextImpl& ctx, GLuint name) { return track<ObjectKind::Program>(ctx, name, {}); }

@@ -64,6 +64,27 @@ Sampler createSampler(ContextImpl& ctx, GLenum filter, GLenum wrap, std::string_
 Query createQuery(ContextImpl& ctx, GLenum target);
 Program adoptProgram(ContextImpl& ctx, GLuint name);
 
+//! Bytes per texel of the uncompressed formats Obscura allocates (0 for others).
+std::size_t bytesPerTexel(GLenum internalFormat);
+
+//! A 2D texture that is reallocated only when its size or format changes (outputs of
+//! passes whose size follows their input).
+class SizedTexture {
+public:
+    GLuint ensure(ContextImpl& ctx, GLenum internalFormat, int width, int height, std::string_view label);
+    GLuint get() const noexcept { return texture_.get(); }
+    std::size_t bytes() const { return texture_ ? bytesPerTexel(format_) * std::size_t(width_) * std::size_t(height_) : 0; }
+
+private:
+    Texture texture_;
+    GLenum format_ = GL_NONE;
+    int width_ = 0, height_ = 0;
+};
+
+//! Discards pending GL errors. Allocations call it first, so that an error the host left
+//! pending is not taken for an allocation failure (it is consumed, as context.hpp says).
+void drainGlErrors(ContextImpl& ctx);
+
 //! Throws Error{OutOfMemory} if the last allocation failed; any other pending error is a bug
 //! in Obscura and throws Error{InvalidState} with the GL error name and `what`.
 void checkAllocation(ContextImpl& ctx, std::string_view what);

@@ -10,7 +10,7 @@ struct ContextImpl;
 class PassScope {
 public:
     PassScope(ContextImpl& ctx, const char* name);
-    ~PassScope();
+    ~PassScope(); // noexcept: a failed measurement loses its sample only
     PassScope(const PassScope&) = delete;
     PassScope& operator=(const PassScope&) = delete;
 

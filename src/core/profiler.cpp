@@ -22,6 +22,7 @@ public:
     ClockSource clock = ClockSource::GpuTimestamp;
     bool enabled = true;
 
+    // May throw (allocating queries); end() must not, since it runs in a destructor.
     int begin(const char* name) {
         if (!enabled) return -1;
         const std::size_t id = passId(name);
@@ -29,25 +30,28 @@ public:
             ctx_.gl.Finish();
             open_.push_back({id, std::chrono::steady_clock::now(), 0, 0});
         } else {
-            const GLuint q = acquireQuery();
-            ctx_.gl.QueryCounter(q, GL_TIMESTAMP);
-            open_.push_back({id, {}, q, 0});
+            const GLuint start = acquireQuery(), stop = acquireQuery();
+            ctx_.gl.QueryCounter(start, GL_TIMESTAMP);
+            open_.push_back({id, {}, start, stop});
         }
         return static_cast<int>(open_.size()) - 1;
     }
 
-    void end(int token) {
+    void end(int token) noexcept {
         if (token < 0 || static_cast<std::size_t>(token) >= open_.size()) return;
-        Open o = open_[static_cast<std::size_t>(token)];
+        const Open o = open_[static_cast<std::size_t>(token)];
         open_.resize(static_cast<std::size_t>(token));
-        if (clock == ClockSource::WallClockFinish) {
-            ctx_.gl.Finish();
-            const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - o.start;
-            record(o.pass, ms.count());
-        } else {
-            o.endQuery = acquireQuery();
-            ctx_.gl.QueryCounter(o.endQuery, GL_TIMESTAMP);
-            pending_.push_back(o);
+        try {
+            if (clock == ClockSource::WallClockFinish) {
+                ctx_.gl.Finish();
+                const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - o.start;
+                record(o.pass, ms.count());
+            } else {
+                ctx_.gl.QueryCounter(o.endQuery, GL_TIMESTAMP);
+                pending_.push_back(o);
+            }
+        } catch (...) {
+            // Out of memory for the history: this sample is lost, the frame goes on.
         }
     }
 
@@ -100,7 +104,9 @@ public:
             std::sort(v.begin(), v.end());
             const std::size_t n = v.size();
             const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-            out.push_back({names_[id], n, median, v.front(), v.back(), clock});
+            double sum = 0.0;
+            for (double x : v) sum += x;
+            out.push_back({names_[id], n, median, sum / static_cast<double>(n), v.front(), v.back(), clock});
         }
         return out;
     }
@@ -146,8 +152,8 @@ private:
 };
 
 PassScope::PassScope(ContextImpl& ctx, const char* name) : ctx_(ctx) {
+    token_ = ctx_.profiler->impl().begin(name); // first: it may throw, the group push cannot
     ctx_.gl.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
-    token_ = ctx_.profiler->impl().begin(name);
 }
 
 PassScope::~PassScope() {
@@ -162,7 +168,9 @@ const char* toString(ClockSource clock) noexcept {
 }
 
 Profiler::Profiler(detail::ContextImpl& ctx) : ctx_(ctx), impl_(std::make_unique<detail::ProfilerImpl>(ctx)) {
-    impl_->clock = ctx.info.softwareRenderer ? ClockSource::WallClockFinish : ClockSource::GpuTimestamp;
+    // Software renderers under-report timer queries; a context without timestamp bits has none.
+    const bool gpuTimer = !ctx.info.softwareRenderer && ctx.info.timestampBits > 0;
+    impl_->clock = gpuTimer ? ClockSource::GpuTimestamp : ClockSource::WallClockFinish;
     if (const char* env = std::getenv("OBSCURA_PROFILER_CLOCK")) {
         const std::string v = env;
         if (v == "gpu") impl_->clock = ClockSource::GpuTimestamp;

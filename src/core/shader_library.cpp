@@ -95,8 +95,14 @@ GLuint ShaderLibrary::compileStage(std::string_view path, const StageSource& src
     GLint ok = GL_FALSE;
     gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        const std::string log = mapShaderLog(infoLog(gl, shader, false), src.files);
+        const std::string raw = infoLog(gl, shader, false);
         gl.DeleteShader(shader);
+        std::string log = raw;
+        try {
+            log = mapShaderLog(raw, src.files);
+        } catch (const std::exception&) {
+            // An unexpected log format: report it unmapped.
+        }
         throw Error(ErrorCode::ShaderCompile, "compiling " + std::string(path) + " for " + key + " failed:\n" + log);
     }
     return shader;

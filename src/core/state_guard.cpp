@@ -25,7 +25,8 @@ constexpr GLenum kEnables[] = {
     GL_POLYGON_OFFSET_FILL, GL_POLYGON_OFFSET_LINE,    GL_POLYGON_OFFSET_POINT, GL_RASTERIZER_DISCARD,
     GL_SAMPLE_ALPHA_TO_COVERAGE, GL_SAMPLE_COVERAGE,   GL_SAMPLE_MASK,         GL_PROGRAM_POINT_SIZE,
     GL_CLIP_DISTANCE0,      GL_CLIP_DISTANCE1,         GL_CLIP_DISTANCE2,      GL_CLIP_DISTANCE3,
-    GL_CLIP_DISTANCE4,      GL_CLIP_DISTANCE5,         GL_CLIP_DISTANCE6,      GL_CLIP_DISTANCE7};
+    GL_CLIP_DISTANCE4,      GL_CLIP_DISTANCE5,         GL_CLIP_DISTANCE6,      GL_CLIP_DISTANCE7,
+    GL_POLYGON_SMOOTH};
 constexpr std::size_t kEnableCount = sizeof(kEnables) / sizeof(kEnables[0]);
 
 // Generic buffer bindings: target and its binding query.
@@ -53,15 +54,25 @@ constexpr GLenum kPixelStore[16][2] = {
 
 void setEnabled(GladGLContext& gl, GLenum cap, bool on) { on ? gl.Enable(cap) : gl.Disable(cap); }
 
+// The conservative rasterization enable of the extension the context has, or 0.
+GLenum conservativeRasterCap(const ContextImpl& ctx) {
+    if (!ctx.info.conservativeRaster) return 0;
+    return ctx.gl.NV_conservative_raster ? GL_CONSERVATIVE_RASTERIZATION_NV : GL_CONSERVATIVE_RASTERIZATION_INTEL;
+}
+
 void GLAD_API_PTR forwardDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                       const GLchar* message, const void* user) {
     // Our own debug groups are navigation aids, not messages.
     if (type == GL_DEBUG_TYPE_PUSH_GROUP || type == GL_DEBUG_TYPE_POP_GROUP) return;
     const auto* ctx = static_cast<const ContextImpl*>(user);
     if (!ctx->desc.debugOutput) return;
-    DebugMessage m{source, type, id, severity,
-                   length >= 0 ? std::string(message, static_cast<std::size_t>(length)) : std::string(message)};
-    ctx->desc.debugOutput(m);
+    // Exceptions must not unwind through the driver's C frames.
+    try {
+        DebugMessage m{source, type, id, severity,
+                       length >= 0 ? std::string(message, static_cast<std::size_t>(length)) : std::string(message)};
+        ctx->desc.debugOutput(m);
+    } catch (...) {
+    }
 }
 
 } // namespace
@@ -86,7 +97,9 @@ struct SavedGlobalState {
     GLint depthFunc = 0, logicOp = 0, clipOrigin = 0, clipDepth = 0;
     GLint polygonMode[2]{};
     GLfloat offsetFactor = 0, offsetUnits = 0;
-    GLint frontFace = 0, cullFaceMode = 0, activeTexture = 0, provokingVertex = 0;
+    GLint frontFace = 0, cullFaceMode = 0, activeTexture = 0, provokingVertex = 0, clampReadColor = 0;
+    GLboolean dither = GL_TRUE;
+    GLboolean conservative = GL_FALSE;
     GLint pixelStore[16]{};
     GLint buffers[13]{};
     bool debug = false;
@@ -141,6 +154,9 @@ void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     gl.GetIntegerv(GL_FRONT_FACE, &s.frontFace);
     gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cullFaceMode);
     gl.GetIntegerv(GL_PROVOKING_VERTEX, &s.provokingVertex);
+    gl.GetIntegerv(GL_CLAMP_READ_COLOR, &s.clampReadColor);
+    s.dither = gl.IsEnabled(GL_DITHER);
+    if (const GLenum cap = conservativeRasterCap(ctx)) s.conservative = gl.IsEnabled(cap);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     for (int i = 0; i < 16; ++i) gl.GetIntegerv(kPixelStore[i][0], &s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.GetIntegerv(kBufferTargets[i][1], &s.buffers[i]);
@@ -190,6 +206,9 @@ void restoreGlobal(ContextImpl& ctx, const SavedGlobalState& s) {
     gl.FrontFace(static_cast<GLenum>(s.frontFace));
     gl.CullFace(static_cast<GLenum>(s.cullFaceMode));
     gl.ProvokingVertex(static_cast<GLenum>(s.provokingVertex));
+    gl.ClampColor(GL_CLAMP_READ_COLOR, static_cast<GLenum>(s.clampReadColor));
+    setEnabled(gl, GL_DITHER, s.dither);
+    if (const GLenum cap = conservativeRasterCap(ctx)) setEnabled(gl, cap, s.conservative);
     for (int i = 0; i < 16; ++i) gl.PixelStorei(kPixelStore[i][0], s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.BindBuffer(kBufferTargets[i][0], static_cast<GLuint>(s.buffers[i]));
     gl.ActiveTexture(static_cast<GLenum>(s.activeTexture));
@@ -227,6 +246,10 @@ void applyBaseline(ContextImpl& ctx) {
     gl.CullFace(GL_BACK);
     // Rasterizers may set up triangles from the provoking vertex: it changes depth by ulps.
     gl.ProvokingVertex(GL_LAST_VERTEX_CONVENTION);
+    // TRUE would clamp float readbacks (readTexture) to [0,1].
+    gl.ClampColor(GL_CLAMP_READ_COLOR, GL_FIXED_ONLY);
+    gl.Enable(GL_DITHER);
+    if (const GLenum cap = conservativeRasterCap(ctx)) gl.Disable(cap);
     for (const auto& p : kPixelStore) gl.PixelStorei(p[0], static_cast<GLint>(p[1]));
     for (const auto& b : kBufferTargets) gl.BindBuffer(b[0], 0);
     gl.ActiveTexture(GL_TEXTURE0);
@@ -407,6 +430,8 @@ void applyDrawState(ContextImpl& ctx, const DrawState& s) {
     gl.ClipControl(GL_LOWER_LEFT, s.clipDepth);
     gl.Disable(GL_BLEND);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // Dithering may perturb 8-bit targets (albedo): results must not depend on it.
+    gl.Disable(GL_DITHER);
 }
 
 void setViewport(ContextImpl& ctx, int x, int y, int width, int height) {

@@ -39,6 +39,14 @@ std::string formatName(GLenum f) {
     }
 }
 
+void requireBaseLevelZero(ContextImpl& ctx, GLuint name, const std::string& who) {
+    GLint base = 0;
+    ctx.gl.GetTextureParameteriv(name, GL_TEXTURE_BASE_LEVEL, &base);
+    if (base != 0)
+        throw Error(ErrorCode::InvalidArgument, who + ": GL_TEXTURE_BASE_LEVEL is " + std::to_string(base) +
+                                                    "; Obscura samples level 0, so the base level must be 0");
+}
+
 TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who) {
     auto& gl = ctx.gl;
     if (name == 0 || !gl.IsTexture(name))

@@ -25,6 +25,10 @@ struct TextureInfo {
 //! uncompressed GL_TEXTURE_2D with a level 0.
 TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who);
 
+//! For textures Obscura samples: level 0 must be the base level (texelFetch and
+//! non-mipmapped sampling read the base level).
+void requireBaseLevelZero(ContextImpl& ctx, GLuint name, const std::string& who);
+
 std::string formatName(GLenum internalFormat);
 
 } // namespace obscura::detail

@@ -22,7 +22,6 @@ namespace {
 
 using namespace detail;
 
-constexpr std::size_t kBytesPerPixel = 4 /*depth 32F*/ + 8 /*normal RGBA16F*/ + 4 /*albedo*/ + 8 /*direct*/;
 
 std::string lightName(std::size_t i) { return "Scene::lights[" + std::to_string(i) + "]"; }
 
@@ -37,6 +36,9 @@ void validateLight(const Light& l, std::size_t i) {
     requireInRange(l.radius, 0.0, FLT_MAX, what + ".radius", "world units");
     if (l.type != LightType::Point && !(glm::length(glm::dvec3(l.direction)) > 0.0))
         throw Error(ErrorCode::InvalidArgument, what + ".direction must be non-zero");
+    for (int c = 0; c < 3; ++c)
+        if (static_cast<double>(l.color[c]) * l.intensity > FLT_MAX)
+            throw Error(ErrorCode::InvalidArgument, what + ": color * intensity exceeds the float range");
     if (l.type == LightType::Spot) {
         requireInRange(l.outerAngle, 1e-6, 1.5707963, what + ".outerAngle", "radians, (0, pi/2)");
         requireInRange(l.innerAngle, 0.0, l.outerAngle, what + ".innerAngle", "radians, [0, outerAngle]");
@@ -110,12 +112,10 @@ struct GBuffer::Impl {
     Framebuffer fbo;
     Buffer lights;
     std::size_t lightCapacity = 0;
-    Sampler materialSampler;
-    // adopt() and positions() outputs
-    Texture adoptedNormal;
-    int adoptedWidth = 0, adoptedHeight = 0;
-    Texture positions;
-    int positionsWidth = 0, positionsHeight = 0;
+    Sampler materialSampler;     //!< our uploaded images, mipmapped
+    Sampler hostMaterialSampler; //!< host textures: no mipmaps assumed (an incomplete chain would sample black)
+    SizedTexture adoptedNormal; //!< adopt() output
+    SizedTexture positions;     //!< positions() output
 
     void ensureTargets(int w, int h) {
         if (fbo && w == width && h == height) return;
@@ -183,10 +183,8 @@ struct GBuffer::Impl {
         gl.ProgramUniform3fv(program, GBUFFER_LOC_EMISSION, 1, glm::value_ptr(material.emission));
         gl.ProgramUniform1i(program, GBUFFER_LOC_LIGHT_COUNT, lightCount);
         if (texture) {
-            if (!materialSampler)
-                materialSampler = createSampler(ctx, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT, "gbuffer.material_sampler");
             ctx.state.bindTexture(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, texture);
-            ctx.state.bindSampler(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, materialSampler.get());
+            ctx.state.bindSampler(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, materialSamplerFor(material));
         }
         gl.BindVertexArray(mesh.vao);
         if (mesh.indexType != GL_NONE)
@@ -196,8 +194,20 @@ struct GBuffer::Impl {
             gl.DrawArrays(GL_TRIANGLES, 0, mesh.count);
     }
 
+    GLuint materialSamplerFor(const Material& m) {
+        if (m.albedoTexture != 0) {
+            if (!hostMaterialSampler)
+                hostMaterialSampler = createSampler(ctx, GL_LINEAR, GL_REPEAT, "gbuffer.host_material_sampler");
+            return hostMaterialSampler.get();
+        }
+        if (!materialSampler)
+            materialSampler = createSampler(ctx, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT, "gbuffer.material_sampler");
+        return materialSampler.get();
+    }
+
     void validateHostTexture(GLuint name, const std::string& who) {
         const TextureInfo t = queryTexture2D(ctx, name, who);
+        requireBaseLevelZero(ctx, name, who);
         if (t.depth || t.integer)
             throw Error(ErrorCode::InvalidArgument, who + ": needs a colour format that can be sampled as float, got " +
                                                         formatName(t.internalFormat));
@@ -210,7 +220,9 @@ GBuffer::~GBuffer() = default;
 GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
     auto& ctx = impl_->ctx;
     requireImageSize(settings.width, settings.height, ctx.info.maxTextureSize, "GBufferSettings");
-    requireFinite(settings.background, "GBufferSettings::background");
+    for (int c = 0; c < 3; ++c)
+        requireInRange(settings.background[c], 0.0, 65504.0, "GBufferSettings::background",
+                       "W/(sr m^2) (RGBA16F storage)");
     const ProjectionInfo projection = analyzeProjection(camera);
     validateScene(scene);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
@@ -280,9 +292,11 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
                                                     "GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
     }
     requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
+    requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
     Defines defines;
     if (host.normal.name != 0) {
         const TextureInfo n = queryTexture2D(ctx, host.normal.name, "HostGBuffer::normal");
+        requireBaseLevelZero(ctx, host.normal.name, "HostGBuffer::normal");
         if (n.width != depth.width || n.height != depth.height)
             throw Error(ErrorCode::InvalidArgument, "HostGBuffer::normal is " + std::to_string(n.width) + "x" +
                                                         std::to_string(n.height) + " but depth is " +
@@ -308,11 +322,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.normals");
     const int w = depth.width, h = depth.height;
-    if (!impl_->adoptedNormal || impl_->adoptedWidth != w || impl_->adoptedHeight != h) {
-        impl_->adoptedNormal = createTexture2D(ctx, GL_RGBA16F, w, h, 1, "gbuffer.normal");
-        impl_->adoptedWidth = w;
-        impl_->adoptedHeight = h;
-    }
+    const GLuint normal = impl_->adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
     const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
     ctx.gl.UseProgram(program);
     impl_->frame.bind(ctx, camera, w, h);
@@ -322,13 +332,12 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, host.normal.name);
         ctx.state.bindSampler(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, ctx.nearestClampSampler());
     }
-    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, impl_->adoptedNormal.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                        GL_RGBA16F);
+    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatchOverImage(ctx, w, h);
 
     GBufferView v;
     v.depth = {host.depth.name, depth.internalFormat, w, h};
-    v.normal = {impl_->adoptedNormal.get(), GL_RGBA16F, w, h};
+    v.normal = {normal, GL_RGBA16F, w, h};
     v.camera = camera;
     v.width = w;
     v.height = h;
@@ -343,27 +352,24 @@ TextureView GBuffer::positions(const GBufferView& view) {
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.positions");
     const int w = depth.width, h = depth.height;
-    if (!impl_->positions || impl_->positionsWidth != w || impl_->positionsHeight != h) {
-        impl_->positions = createTexture2D(ctx, GL_RGBA32F, w, h, 1, "gbuffer.positions");
-        impl_->positionsWidth = w;
-        impl_->positionsHeight = h;
-    }
+    const GLuint positions = impl_->positions.ensure(ctx, GL_RGBA32F, w, h, "gbuffer.positions");
     ctx.gl.UseProgram(ctx.shaders->program({"gbuffer/positions.comp.glsl"}));
     impl_->frame.bind(ctx, view.camera, w, h);
     ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, view.depth.name);
     ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
-    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, impl_->positions.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, positions, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     dispatchOverImage(ctx, w, h);
-    return {impl_->positions.get(), GL_RGBA32F, w, h};
+    return {positions, GL_RGBA32F, w, h};
 }
 
 std::size_t GBuffer::memoryBytes() const {
     const auto& i = *impl_;
     std::size_t total = i.meshes.memoryBytes() + i.frame.memoryBytes();
-    if (i.fbo) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * kBytesPerPixel;
+    if (i.fbo)
+        total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) *
+                 (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
     total += i.lightCapacity * sizeof(shader::LightData);
-    if (i.adoptedNormal) total += static_cast<std::size_t>(i.adoptedWidth) * static_cast<std::size_t>(i.adoptedHeight) * 8;
-    if (i.positions) total += static_cast<std::size_t>(i.positionsWidth) * static_cast<std::size_t>(i.positionsHeight) * 16;
+    total += i.adoptedNormal.bytes() + i.positions.bytes();
     return total;
 }
 

@@ -5,6 +5,7 @@
 #include "shaders/gbuffer/gbuffer_bindings.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -27,7 +28,23 @@ std::size_t typeSize(GLenum type) {
 
 std::string meshName(std::size_t index) { return "Scene::meshRefs[" + std::to_string(index) + "]"; }
 
-void validateStream(const VertexStream& s, int components, const std::string& what, bool required, ContextImpl& ctx) {
+bool isPacked(GLenum type) { return type == GL_INT_2_10_10_10_REV || type == GL_UNSIGNED_INT_2_10_10_10_REV; }
+
+std::size_t elementBytes(const VertexStream& s) {
+    return isPacked(s.type) ? 4 : static_cast<std::size_t>(s.components) * typeSize(s.type);
+}
+
+GLint64 bufferSize(ContextImpl& ctx, GLuint buffer) {
+    GLint64 size = 0;
+    ctx.gl.GetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &size);
+    return size;
+}
+
+// Checks a stream against GL's limits and the size of its buffer. `vertices` is the number
+// of vertices read when known (non-indexed draws); indexed draws check the first element
+// only, since index values live on the GPU.
+void validateStream(const VertexStream& s, int components, const std::string& what, bool required, std::size_t vertices,
+                    ContextImpl& ctx) {
     if (s.buffer == 0) {
         if (required) throw Error(ErrorCode::InvalidArgument, what + ": a buffer is required");
         return;
@@ -36,12 +53,25 @@ void validateStream(const VertexStream& s, int components, const std::string& wh
         throw Error(ErrorCode::InvalidArgument, what + ": " + std::to_string(s.buffer) + " is not a GL buffer");
     if (typeSize(s.type) == 0)
         throw Error(ErrorCode::InvalidArgument, what + ": unsupported attribute type " + std::to_string(s.type) +
-                                                    " (GL_FLOAT, GL_HALF_FLOAT, GL_DOUBLE or an integer type)");
-    if (s.components != components && !(components == 3 && s.components == 4))
-        throw Error(ErrorCode::InvalidArgument, what + ": needs " + std::to_string(components) + " components, got " +
-                                                    std::to_string(s.components));
-    if (s.stride == 0)
-        throw Error(ErrorCode::InvalidArgument, what + ": stride must be > 0 bytes");
+                                                    " (GL_FLOAT, GL_HALF_FLOAT, GL_DOUBLE, an integer type or a packed "
+                                                    "2_10_10_10 type)");
+    if (isPacked(s.type) ? s.components != 4 : (s.components != components && !(components == 3 && s.components == 4)))
+        throw Error(ErrorCode::InvalidArgument, what + ": needs " + std::to_string(isPacked(s.type) ? 4 : components) +
+                                                    " components, got " + std::to_string(s.components));
+    GLint maxStride = 0;
+    ctx.gl.GetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &maxStride);
+    if (s.stride == 0 || s.stride > static_cast<unsigned>(maxStride))
+        throw Error(ErrorCode::InvalidArgument, what + ": stride must be in [1, " + std::to_string(maxStride) +
+                                                    "] bytes (GL_MAX_VERTEX_ATTRIB_STRIDE), got " + std::to_string(s.stride));
+    const auto size = static_cast<std::uint64_t>(bufferSize(ctx, s.buffer));
+    const std::uint64_t last = s.offset + (vertices > 0 ? (vertices - 1) * std::uint64_t(s.stride) : 0) + elementBytes(s);
+    if (last > size)
+        throw Error(ErrorCode::InvalidArgument, what + ": reads up to byte " + std::to_string(last) + " of a buffer of " +
+                                                    std::to_string(size) + " bytes");
+}
+
+std::size_t indexSize(GLenum type) {
+    return type == GL_UNSIGNED_INT ? 4 : type == GL_UNSIGNED_SHORT ? 2 : type == GL_UNSIGNED_BYTE ? 1 : 0;
 }
 
 // Reads one attribute of the host VAO (which must be bound) into a stream description.
@@ -57,6 +87,12 @@ VertexStream streamFromBoundVao(ContextImpl& ctx, int location, const std::strin
     gl.GetVertexAttribiv(loc, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &enabled);
     if (!enabled) throw Error(ErrorCode::InvalidArgument, what + ": attribute " + std::to_string(location) +
                                                               " is not enabled in the host VAO");
+    GLint divisor = 0;
+    gl.GetVertexAttribiv(loc, GL_VERTEX_ATTRIB_ARRAY_DIVISOR, &divisor);
+    if (divisor != 0)
+        throw Error(ErrorCode::InvalidArgument, what + ": attribute " + std::to_string(location) +
+                                                    " is instanced (divisor " + std::to_string(divisor) + "); meshes are "
+                                                    "drawn once, per vertex");
     gl.GetVertexAttribiv(loc, GL_VERTEX_ATTRIB_ARRAY_SIZE, &size);
     gl.GetVertexAttribiv(loc, GL_VERTEX_ATTRIB_ARRAY_TYPE, &type);
     gl.GetVertexAttribiv(loc, GL_VERTEX_ATTRIB_ARRAY_NORMALIZED, &normalized);
@@ -185,17 +221,30 @@ DrawableMesh MeshCache::hostMesh(std::size_t index, const MeshRef& ref) {
         gl.GetVertexArrayiv(ref.vao, GL_ELEMENT_ARRAY_BUFFER_BINDING, &element);
         elementBuffer = static_cast<GLuint>(element);
     }
-    validateStream(position, 3, what + ".position", true, ctx_);
-    validateStream(normal, 3, what + ".normal", false, ctx_);
-    validateStream(texcoord, 2, what + ".texcoord", false, ctx_);
-    if (elementBuffer != 0 && !gl.IsBuffer(elementBuffer))
-        throw Error(ErrorCode::InvalidArgument, what + ": index buffer " + std::to_string(elementBuffer) + " is not a GL buffer");
-    if (elementBuffer != 0 && ref.indexType != GL_UNSIGNED_INT && ref.indexType != GL_UNSIGNED_SHORT &&
-        ref.indexType != GL_UNSIGNED_BYTE)
-        throw Error(ErrorCode::InvalidArgument, what + ": indexType must be GL_UNSIGNED_INT, _SHORT or _BYTE");
-    if (ref.count == 0 || ref.count % 3 != 0)
-        throw Error(ErrorCode::InvalidArgument, what + ": count must be a positive multiple of 3, got " +
+    if (ref.count == 0 || ref.count % 3 != 0 || ref.count > static_cast<unsigned>(INT_MAX))
+        throw Error(ErrorCode::InvalidArgument, what + ": count must be a positive multiple of 3 up to INT_MAX, got " +
                                                     std::to_string(ref.count));
+    const std::size_t vertices = elementBuffer ? 0 : ref.count;
+    validateStream(position, 3, what + ".position", true, vertices, ctx_);
+    validateStream(normal, 3, what + ".normal", false, vertices, ctx_);
+    validateStream(texcoord, 2, what + ".texcoord", false, vertices, ctx_);
+    if (elementBuffer != 0) {
+        if (!gl.IsBuffer(elementBuffer))
+            throw Error(ErrorCode::InvalidArgument, what + ": index buffer " + std::to_string(elementBuffer) +
+                                                        " is not a GL buffer");
+        const std::size_t bytes = indexSize(ref.indexType);
+        if (bytes == 0)
+            throw Error(ErrorCode::InvalidArgument, what + ": indexType must be GL_UNSIGNED_INT, _SHORT or _BYTE");
+        if (ref.indexOffset % bytes != 0)
+            throw Error(ErrorCode::InvalidArgument, what + ": indexOffset " + std::to_string(ref.indexOffset) +
+                                                        " is not a multiple of the index size");
+        const std::uint64_t end = ref.indexOffset + std::uint64_t(ref.count) * bytes;
+        const auto size = static_cast<std::uint64_t>(bufferSize(ctx_, elementBuffer));
+        if (end > size)
+            throw Error(ErrorCode::InvalidArgument, what + ": " + std::to_string(ref.count) + " indices from byte " +
+                                                        std::to_string(ref.indexOffset) + " overrun the index buffer of " +
+                                                        std::to_string(size) + " bytes");
+    }
 
     while (hostVaos_.size() <= index) hostVaos_.push_back(createVertexArray(ctx_, "gbuffer.host_mesh"));
     const GLuint vao = hostVaos_[index].get();

@@ -47,13 +47,21 @@ EGLDisplay platformDisplay(EGLenum platform, void* native) {
     return getPlatformDisplay(platform, native, nullptr);
 }
 
-EGLDisplay deviceDisplay() {
+// The first EGL device that initializes; with `hardwareOnly`, Mesa's software device
+// (EGL_MESA_device_software) is skipped, so a GPU is preferred over llvmpipe.
+EGLDisplay deviceDisplay(bool hardwareOnly) {
     auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDeviceString =
+        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
     if (!queryDevices) return EGL_NO_DISPLAY;
     EGLDeviceEXT devices[16];
     EGLint count = 0;
     if (!queryDevices(16, devices, &count) || count == 0) return EGL_NO_DISPLAY;
     for (EGLint i = 0; i < count; ++i) {
+        if (hardwareOnly && queryDeviceString) {
+            const char* exts = queryDeviceString(devices[i], EGL_EXTENSIONS);
+            if (exts && std::strstr(exts, "EGL_MESA_device_software")) continue;
+        }
         EGLDisplay d = platformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i]);
         EGLint major = 0, minor = 0;
         if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
@@ -73,12 +81,19 @@ HeadlessContext::HeadlessContext(const HeadlessDesc& desc) : impl_(std::make_uni
     const char* forced = std::getenv("OBSCURA_EGL_PLATFORM");
     const std::string want = forced ? forced : "";
     auto& d = impl_->display;
-    if ((want.empty() || want == "surfaceless") && hasClientExtension("EGL_MESA_platform_surfaceless")) {
+    const bool deviceExt = hasClientExtension("EGL_EXT_platform_device");
+    // A GPU first, then Mesa's surfaceless platform (llvmpipe without a GPU), then any device.
+    if (want.empty() && deviceExt) {
+        d = deviceDisplay(/*hardwareOnly=*/true);
+        impl_->platform = "device";
+    }
+    if (d == EGL_NO_DISPLAY && (want.empty() || want == "surfaceless") &&
+        hasClientExtension("EGL_MESA_platform_surfaceless")) {
         d = platformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY);
         impl_->platform = "surfaceless";
     }
-    if (d == EGL_NO_DISPLAY && (want.empty() || want == "device") && hasClientExtension("EGL_EXT_platform_device")) {
-        d = deviceDisplay();
+    if (d == EGL_NO_DISPLAY && (want.empty() || want == "device") && deviceExt) {
+        d = deviceDisplay(/*hardwareOnly=*/false);
         impl_->platform = "device";
     }
     if (d == EGL_NO_DISPLAY && (want.empty() || want == "default")) {

@@ -127,6 +127,53 @@ TEST_CASE_METHOD(BadInputFixture, "Inconsistent meshes and material indices are 
     expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "not a GL vertex array");
 }
 
+TEST_CASE_METHOD(BadInputFixture, "Host mesh ranges are checked against the host buffers", "[bad-input]") {
+    // 3 vertices (36 bytes) and 3 16-bit indices (6 bytes).
+    const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::uint16_t indices[3] = {0, 1, 2};
+    GLuint buffers[2];
+    glCreateBuffers(2, buffers);
+    glNamedBufferData(buffers[0], sizeof vertices, vertices, GL_STATIC_DRAW);
+    glNamedBufferData(buffers[1], sizeof indices, indices, GL_STATIC_DRAW);
+    MeshRef valid;
+    valid.position = {buffers[0], 0, 12, 3, GL_FLOAT, false};
+    valid.count = 3;
+    Scene s = scene;
+    s.meshRefs = {valid};
+    gbuffer.render(s, camera, {16, 16, true, {}}); // the valid mesh renders
+    const auto refuse = [&](MeshRef ref, const std::string& needle) {
+        s.meshRefs = {ref};
+        expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, needle);
+    };
+    MeshRef r = valid;
+    r.count = 6; // 6 vertices of 12 bytes need 72 bytes
+    refuse(r, "reads up to byte 72 of a buffer of 36 bytes");
+    r = valid;
+    r.position.offset = 30;
+    refuse(r, "reads up to byte");
+    r = valid;
+    r.count = 0x80000001u; // > INT_MAX
+    refuse(r, "INT_MAX");
+    r = valid;
+    r.position.stride = 1u << 20;
+    refuse(r, "GL_MAX_VERTEX_ATTRIB_STRIDE");
+    r = valid;
+    r.position.type = GL_INT_2_10_10_10_REV;
+    refuse(r, "needs 4 components");
+    r = valid;
+    r.indexBuffer = buffers[1];
+    r.indexType = GL_UNSIGNED_SHORT;
+    r.count = 6;
+    refuse(r, "overrun the index buffer of 6 bytes");
+    r.count = 3;
+    r.indexOffset = 1;
+    refuse(r, "not a multiple of the index size");
+    r.indexOffset = 0;
+    r.indexType = GL_FLOAT;
+    refuse(r, "indexType");
+    glDeleteBuffers(2, buffers);
+}
+
 TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are refused", "[bad-input]") {
     const GLuint rgba8 = hostTexture(GL_RGBA8, 16, 16);
     const GLuint depth = hostTexture(GL_DEPTH_COMPONENT32F, 16, 16);
@@ -154,6 +201,12 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     expectError([&] { adopt(depth, rg16f); }, ErrorCode::InvalidArgument, "GL_RG16F");
     expectError([&] { adopt(depthOdd, rgba8, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "8x8");
     expectError([&] { readTexture(ctx, {multisample, 0, 16, 16}); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
+    GLuint mipmapped = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &mipmapped);
+    glTextureStorage2D(mipmapped, 2, GL_DEPTH_COMPONENT32F, 16, 16);
+    glTextureParameteri(mipmapped, GL_TEXTURE_BASE_LEVEL, 1);
+    expectError([&] { adopt(mipmapped, 0); }, ErrorCode::InvalidArgument, "GL_TEXTURE_BASE_LEVEL");
+    glDeleteTextures(1, &mipmapped);
     Scene s = scene;
     s.materials[0].albedoTexture = depth;
     expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "albedoTexture");
@@ -174,6 +227,16 @@ TEST_CASE_METHOD(BadInputFixture, "Light and camera parameters outside their ran
     s.lights[0] = Light{};
     s.lights[0].radius = -1.0f;
     expectError([&] { gbuffer.render(s, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "radius");
+    expectError([&] { gbuffer.render(scene, camera, {16, 16, true, {-1.0f, 0.0f, 0.0f}}); }, ErrorCode::InvalidArgument,
+                "background");
+    expectError([&] { gbuffer.render(scene, camera, {16, 16, true, {1e6f, 0.0f, 0.0f}}); }, ErrorCode::InvalidArgument,
+                "65504");
+    Light bright;
+    bright.color = glm::vec3(1e30f);
+    bright.intensity = 1e30f;
+    Scene s2 = scene;
+    s2.lights.push_back(bright);
+    expectError([&] { gbuffer.render(s2, camera, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "float range");
     Camera skewed = camera;
     skewed.projection[1][0] = 0.3f;
     expectError([&] { gbuffer.render(scene, skewed, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "shear");

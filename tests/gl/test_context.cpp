@@ -79,6 +79,19 @@ TEST_CASE("A context older than GL 4.5 is rejected with its version", "[context]
     }
 }
 
+TEST_CASE("A compatibility-profile context is refused", "[context][bad-input]") {
+    headless::HeadlessDesc compat;
+    compat.coreProfile = false;
+    test::GlFixture gl(compat);
+    try {
+        Context ctx(gl.desc());
+        FAIL("Context accepted a compatibility profile");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::UnsupportedFeature);
+        CHECK_THAT(e.what(), Catch::Contains("core-profile"));
+    }
+}
+
 TEST_CASE("A null getProcAddress and a missing current context give clear errors", "[context][bad-input]") {
     ContextDesc none;
     try {

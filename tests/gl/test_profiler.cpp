@@ -40,8 +40,13 @@ TEST_CASE("On llvmpipe passes are timed by glFinish and a steady clock and that 
     CHECK(stats[0].minMs > 0.0);
     CHECK(stats[0].minMs <= stats[0].medianMs);
     CHECK(stats[0].medianMs <= stats[0].maxMs);
-    // The passes ran inside the measured loop: their sum cannot exceed it.
-    CHECK(stats[0].medianMs * frames <= wallMs * 1.05);
+    // The passes ran inside the measured loop: their sum cannot exceed it. And glFinish
+    // makes each pass include its rasterization, which is most of the loop's time (the rest
+    // is validation and state save/restore on the CPU): at least half of it here.
+    const double passSum = stats[0].meanMs * frames;
+    INFO("passes " << passSum << " ms of a " << wallMs << " ms loop");
+    CHECK(passSum <= wallMs);
+    CHECK(passSum >= 0.5 * wallMs);
     const auto latest = ctx.profiler().latest();
     REQUIRE(latest.size() == 1);
     CHECK(latest[0].ms > 0.0);
@@ -62,7 +67,8 @@ TEST_CASE("GPU timestamp queries are collected without stalling and completely w
     CHECK(stats[0].samples == 25);
     CHECK(stats[0].clock == ClockSource::GpuTimestamp);
     CHECK(std::string(toString(stats[0].clock)) == "gpu_timer_query");
-    CHECK(stats[0].maxMs >= 0.0);
+    // llvmpipe's timestamps under-report but advance: a pass that draws takes > 0.
+    CHECK(stats[0].maxMs > 0.0);
     ctx.profiler().reset();
     CHECK(ctx.profiler().statistics(true).empty());
     ctx.profiler().setEnabled(false);

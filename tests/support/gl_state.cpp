@@ -105,6 +105,8 @@ GlState captureGlState() {
     r.ints("front face", GL_FRONT_FACE);
     r.ints("cull face mode", GL_CULL_FACE_MODE);
     r.ints("active texture", GL_ACTIVE_TEXTURE);
+    r.ints("clamp read color", GL_CLAMP_READ_COLOR);
+    r.ints("debug group stack depth", GL_DEBUG_GROUP_STACK_DEPTH);
     // Not on Obscura's list: it promises never to change these.
     r.floats("color clear value", GL_COLOR_CLEAR_VALUE, 4);
     r.floats("depth clear value", GL_DEPTH_CLEAR_VALUE);
