@@ -83,21 +83,32 @@ struct Material {
     std::string name;
 };
 
-enum class LightType { Point, Spot, Directional };
+enum class LightType {
+    Point,       //!< isotropic point (or small sphere, see radius)
+    Spot,        //!< point with a smooth cone
+    Directional, //!< distant light
+    Rect,        //!< one-sided Lambertian rectangle (area light)
+    Sphere,      //!< Lambertian sphere (area light)
+};
 
 struct Light {
     LightType type = LightType::Point;
     glm::vec3 color{1.0f};   //!< linear RGB factor, [0, inf)
     //! Point and spot: radiant intensity, W/sr. Directional: irradiance on a surface facing
-    //! the light, W/m². [0, inf).
+    //! the light, W/m². Rect and sphere: emitted radiance, W/(sr·m²). [0, inf).
     float intensity = 1.0f;
-    glm::vec3 position{0.0f};           //!< point, spot: world units
-    glm::vec3 direction{0.0f, -1.0f, 0.0f}; //!< spot axis / direction light travels (directional); any length > 0
+    glm::vec3 position{0.0f};           //!< point, spot, sphere: position/centre; rect: centre; world units
+    //! Spot: cone axis; directional: direction the light travels; rect: the side it emits
+    //! toward (its normal). Any length > 0.
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};
+    glm::vec3 tangent{1.0f, 0.0f, 0.0f}; //!< rect: direction of its width; made orthogonal to direction; not parallel to it
+    glm::vec2 size{1.0f};                //!< rect: width and height, world units, (0, inf)
     float innerAngle = 0.3f;  //!< spot: half-angle of full intensity, radians, [0, outerAngle]
     float outerAngle = 0.5f;  //!< spot: half-angle where intensity reaches 0, radians, (0, pi/2)
     //! Point and spot: radius of the emitting sphere, world units, [0, inf). Irradiance uses
     //! 1/max(d², radius²), so a surface touching a light of radius > 0 stays finite. With
     //! radius 0 a point exactly at the light receives nothing (the direction is undefined).
+    //! Sphere: its radius, (0, inf).
     float radius = 0.0f;
     bool castsShadows = true; //!< for the shadow-map module
 };
@@ -109,13 +120,24 @@ struct Environment {
     float rotation = 0.0f;   //!< about +y, radians, any value (taken modulo 2 pi)
 };
 
-//! Placeholder for the participating-media module: a homogeneous medium in a box.
+enum class PhaseFunction {
+    Isotropic,         //!< 1/(4 pi)
+    HenyeyGreenstein,  //!< (1 - g²) / (4 pi (1 + g² - 2 g cos)^(3/2)), g = Medium::anisotropy
+    Rayleigh,          //!< 3 (1 + cos²) / (16 pi)
+};
+
+//! A homogeneous medium in an axis-aligned box (for the participating-media module and
+//! its reference). Phase angles are between the light's travel direction and the view ray's.
 struct Medium {
     glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units, boxMin <= boxMax per axis
     glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
     glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
+    PhaseFunction phase = PhaseFunction::HenyeyGreenstein;
     float anisotropy = 0.0f;              //!< Henyey-Greenstein g, (-1, 1)
 };
+
+//! The phase function value for the cosine of the scattering angle (1/sr).
+OBSCURA_API double phaseFunction(PhaseFunction phase, double anisotropy, double cosTheta);
 
 struct Scene {
     std::vector<Mesh> meshes;
@@ -130,6 +152,11 @@ struct Bounds {
     glm::vec3 min{0.0f}, max{0.0f};
     bool empty = true;
 };
+
+//! Checks everything that can be checked on the CPU: lights (finite, in range, consistent
+//! types), materials, CPU meshes (sizes, finite positions, index range) and material indices.
+//! Throws Error{InvalidArgument} naming the offending element, e.g. "Scene::lights[2].radius".
+OBSCURA_API void validateScene(const Scene& scene);
 
 //! World-space bounds of the CPU meshes (host MeshRefs are not read back).
 OBSCURA_API Bounds sceneBounds(const Scene& scene);

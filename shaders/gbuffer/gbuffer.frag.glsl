@@ -37,10 +37,40 @@ float spotCone(float c, float cosInner, float cosOuter) {
     return t * t * (3.0 - 2.0 * t);
 }
 
+// Projected solid angle of a one-sided rectangle seen from p (normal n): Lambert's formula
+// for polygons, after clipping the rectangle to the hemisphere above p. Exact; per unit
+// radiance it is the irradiance.
+float rectProjectedSolidAngle(vec3 p, vec3 n, LightData light) {
+    vec3 centre = light.positionType.xyz - p;
+    if (dot(-centre, light.directionRadius.xyz) <= 0.0) return 0.0; // p is behind the emitting side
+    vec3 u = light.extent.xyz;
+    vec3 v = normalize(cross(light.directionRadius.xyz, u)) * light.extent.w;
+    vec3 corners[4] = vec3[4](centre - u - v, centre + u - v, centre + u + v, centre - u + v);
+    // Sutherland-Hodgman against the plane dot(x, n) = 0: at most 5 vertices remain.
+    vec3 poly[5];
+    int count = 0;
+    for (int i = 0; i < 4; ++i) {
+        vec3 a = corners[i], b = corners[(i + 1) % 4];
+        float da = dot(a, n), db = dot(b, n);
+        if (da >= 0.0) poly[count++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) poly[count++] = a + (b - a) * (da / (da - db));
+    }
+    float sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        vec3 a = safeNormalize(poly[i], vec3(0.0)), b = safeNormalize(poly[(i + 1) % count], vec3(0.0));
+        vec3 c = cross(a, b);
+        float s = length(c);
+        // atan(|a x b|, a.b) keeps the edge angle accurate for tiny, distant rectangles.
+        if (s > 0.0) sum += atan(s, dot(a, b)) * dot(c / s, n);
+    }
+    return 0.5 * abs(sum);
+}
+
 // Irradiance from one light at view-space point p with shading normal ns; lights behind
 // the geometric surface (ng) contribute nothing.
 vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
     int type = int(light.positionType.w);
+    if (type == GBUFFER_LIGHT_RECT) return light.radiance.rgb * rectProjectedSolidAngle(p, ns, light);
     vec3 l;
     float falloff = 1.0;
     if (type == GBUFFER_LIGHT_DIRECTIONAL) {
@@ -54,6 +84,9 @@ vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
         // Bounded by the largest float so that falloff * cos is never Inf * 0 = NaN.
         falloff = min(1.0 / max(d2, r * r), kFloatMax);
         if (type == GBUFFER_LIGHT_SPOT) falloff *= spotCone(dot(-l, light.directionRadius.xyz), light.cone.x, light.cone.y);
+        // A Lambertian sphere of radiance L has intensity pi r^2 L in every direction: exact
+        // while it is entirely above the horizon, an approximation (cosine at its centre) near it.
+        if (type == GBUFFER_LIGHT_SPHERE) falloff *= OBSCURA_PI * r * r;
     }
     if (dot(ng, l) <= 0.0) return vec3(0.0);
     return light.radiance.rgb * (falloff * max(dot(ns, l), 0.0));

@@ -32,17 +32,20 @@ using vec4 = glm::vec4;
 #define GBUFFER_LIGHT_POINT 0
 #define GBUFFER_LIGHT_SPOT 1
 #define GBUFFER_LIGHT_DIRECTIONAL 2
+#define GBUFFER_LIGHT_RECT 3
+#define GBUFFER_LIGHT_SPHERE 4
 
 // One light in view space (std430).
 struct LightData {
     vec4 positionType;     // xyz: position (view space, world units), w: type
-    vec4 directionRadius;  // xyz: unit direction the light travels (view space), w: source radius
-    vec4 radiance;         // rgb: colour * intensity (W/sr, or W/m^2 for directional)
+    vec4 directionRadius;  // xyz: unit direction the light travels / rect normal (view space), w: radius
+    vec4 radiance;         // rgb: colour * intensity (W/sr; W/m^2 directional; W/(sr m^2) rect, sphere)
     vec4 cone;             // x: cos(inner angle), y: cos(outer angle)
+    vec4 extent;           // rect: xyz = width axis * half width (view space), w = half height
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(LightData) == 64, "LightData must match std430");
+static_assert(sizeof(LightData) == 80, "LightData must match std430");
 } // namespace obscura::shader
 #endif
 

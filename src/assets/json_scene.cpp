@@ -201,12 +201,20 @@ private:
         if (type == "point") l.type = LightType::Point;
         else if (type == "spot") l.type = LightType::Spot;
         else if (type == "directional") l.type = LightType::Directional;
-        else fail(where + ".type", "expected \"point\", \"spot\" or \"directional\"");
+        else if (type == "rect") l.type = LightType::Rect;
+        else if (type == "sphere") l.type = LightType::Sphere;
+        else fail(where + ".type", "expected \"point\", \"spot\", \"directional\", \"rect\" or \"sphere\"");
         if (j.contains("position")) l.position = vec3(j["position"], where + ".position");
         if (j.contains("direction")) l.direction = vec3(j["direction"], where + ".direction");
         if (j.contains("color")) l.color = colour(j["color"], where + ".color");
         if (j.contains("intensity")) l.intensity = number(j["intensity"], where + ".intensity");
         if (j.contains("radius")) l.radius = number(j["radius"], where + ".radius");
+        if (j.contains("tangent")) l.tangent = vec3(j["tangent"], where + ".tangent");
+        if (j.contains("size")) {
+            const json& sz = j["size"];
+            if (!sz.is_array() || sz.size() != 2) fail(where + ".size", "expected [width, height]");
+            l.size = {positive(sz[0], where + ".size[0]"), positive(sz[1], where + ".size[1]")};
+        }
         if (j.contains("inner_deg")) l.innerAngle = number(j["inner_deg"], where + ".inner_deg") * kDegrees;
         if (j.contains("outer_deg")) l.outerAngle = number(j["outer_deg"], where + ".outer_deg") * kDegrees;
         if (j.contains("casts_shadows")) l.castsShadows = j["casts_shadows"].get<bool>();
@@ -229,6 +237,13 @@ private:
         if (j.contains("scattering")) m.scattering = colour(j["scattering"], where + ".scattering");
         if (j.contains("absorption")) m.absorption = colour(j["absorption"], where + ".absorption");
         if (j.contains("anisotropy")) m.anisotropy = number(j["anisotropy"], where + ".anisotropy");
+        if (j.contains("phase")) {
+            const std::string phase = j["phase"].is_string() ? j["phase"].get<std::string>() : "";
+            if (phase == "isotropic") m.phase = PhaseFunction::Isotropic;
+            else if (phase == "henyey_greenstein") m.phase = PhaseFunction::HenyeyGreenstein;
+            else if (phase == "rayleigh") m.phase = PhaseFunction::Rayleigh;
+            else fail(where + ".phase", "expected \"isotropic\", \"henyey_greenstein\" or \"rayleigh\"");
+        }
         if (!(m.anisotropy > -1.0f && m.anisotropy < 1.0f)) fail(where + ".anisotropy", "must be in (-1, 1)");
         return m;
     }

@@ -23,71 +23,30 @@ namespace {
 using namespace detail;
 
 
-std::string lightName(std::size_t i) { return "Scene::lights[" + std::to_string(i) + "]"; }
-
-void validateLight(const Light& l, std::size_t i) {
-    const std::string what = lightName(i);
-    requireFinite(l.color, what + ".color");
-    requireFinite(l.position, what + ".position");
-    requireFinite(l.direction, what + ".direction");
-    requireInRange(l.intensity, 0.0, FLT_MAX, what + ".intensity", l.type == LightType::Directional ? "W/m^2" : "W/sr");
-    if (glm::any(glm::lessThan(l.color, glm::vec3(0.0f))))
-        throw Error(ErrorCode::InvalidArgument, what + ".color must be >= 0 per channel");
-    requireInRange(l.radius, 0.0, FLT_MAX, what + ".radius", "world units");
-    if (l.type != LightType::Point && !(glm::length(glm::dvec3(l.direction)) > 0.0))
-        throw Error(ErrorCode::InvalidArgument, what + ".direction must be non-zero");
-    for (int c = 0; c < 3; ++c)
-        if (static_cast<double>(l.color[c]) * l.intensity > FLT_MAX)
-            throw Error(ErrorCode::InvalidArgument, what + ": color * intensity exceeds the float range");
-    if (l.type == LightType::Spot) {
-        requireInRange(l.outerAngle, 1e-6, 1.5707963, what + ".outerAngle", "radians, (0, pi/2)");
-        requireInRange(l.innerAngle, 0.0, l.outerAngle, what + ".innerAngle", "radians, [0, outerAngle]");
-    }
-}
-
-void validateMaterial(const Material& m, std::size_t i) {
-    const std::string what = "Scene::materials[" + std::to_string(i) + "]";
-    requireFinite(m.albedo, what + ".albedo");
-    requireFinite(m.emission, what + ".emission");
-    if (glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
-        throw Error(ErrorCode::InvalidArgument, what + ".albedo must be in [0,1] per channel");
-    if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
-        throw Error(ErrorCode::InvalidArgument, what + ".emission must be >= 0 per channel");
-}
-
-void validateScene(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) validateLight(scene.lights[i], i);
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) validateMaterial(scene.materials[i], i);
-    const auto checkMaterial = [&](std::uint32_t index, const std::string& what) {
-        if (index >= scene.materials.size())
-            throw Error(ErrorCode::InvalidArgument, what + ".material = " + std::to_string(index) + " but the scene has " +
-                                                        std::to_string(scene.materials.size()) + " materials");
-    };
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        const std::string what = "Scene::meshes[" + std::to_string(i) + "]";
-        if (!scene.meshes[i].data) throw Error(ErrorCode::InvalidArgument, what + ".data is null");
-        requireFinite(scene.meshes[i].model, what + ".model");
-        checkMaterial(scene.meshes[i].material, what);
-        validateMeshData(*scene.meshes[i].data, i);
-    }
-    for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) {
-        const std::string what = "Scene::meshRefs[" + std::to_string(i) + "]";
-        requireFinite(scene.meshRefs[i].model, what + ".model");
-        checkMaterial(scene.meshRefs[i].material, what);
-    }
-}
-
 shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
     shader::LightData d{};
     const glm::dvec3 p = glm::dvec3(view * glm::dvec4(glm::dvec3(l.position), 1.0));
     const glm::dvec3 dir = glm::normalize(glm::dmat3(view) * glm::dvec3(l.direction));
-    const int type = l.type == LightType::Point ? GBUFFER_LIGHT_POINT
-                     : l.type == LightType::Spot ? GBUFFER_LIGHT_SPOT
-                                                 : GBUFFER_LIGHT_DIRECTIONAL;
+    int type = GBUFFER_LIGHT_POINT;
+    switch (l.type) {
+    case LightType::Point: type = GBUFFER_LIGHT_POINT; break;
+    case LightType::Spot: type = GBUFFER_LIGHT_SPOT; break;
+    case LightType::Directional: type = GBUFFER_LIGHT_DIRECTIONAL; break;
+    case LightType::Rect: type = GBUFFER_LIGHT_RECT; break;
+    case LightType::Sphere: type = GBUFFER_LIGHT_SPHERE; break;
+    }
     d.positionType = glm::vec4(glm::vec3(p), static_cast<float>(type));
-    d.directionRadius = glm::vec4(l.type == LightType::Point ? glm::vec3(0.0f) : glm::vec3(dir), l.radius);
+    d.directionRadius = glm::vec4(l.type == LightType::Point || l.type == LightType::Sphere ? glm::vec3(0.0f) : glm::vec3(dir),
+                                  l.radius);
     d.radiance = glm::vec4(l.color * l.intensity, 0.0f);
     d.cone = glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), 0.0f, 0.0f);
+    if (l.type == LightType::Rect) {
+        // Width axis made orthogonal to the normal, in view space.
+        const glm::dvec3 t = glm::dvec3(l.tangent) - glm::dot(glm::dvec3(l.tangent), glm::normalize(glm::dvec3(l.direction))) *
+                                                         glm::normalize(glm::dvec3(l.direction));
+        const glm::dvec3 u = glm::normalize(glm::dmat3(view) * t);
+        d.extent = glm::vec4(glm::vec3(u * (0.5 * l.size.x)), 0.5f * l.size.y);
+    }
     return d;
 }
 

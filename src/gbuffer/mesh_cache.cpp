@@ -127,30 +127,6 @@ void detachStream(ContextImpl& ctx, GLuint vao, GLuint attrib) {
 
 } // namespace
 
-void validateMeshData(const MeshData& d, std::size_t meshIndex) {
-    const std::string what = "Scene::meshes[" + std::to_string(meshIndex) + "]";
-    const std::size_t n = d.positions.size();
-    if (!d.normals.empty() && d.normals.size() != n)
-        throw Error(ErrorCode::InvalidArgument, what + ": " + std::to_string(d.normals.size()) + " normals for " +
-                                                    std::to_string(n) + " positions (need 0 or one per position)");
-    if (!d.texcoords.empty() && d.texcoords.size() != n)
-        throw Error(ErrorCode::InvalidArgument, what + ": " + std::to_string(d.texcoords.size()) + " texcoords for " +
-                                                    std::to_string(n) + " positions (need 0 or one per position)");
-    const std::size_t count = d.indices.empty() ? n : d.indices.size();
-    if (count % 3 != 0)
-        throw Error(ErrorCode::InvalidArgument, what + ": " + std::to_string(count) +
-                                                    (d.indices.empty() ? " positions" : " indices") +
-                                                    " is not a multiple of 3 (triangle list)");
-    for (std::size_t i = 0; i < n; ++i)
-        if (!allFinite(d.positions[i]))
-            throw Error(ErrorCode::InvalidArgument, what + ": position " + std::to_string(i) + " is NaN or Inf");
-    for (std::size_t i = 0; i < d.indices.size(); ++i)
-        if (d.indices[i] >= n)
-            throw Error(ErrorCode::InvalidArgument, what + ": index " + std::to_string(i) + " = " +
-                                                        std::to_string(d.indices[i]) + " >= " + std::to_string(n) +
-                                                        " positions");
-}
-
 MeshCache::MeshCache(ContextImpl& ctx) : ctx_(ctx) {}
 
 MeshCache::GpuMesh MeshCache::upload(const MeshData& d) {

@@ -25,9 +25,6 @@ struct DrawableMesh {
     bool hasTexcoords = false;
 };
 
-//! Throws Error{InvalidArgument} naming the mesh if its arrays are inconsistent or not finite.
-void validateMeshData(const MeshData& data, std::size_t meshIndex);
-
 class MeshCache {
 public:
     explicit MeshCache(ContextImpl& ctx);

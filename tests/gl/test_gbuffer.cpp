@@ -493,3 +493,70 @@ TEST_CASE("The built-in Cornell box renders its walls with their published colou
     CHECK(red > 50);
     CHECK(green > 50);
 }
+
+namespace {
+// View factor from a differential area to a parallel rectangle with one corner straight
+// above it (a, b: side lengths over the height), e.g. Howell's catalogue, configuration B-3.
+double cornerViewFactor(double a, double b) {
+    const double sa = std::sqrt(1 + a * a), sb = std::sqrt(1 + b * b);
+    return (a / sa * std::atan(b / sa) + b / sb * std::atan(a / sb)) / (2 * kPi);
+}
+// Any parallel rectangle [x0,x1] x [y0,y1] at height h over the point (px, py): sum of four
+// corner rectangles with signs (the corner factor is odd in each side).
+double rectViewFactor(double x0, double x1, double y0, double y1, double h, double px, double py) {
+    const auto g = [&](double a, double b) {
+        const double s = (a < 0 ? -1.0 : 1.0) * (b < 0 ? -1.0 : 1.0);
+        return s * cornerViewFactor(std::abs(a) / h, std::abs(b) / h);
+    };
+    return g(x1 - px, y1 - py) - g(x0 - px, y1 - py) - g(x1 - px, y0 - py) + g(x0 - px, y0 - py);
+}
+} // namespace
+
+TEST_CASE("Area lights - a rectangle matches the view-factor closed form and a sphere its point equivalent",
+          "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 40, H = 40;
+    const Camera camera = Camera::perspective({{0, 8, 0.01f}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 100.0f);
+    const AnalyticQuad floor{{{{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}}};
+    Scene scene = test::quadScene({floor}, glm::vec3(0.5f));
+    const bool rect = GENERATE(true, false);
+    Light light;
+    light.color = glm::vec3(1.0f);
+    light.intensity = 3.0f; // radiance, W/(sr m^2)
+    if (rect) {
+        light.type = LightType::Rect;
+        light.position = {0.5f, 1.5f, -0.25f};
+        light.direction = {0, -1, 0};
+        light.tangent = {1, 0, 0};
+        light.size = {2.0f, 1.0f}; // x in [-0.5, 1.5], z in [-0.75, 0.25]
+    } else {
+        light.type = LightType::Sphere;
+        light.position = {0.3f, 1.2f, 0.2f};
+        light.radius = 0.4f;
+    }
+    scene.lights.push_back(light);
+    const GBufferView view = gbuffer.render(scene, camera, {W, H, true, {}});
+    const Image direct = readTexture(ctx, view.directRadiance);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(camera.view));
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(texel3(positions, x, y), 1.0));
+            double e;
+            if (rect) {
+                e = kPi * light.intensity * rectViewFactor(-0.5, 1.5, -0.75, 0.25, 1.5, p.x, p.z);
+            } else {
+                const glm::dvec3 d = glm::dvec3(light.position) - p;
+                const double r = light.radius;
+                e = light.intensity * kPi * r * r * (d.y / glm::length(d)) / glm::dot(d, d);
+            }
+            const double expected = 0.5 / kPi * e;
+            INFO("pixel " << x << "," << y << ": got " << direct.at(x, y, 0) << ", expected " << expected);
+            // Half-float storage (2 half ulps), plus the float error of the polygon formula: up
+            // to 5 edge terms of a few ulps (2^-22) each, of a projected solid angle <= pi.
+            const double formula = 0.5 / kPi * light.intensity * 5 * std::ldexp(1.0, -22) * kPi;
+            CHECK(std::abs(direct.at(x, y, 0) - expected) <= 2 * kHalfRelative * expected + formula);
+        }
+}
