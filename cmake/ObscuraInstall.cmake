@@ -16,7 +16,7 @@ install(TARGETS obscura EXPORT obscuraTargets
 install(EXPORT obscuraTargets NAMESPACE obscura:: DESTINATION "${OBSCURA_CMAKE_DIR}")
 
 set(OBSCURA_COMPONENTS)
-foreach(component headless assets)
+foreach(component headless assets reference)
   if(TARGET obscura_${component})
     string(SUBSTRING "${component}" 0 1 first)
     string(TOUPPER "${first}" first)

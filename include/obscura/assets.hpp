@@ -60,8 +60,8 @@ enum class PngEncoding {
 
 //! Reads an image as float (sRGB 8-bit files are linearized). Throws Error{Io}.
 OBSCURA_API Image readImage(const std::filesystem::path& path);
-//! Writes .exr (float, values as they are) or .png (8-bit, clamped to [0,1] after the
-//! encoding). Other extensions throw Error{InvalidArgument}; failures Error{Io}.
+//! Writes .exr (float, values as they are, any number of channels) or .png (8-bit, 1 to 4
+//! channels, clamped to [0,1] after the encoding). Other extensions throw Error{InvalidArgument}; failures Error{Io}.
 OBSCURA_API void writeImage(const std::filesystem::path& path, const Image& image,
                             PngEncoding encoding = PngEncoding::Srgb);
 //! The 8-bit RGBA picture a PNG of `image` contains (row 0 at the top): 1 channel becomes

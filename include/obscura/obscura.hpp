@@ -5,6 +5,7 @@
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
+#include "obscura/metrics.hpp"
 #include "obscura/profiler.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"

@@ -49,8 +49,8 @@ Image readImage(const std::filesystem::path& path) {
 
 namespace {
 
-void requireConsistent(const Image& image, const std::string& who) {
-    if (image.width < 1 || image.height < 1 || image.channels < 1 || image.channels > 4 ||
+void requireConsistent(const Image& image, const std::string& who, int maxChannels = 4) {
+    if (image.width < 1 || image.height < 1 || image.channels < 1 || image.channels > maxChannels ||
         image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
                                    static_cast<std::size_t>(image.channels))
         throw Error(ErrorCode::InvalidArgument, who + ": inconsistent image " + std::to_string(image.width) + "x" +
@@ -102,7 +102,8 @@ void writeImage(const std::filesystem::path& path, const Image& image, PngEncodi
     const std::string ext = lowerExtension(path);
     if (ext != ".exr" && ext != ".png")
         throw Error(ErrorCode::InvalidArgument, "writeImage: " + path.string() + " must end in .exr or .png");
-    requireConsistent(image, "writeImage");
+    // PNG pictures have up to 4 channels; EXR files any number (references store value and halves).
+    requireConsistent(image, "writeImage", ext == ".png" ? 4 : 1024);
     if (ext == ".png") return writePng(path, encodeDisplay(image, encoding));
     OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
     if (image.channels == 4) spec.alpha_channel = 3;

@@ -1,0 +1,138 @@
+// Single scattering in a homogeneous medium box.
+#include "obscura/error.hpp"
+#include "reference/estimators.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace obscura::reference::detail {
+namespace {
+
+// Parametric interval [t0, t1] of the ray inside the box (empty when t0 >= t1).
+bool boxInterval(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi, double& t0, double& t1) {
+    t0 = 0.0;
+    t1 = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return false;
+            continue;
+        }
+        double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 < t1;
+}
+
+// Length of the segment from p toward unit w, over distance `length`, that lies in the box.
+double lengthInside(const glm::dvec3& p, const glm::dvec3& w, double length, const Medium& m) {
+    double t0, t1;
+    if (!boxInterval(p, w, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax), t0, t1)) return 0.0;
+    return std::max(0.0, std::min(t1, length) - t0);
+}
+
+// Truncated exponential distribution on [0, L] with rate s (uniform when s L is tiny).
+struct Exponential {
+    double rate, length;
+    double sample(double u) const {
+        if (rate * length < 1e-9) return u * length;
+        return -std::log1p(u * std::expm1(-rate * length)) / rate;
+    }
+    double pdf(double t) const {
+        if (rate * length < 1e-9) return 1.0 / length;
+        return rate * std::exp(-rate * t) / -std::expm1(-rate * length);
+    }
+};
+
+// Equiangular distribution (Kulla and Fajardo 2012) toward a point light on [t0, t1].
+struct Equiangular {
+    double delta, distance, thetaA, thetaB; // closest approach along the ray, its distance, angle range
+    Equiangular(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& light, double t0, double t1) {
+        delta = glm::dot(light - o, d);
+        distance = glm::length(o + delta * d - light);
+        thetaA = std::atan2(t0 - delta, distance);
+        thetaB = std::atan2(t1 - delta, distance);
+    }
+    bool valid() const { return distance > 0.0 && thetaB > thetaA; }
+    double sample(double u) const { return delta + distance * std::tan(thetaA + u * (thetaB - thetaA)); }
+    double pdf(double t) const {
+        const double x = t - delta;
+        return distance / ((thetaB - thetaA) * (distance * distance + x * x));
+    }
+};
+
+} // namespace
+
+Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScattering& q) {
+    if (q.medium >= scene.scene.media.size())
+        throw Error(ErrorCode::InvalidArgument, "SingleScattering::medium = " + std::to_string(q.medium) +
+                                                    " but the scene has " + std::to_string(scene.scene.media.size()) +
+                                                    " media");
+    const Medium medium = scene.scene.media[q.medium];
+    if (glm::any(glm::lessThan(medium.boxMax, medium.boxMin)) || glm::any(glm::lessThan(medium.scattering, glm::vec3(0))) ||
+        glm::any(glm::lessThan(medium.absorption, glm::vec3(0))) || !(std::abs(medium.anisotropy) < 1.0f))
+        throw Error(ErrorCode::InvalidArgument, "Scene::media[" + std::to_string(q.medium) +
+                                                    "]: needs boxMin <= boxMax, coefficients >= 0 and |anisotropy| < 1");
+    return [&scene, q, medium](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
+        const glm::dvec3 sigmaS(medium.scattering), sigmaT = sigmaS + glm::dvec3(medium.absorption);
+        double t0, t1;
+        if (!boxInterval(p.origin, p.direction, glm::dvec3(medium.boxMin), glm::dvec3(medium.boxMax), t0, t1))
+            return glm::dvec4(0, 0, 0, 1);
+        t1 = std::min(t1, p.distance);
+        if (!(t1 > t0)) return glm::dvec4(0, 0, 0, 1);
+        const double length = t1 - t0;
+        const glm::dvec3 viewT = glm::exp(-sigmaT * length);
+        const double meanSigma = (sigmaT.r + sigmaT.g + sigmaT.b) / 3.0;
+        const Exponential exponential{meanSigma, length};
+        glm::dvec3 sum(0.0);
+        for (const Light& l : scene.scene.lights) {
+            if (l.type == LightType::Rect || l.type == LightType::Sphere) continue; // area lights: not in this quantity
+            const bool distant = l.type == LightType::Directional;
+            const Equiangular equiangular(p.origin, p.direction, glm::dvec3(l.position), t0, t1);
+            const bool useEquiangular = !distant && equiangular.valid();
+            const glm::dvec3 radiance = glm::dvec3(l.color) * double(l.intensity);
+            for (int i = 0; i < n; ++i) {
+                // One-sample MIS of the transmittance and the equiangular distributions.
+                const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
+                const bool pickEquiangular = useEquiangular && u.y < 0.5;
+                const double t = pickEquiangular ? equiangular.sample(u.x) : t0 + exponential.sample(u.x);
+                double pdf = exponential.pdf(t - t0);
+                if (useEquiangular) pdf = 0.5 * pdf + 0.5 * equiangular.pdf(t);
+                if (!(pdf > 0.0) || !std::isfinite(pdf)) continue;
+                const glm::dvec3 x = p.origin + t * p.direction;
+                glm::dvec3 w;
+                double distance, falloff = 1.0;
+                if (distant) {
+                    w = -glm::normalize(glm::dvec3(l.direction));
+                    distance = kInfinity;
+                } else {
+                    const glm::dvec3 toLight = glm::dvec3(l.position) - x;
+                    distance = glm::length(toLight);
+                    if (!(distance > 0.0)) continue;
+                    w = toLight / distance;
+                    falloff = 1.0 / std::max(distance * distance, double(l.radius) * l.radius);
+                    if (l.type == LightType::Spot) {
+                        const double c = glm::dot(-w, glm::normalize(glm::dvec3(l.direction))), ci = std::cos(double(l.innerAngle)),
+                                     co = std::cos(double(l.outerAngle));
+                        const double tt = ci > co ? std::clamp((c - co) / (ci - co), 0.0, 1.0) : (c >= co ? 1.0 : 0.0);
+                        falloff *= ci > co ? tt * tt * (3.0 - 2.0 * tt) : tt;
+                    }
+                }
+                if (falloff == 0.0) continue;
+                if (q.shadows) {
+                    ++rays;
+                    if (scene.occluded(glm::vec3(x), w, distance)) continue;
+                }
+                // Phase angle: between the light's travel direction (-w) and the direction toward the camera.
+                const double phase = phaseFunction(medium.phase, medium.anisotropy, glm::dot(-w, -p.direction));
+                const glm::dvec3 toLightT = glm::exp(-sigmaT * lengthInside(x, w, distance, medium));
+                const glm::dvec3 viewSideT = glm::exp(-sigmaT * (t - t0));
+                sum += sigmaS * viewSideT * phase * radiance * falloff * toLightT / pdf;
+            }
+        }
+        return glm::dvec4(sum / double(n), (viewT.r + viewT.g + viewT.b) / 3.0);
+    };
+}
+
+} // namespace obscura::reference::detail

@@ -1,0 +1,51 @@
+#pragma once
+// Internals of RayScene shared by the integrators: Embree queries and surface attributes.
+#include "obscura/reference.hpp"
+#include "reference/environment.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace obscura::reference {
+
+struct Hit {
+    double distance = 0.0;
+    glm::dvec3 normal{0.0}; //!< unit geometric normal, as wound
+    unsigned geometry = 0, primitive = 0;
+    double u = 0.0, v = 0.0; //!< barycentrics of vertices 1 and 2
+};
+
+struct RayScene::Impl {
+    struct MeshRecord {
+        std::vector<glm::vec2> texcoords; //!< empty when the mesh has none
+        std::vector<glm::vec3> normals;   //!< world-space vertex normals; empty when the mesh has none
+        std::vector<std::uint32_t> indices;
+        std::uint32_t material = 0;
+    };
+
+    Scene scene;
+    RTCDevice device = nullptr;
+    RTCScene rtc = nullptr;
+    std::vector<MeshRecord> meshes; //!< by Embree geometry id
+    Bounds bounds;
+    std::size_t triangles = 0;
+    std::uint64_t hash = 0;
+    std::unique_ptr<detail::EnvironmentMap> environment;
+
+    //! Nearest hit in (tnear, tfar) along `direction` (unit) from `origin`.
+    std::optional<Hit> intersect(const glm::vec3& origin, const glm::dvec3& direction, double tfar,
+                                 double tnear = 0.0) const;
+    //! Whether anything lies in (0, tfar) along the ray.
+    bool occluded(const glm::vec3& origin, const glm::dvec3& direction, double tfar) const;
+    glm::dvec3 albedo(const Hit& hit) const;
+    //! The interpolated vertex normal (what the G-buffer shades with), on the side of
+    //! `geometric` (the geometric normal already turned toward the viewer); `geometric`
+    //! itself for meshes without normals.
+    glm::dvec3 shadingNormal(const Hit& hit, const glm::dvec3& geometric) const;
+    glm::dvec3 emission(const Hit& hit) const;
+};
+
+} // namespace obscura::reference

@@ -1,0 +1,81 @@
+// The noise floor: halves, their stated confidence, determinism and the cache.
+#include "obscura/assets.hpp"
+#include "obscura/metrics.hpp"
+#include "reference_helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+using namespace obscura;
+using namespace obscura::reference;
+
+namespace {
+struct CornellAo {
+    assets::LoadedScene cornell = assets::builtinScene("cornell");
+    RayScene scene{cornell.scene};
+    ShadingPoints points = fromCamera(scene, assets::makeCamera(cornell.camera, 32, 32), 32, 32);
+    Quantity ao = AmbientOcclusion{150.0, true};
+};
+} // namespace
+
+TEST_CASE("The two halves agree within their stated confidence", "[reference][noise]") {
+    CornellAo c;
+    RenderSettings settings;
+    settings.samplesPerPixel = 64;
+    const Reference a = render(c.scene, c.points, c.ao, settings);
+    settings.seed = 2;
+    const Reference b = render(c.scene, c.points, c.ao, settings);
+    const Image mask = surfaceMask(c.points);
+    metrics::Options o;
+    o.mask = &mask;
+    // noiseMse is the estimated MSE of each render's value around the truth; two independent
+    // renders then differ by 2 noiseMse in the mean square. With ~1000 pixels the ratio's
+    // sampling spread is a few percent; allow 25 %.
+    const double between = metrics::mse(a.value, b.value, o);
+    INFO("MSE between seeds " << between << ", stated noise " << a.noiseMse << " and " << b.noiseMse);
+    CHECK(between / (a.noiseMse + b.noiseMse) == Approx(1.0).margin(0.25));
+    // The halves of one render have zero-mean differences: within 4 standard errors.
+    double sum = 0, sq = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.halfA.pixels.size(); ++i) {
+        if (!c.points.points[i].surface()) continue;
+        const double d = a.halfA.pixels[i] - a.halfB.pixels[i];
+        sum += d;
+        sq += d * d;
+        ++n;
+    }
+    const double mean = sum / double(n), sd = std::sqrt(sq / double(n) - mean * mean);
+    CHECK(std::abs(mean) < 4 * sd / std::sqrt(double(n)));
+    CHECK(a.noiseMse == Approx(metrics::halvesNoiseMse(a.halfA, a.halfB, o)));
+}
+
+TEST_CASE("References are deterministic whatever the thread count and are cached", "[reference][noise]") {
+    CornellAo c;
+    RenderSettings settings;
+    settings.samplesPerPixel = 16;
+    settings.threads = 1;
+    const Reference one = render(c.scene, c.points, c.ao, settings);
+    settings.threads = 3;
+    const Reference three = render(c.scene, c.points, c.ao, settings);
+    CHECK(one.value.pixels == three.value.pixels);
+    CHECK(one.rays == three.rays);
+    CHECK(one.rays > 0);
+
+    const auto dir = std::filesystem::temp_directory_path() / "obscura_reference_cache_test";
+    std::filesystem::remove_all(dir);
+    const Reference first = renderCached(dir, c.scene, c.points, c.ao, settings);
+    std::size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+    CHECK(files == 2); // <key>.exr and <key>.json
+    const Reference cached = renderCached(dir, c.scene, c.points, c.ao, settings);
+    CHECK(cached.value.pixels == first.value.pixels);
+    CHECK(cached.halfB.pixels == first.halfB.pixels);
+    CHECK(cached.noiseMse == first.noiseMse);
+    // Another quantity is another entry.
+    renderCached(dir, c.scene, c.points, AmbientOcclusion{100.0, true}, settings);
+    files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+    CHECK(files == 4);
+    std::filesystem::remove_all(dir);
+}

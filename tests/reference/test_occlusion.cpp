@@ -1,0 +1,109 @@
+// Ambient occlusion, obscurance and bent normals against closed forms.
+#include "obscura/assets.hpp"
+#include "reference_helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace obscura;
+using namespace obscura::reference;
+using test::kPi;
+
+namespace {
+const test::QuadCorners kFloor{{{-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}}};
+std::vector<glm::dvec3> pointsNearCentre() { return {{0, 0, 0}, {0.01, 0, -0.02}, {-0.015, 0, 0.005}}; }
+} // namespace
+
+TEST_CASE("AO of an unoccluded plane is 1", "[reference][ao]") {
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor)}));
+    // The built-in plane seen from its camera, and points chosen by hand.
+    const assets::LoadedScene plane = assets::builtinScene("plane");
+    const RayScene builtin(plane.scene);
+    const ShadingPoints camera = fromCamera(builtin, assets::makeCamera(plane.camera, 24, 16), 24, 16);
+    for (bool cosine : {true, false}) {
+        RenderSettings settings;
+        settings.samplesPerPixel = 64;
+        const Reference r = render(builtin, camera, AmbientOcclusion{kInfinity, cosine}, settings);
+        int surfaces = 0;
+        for (std::size_t i = 0; i < camera.points.size(); ++i) {
+            if (!camera.points[i].surface()) continue;
+            ++surfaces;
+            CHECK(std::abs(r.value.pixels[i] - 1.0) < 1e-3);
+        }
+        CHECK(surfaces > 100);
+        const Reference hand = render(scene, test::pointsAt(pointsNearCentre(), {0, 1, 0}), AmbientOcclusion{}, settings);
+        for (float v : hand.value.pixels) CHECK(std::abs(v - 1.0) < 1e-3);
+    }
+}
+
+TEST_CASE("AO under a coaxial disc is one minus the view factor and 1 with a shorter radius", "[reference][ao]") {
+    const double h = 1.0, a = 0.75;
+    // 1024 segments: the inscribed polygon's area is short of the disc's by (2 pi/1024)^2/6 ~ 6e-6.
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor), test::discMesh({0, h, 0}, a, 1024)}));
+    const std::vector<glm::dvec3> at = pointsNearCentre();
+    const ShadingPoints points = test::pointsAt(at, {0, 1, 0});
+    RenderSettings settings;
+    settings.samplesPerPixel = 8192;
+    // Cosine-weighted: 1 - F with the view factor from a differential area at distance r
+    // from the axis to a parallel disc, F = (1 - (h^2 + r^2 - a^2) / sqrt((h^2 + r^2 + a^2)^2
+    // - 4 r^2 a^2)) / 2, which on the axis is a^2 / (h^2 + a^2).
+    const Reference cosine = render(scene, points, AmbientOcclusion{kInfinity, true}, settings);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        const double r2 = at[i].x * at[i].x + at[i].z * at[i].z;
+        const double f = 0.5 * (1 - (h * h + r2 - a * a) / std::sqrt(std::pow(h * h + r2 + a * a, 2) - 4 * r2 * a * a));
+        const double expected = 1 - f;
+        // A mean of n Bernoulli trials has sigma = sqrt(p (1 - p) / n); stratification only lowers it.
+        const double sigma = std::sqrt(expected * (1 - expected) / settings.samplesPerPixel);
+        CHECK(std::abs(cosine.value.pixels[i] - expected) < 4 * sigma);
+    }
+    // Uniform-weighted, on the axis: 1 - (1 - cos alpha) = cos alpha, alpha the disc's half-angle.
+    const Reference uniform = render(scene, test::pointsAt({{0, 0, 0}}, {0, 1, 0}), AmbientOcclusion{kInfinity, false},
+                                     settings);
+    const double expectedUniform = h / std::sqrt(h * h + a * a);
+    const double sigma = std::sqrt(expectedUniform * (1 - expectedUniform) / settings.samplesPerPixel);
+    CHECK(std::abs(uniform.value.pixels[0] - expectedUniform) < 4 * sigma);
+    // With a radius below the disc's height nothing is within reach.
+    settings.samplesPerPixel = 256;
+    const Reference limited = render(scene, points, AmbientOcclusion{0.99 * h, true}, settings);
+    for (float v : limited.value.pixels) CHECK(v == 1.0f);
+}
+
+TEST_CASE("Obscurance under a ceiling matches its one-dimensional integral", "[reference][obscurance]") {
+    // An infinite-looking ceiling at height h: a ray at angle theta hits at d = h / cos(theta).
+    const double h = 0.5, dmax = 1.5;
+    const test::QuadCorners ceiling{{{-500, h, -500}, {500, h, -500}, {500, h, 500}, {-500, h, 500}}};
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor), test::quadMesh(ceiling)}));
+    const ShadingPoints points = test::pointsAt(pointsNearCentre(), {0, 1, 0});
+    RenderSettings settings;
+    settings.samplesPerPixel = 8192;
+    for (auto falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Linear, ObscuranceFalloff::Quadratic,
+                         ObscuranceFalloff::Smooth}) {
+        // W = (1/pi) Int rho cos dw = Int_0^{pi/2} rho(h / cos t) 2 cos t sin t dt, midpoint rule
+        // with 200000 steps (error < 1e-9 for these smooth integrands).
+        double expected = 0.0;
+        const int steps = 200000;
+        for (int i = 0; i < steps; ++i) {
+            const double t = (i + 0.5) / steps * (kPi / 2);
+            expected += obscuranceWeight(falloff, h / std::cos(t), dmax) * 2 * std::cos(t) * std::sin(t) * (kPi / 2) / steps;
+        }
+        const Reference r = render(scene, points, Obscurance{dmax, falloff}, settings);
+        // rho is in [0, 1]: the variance of one sample is at most 1/4.
+        const double sigma = std::sqrt(0.25 / settings.samplesPerPixel);
+        for (float v : r.value.pixels) CHECK(std::abs(v - expected) < 4 * sigma);
+    }
+    CHECK(obscuranceWeight(ObscuranceFalloff::Smooth, 0.5, 1.0) == Approx(0.5));
+    CHECK(obscuranceWeight(ObscuranceFalloff::Quadratic, 0.5, 2.0) == Approx(0.0625));
+    CHECK(obscuranceWeight(ObscuranceFalloff::None, 3.0, 2.0) == 1.0);
+}
+
+TEST_CASE("Bent normals of symmetric configurations are the normal", "[reference][bent-normal]") {
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor), test::discMesh({0, 1, 0}, 0.75, 256)}));
+    const ShadingPoints points = test::pointsAt({{0, 0, 0}}, {0, 1, 0});
+    RenderSettings settings;
+    settings.samplesPerPixel = 8192;
+    const Reference r = render(scene, points, BentNormal{}, settings);
+    // The mean of cosine-distributed unoccluded directions has a horizontal part of zero mean;
+    // its spread per component is below 1/sqrt(n) of the vertical part's size.
+    CHECK(std::abs(r.value.pixels[0]) < 4.0 / std::sqrt(settings.samplesPerPixel / 2.0));
+    CHECK(r.value.pixels[1] > 0.99);
+    CHECK(std::abs(r.value.pixels[2]) < 4.0 / std::sqrt(settings.samplesPerPixel / 2.0));
+}
