@@ -64,6 +64,10 @@ struct ShadingPoint {
     glm::dvec3 shadingNormal{0.0};
     glm::dvec3 albedo{0.0};    //!< diffuse reflectance at the point (material x texture)
     glm::dvec3 emission{0.0};  //!< emitted radiance at the point, W/(sr m^2)
+    //! How far, in world units, `position` may be from the true surface: the float error of a
+    //! ray hit, or for G-buffer samples the 32F depth quantization (4 float steps of the
+    //! stored depth, mapped to distance). Secondary rays start at least this far off the surface.
+    double uncertainty = 0.0;
     bool surface() const noexcept { return distance < kInfinity; }
 };
 

@@ -7,5 +7,8 @@ namespace obscura::cli {
 void addRenderCommand(CLI::App& app);
 //! Adds `obscura info` (GL context, techniques, scenes).
 void addInfoCommand(CLI::App& app);
+//! Adds `obscura reference` and `obscura bench` (need obscura::reference).
+void addReferenceCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 } // namespace obscura::cli

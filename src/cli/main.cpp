@@ -1,4 +1,4 @@
-// obscura: command-line front end (render | info; reference, bench and voxelize follow).
+// obscura: command-line front end (render | info | reference | bench).
 #include "commands.hpp"
 #include "obscura/error.hpp"
 #include "obscura/version.hpp"
@@ -11,6 +11,10 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     obscura::cli::addRenderCommand(app);
     obscura::cli::addInfoCommand(app);
+#ifdef OBSCURA_WITH_REFERENCE
+    obscura::cli::addReferenceCommand(app);
+    obscura::cli::addBenchCommand(app);
+#endif
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -5,6 +5,7 @@
 #include "obscura/error.hpp"
 #include "obscura/headless.hpp"
 #include "obscura/profiler.hpp"
+#include "scene_options.hpp"
 #include "technique_registry.hpp"
 
 #include <cstdio>
@@ -14,23 +15,13 @@ namespace obscura::cli {
 namespace {
 
 struct RenderOptions {
-    std::string scene = "cornell";
-    std::string camera;
-    std::string size = "256x256";
+    SceneOptions scene;
     std::string technique = "gbuffer";
     std::vector<std::string> sets;
     std::string output;
     std::string out;
-    std::string depth = "standard";
     int frames = 5;
 };
-
-DepthMode parseDepth(const std::string& s) {
-    if (s == "standard") return DepthMode::Standard;
-    if (s == "zero_to_one") return DepthMode::StandardZeroToOne;
-    if (s == "reversed") return DepthMode::Reversed;
-    throw Error(ErrorCode::Parse, "--depth " + s + ": expected standard, zero_to_one or reversed");
-}
 
 void writeOutput(const TechniqueOutput& o, const std::filesystem::path& exr, const std::filesystem::path& png) {
     if (!exr.empty()) assets::writeImage(exr, o.image);
@@ -44,11 +35,11 @@ void printTimings(const std::string& technique, Profiler& profiler) {
 }
 
 void runRender(const RenderOptions& o) {
-    const auto [width, height] = assets::parseImageSize(o.size);
     if (o.frames < 1) throw Error(ErrorCode::Parse, "--frames must be >= 1");
-    const assets::LoadedScene scene = assets::loadScene(o.scene);
-    const assets::CameraSpec spec = o.camera.empty() ? scene.camera : assets::parseCameraSpec(o.camera, scene.camera);
-    const Camera camera = assets::makeCamera(spec, width, height, parseDepth(o.depth));
+    const ResolvedScene resolved = resolveScene(o.scene);
+    const assets::LoadedScene& scene = resolved.scene;
+    const Camera& camera = resolved.camera;
+    const int width = resolved.width, height = resolved.height;
 
     std::vector<const TechniqueInfo*> selected;
     if (o.technique == "all") {
@@ -106,14 +97,11 @@ void runRender(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app) {
     auto options = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a technique's output buffers headless (EXR and/or PNG)");
-    cmd->add_option("--scene", options->scene, "Built-in scene name, JSON scene file, or mesh file")->capture_default_str();
-    cmd->add_option("--camera", options->camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg (default: the scene's camera)");
-    cmd->add_option("--size", options->size, "Image size WxH in pixels")->capture_default_str();
+    addSceneOptions(*cmd, options->scene);
     cmd->add_option("--technique", options->technique, "Technique name, or 'all'")->capture_default_str();
     cmd->add_option("--set", options->sets, "Technique setting key=value (repeatable)");
     cmd->add_option("--output", options->output, "Output buffer (default: the technique's first; a directory gets all)");
     cmd->add_option("--out", options->out, "FILE.exr, FILE.png, or a directory")->required();
-    cmd->add_option("--depth", options->depth, "Depth convention: standard, zero_to_one, reversed")->capture_default_str();
     cmd->add_option("--frames", options->frames, "Timed frames after one warm-up frame")->capture_default_str();
     cmd->callback([options] { runRender(*options); });
 }

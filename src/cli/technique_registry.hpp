@@ -3,10 +3,12 @@
 // source file, so a new technique appears in every tool without editing them.
 #include "obscura/assets.hpp"
 #include "obscura/context.hpp"
+#include "obscura/reference.hpp"
 
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,25 @@ struct FrameSetup {
     int width = 0, height = 0;
 };
 
+//! What the bench compares with ground truth after the timed frames.
+struct Measurement {
+    std::string quantity; //!< e.g. "direct", "ao", "position"
+    //! The technique's output in the reference's units, world space for vectors, row 0 at the
+    //! top. Pixels without geometry are ignored (see GBufferSamples::viewPositions alpha).
+    Image value;
+    //! The ground truth to render at the G-buffer's samples; empty when `geometry` is set.
+    std::optional<reference::Quantity> reference;
+    //! Instead of a reference quantity: compare with primary-ray hits (exact, no noise).
+    enum class Geometry { None, Position, Normal } geometry = Geometry::None;
+};
+
+//! The G-buffer samples a technique worked on (view-space positions with alpha = geometry,
+//! view-space normals), read back: where the reference is evaluated (mode a).
+struct GBufferSamples {
+    Image viewPositions;
+    Image viewNormals;
+};
+
 //! A technique instance bound to a Context. run() renders one frame; outputs() reads back.
 class TechniqueRun {
 public:
@@ -38,6 +59,15 @@ public:
     virtual void set(const std::string& key, const std::string& value) = 0;
     virtual void run(const FrameSetup& frame) = 0;
     virtual std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) = 0;
+    //! After run(): the technique's measurable outputs and the samples they were computed at.
+    virtual std::vector<Measurement> measurements() = 0;
+    virtual GBufferSamples samples() = 0;
+};
+
+//! A named set of `--set` values ("low", "medium", "high", "ultra", or "default").
+struct Preset {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> settings;
 };
 
 struct TechniqueInfo {
@@ -45,6 +75,7 @@ struct TechniqueInfo {
     std::string description;
     std::vector<std::string> outputs;  //!< first = default
     std::vector<SettingInfo> settings;
+    std::vector<Preset> presets;       //!< at least one
     std::function<std::unique_ptr<TechniqueRun>(Context&)> create;
 };
 

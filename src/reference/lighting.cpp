@@ -36,9 +36,10 @@ class LightSampler {
 public:
     LightSampler(const RayScene::Impl& scene, bool visibility) : scene_(scene), visibility_(visibility) {}
 
+    //! `offset`: the least lift of shadow-ray origins off x (see offsetOrigin).
     LightSample sample(const Light& l, const glm::dvec3& x, const glm::dvec3& ng, const glm::dvec3& ns,
-                       const glm::dvec2& u, std::uint64_t& rays) const {
-        const glm::vec3 origin = offsetOrigin(x, ng);
+                       const glm::dvec2& u, double offset, std::uint64_t& rays) const {
+        const glm::vec3 origin = offsetOrigin(x, ng, std::max(offset, scene_.floatError));
         const glm::dvec3 radiance = glm::dvec3(l.color) * static_cast<double>(l.intensity);
         switch (l.type) {
         case LightType::Directional: {
@@ -115,9 +116,9 @@ private:
 // Direct radiance at a surface point: emission + (albedo / pi) sum of light irradiance.
 glm::dvec3 directRadiance(const LightSampler& lights, const Scene& scene, const glm::dvec3& x, const glm::dvec3& ng,
                           const glm::dvec3& ns, const glm::dvec3& albedo, const glm::dvec3& emission, const glm::dvec2& u,
-                          std::uint64_t& rays) {
+                          double offset, std::uint64_t& rays) {
     glm::dvec3 e(0.0);
-    for (const Light& l : scene.lights) e += lights.sample(l, x, ng, ns, u, rays).irradiance;
+    for (const Light& l : scene.lights) e += lights.sample(l, x, ng, ns, u, offset, rays).irradiance;
     return emission + albedo / kPi * e;
 }
 
@@ -132,7 +133,7 @@ Estimator direct(const RayScene::Impl& scene, const DirectLight& q) {
         glm::dvec3 sum(0.0);
         for (int i = 0; i < count; ++i)
             sum += directRadiance(lights, scene.scene, p.position, p.normal, p.shadingNormal, p.albedo, p.emission,
-                                  s.lightPoint(static_cast<std::uint32_t>(i)), rays);
+                                  s.lightPoint(static_cast<std::uint32_t>(i)), p.uncertainty, rays);
         return glm::dvec4(sum / double(count), 0.0);
     };
 }
@@ -141,7 +142,7 @@ Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
     if (!(q.radius > 0.0)) throw Error(ErrorCode::InvalidArgument, "IndirectLight::radius must be > 0 world units");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const LightSampler lights(scene, true);
-        const glm::vec3 origin = offsetOrigin(p.position, p.normal);
+        const glm::vec3 origin = surfaceOrigin(scene, p);
         glm::dvec3 sum(0.0);
         for (int i = 0; i < n; ++i) {
             // Cosine sampling: (albedo/pi) L cos / (cos/pi) = albedo L.
@@ -151,8 +152,10 @@ Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
             if (!hit) continue;
             const glm::dvec3 y = glm::dvec3(origin) + hit->distance * w;
             const glm::dvec3 ng = glm::dot(hit->normal, w) > 0.0 ? -hit->normal : hit->normal;
+            // The hit point carries the float error of its ray parameter.
+            const double offset = std::ldexp(hit->distance + glm::length(glm::dvec3(origin)), -20);
             sum += directRadiance(lights, scene.scene, y, ng, scene.shadingNormal(*hit, ng), scene.albedo(*hit),
-                                  scene.emission(*hit), s.lightPoint(static_cast<std::uint32_t>(i)), rays);
+                                  scene.emission(*hit), s.lightPoint(static_cast<std::uint32_t>(i)), offset, rays);
         }
         return glm::dvec4(p.albedo * sum / double(n), 0.0);
     };
@@ -169,8 +172,8 @@ Estimator shadow(const RayScene::Impl& scene, const Shadow& q) {
         double visible = 0.0, total = 0.0;
         for (int i = 0; i < count; ++i) {
             // The geometric normal for the cosine: shadows are a property of visibility.
-            const LightSample ls =
-                lights.sample(light, p.position, p.normal, p.normal, s.lightPoint(static_cast<std::uint32_t>(i)), rays);
+            const LightSample ls = lights.sample(light, p.position, p.normal, p.normal,
+                                                 s.lightPoint(static_cast<std::uint32_t>(i)), p.uncertainty, rays);
             visible += ls.irradiance.r + ls.irradiance.g + ls.irradiance.b;
             total += ls.unoccluded.r + ls.unoccluded.g + ls.unoccluded.b;
         }
@@ -184,7 +187,7 @@ Estimator imageBased(const RayScene::Impl& scene, const ImageBasedLight& q) {
         throw Error(ErrorCode::InvalidArgument, "ImageBasedLight needs Scene::environment (an equirectangular HDR file)");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const auto& env = *scene.environment;
-        const glm::vec3 origin = offsetOrigin(p.position, p.normal);
+        const glm::vec3 origin = surfaceOrigin(scene, p);
         const auto contribution = [&](const glm::dvec3& w) {
             const double c = glm::dot(p.normal, w);
             if (c <= 0.0) return glm::dvec3(0.0);

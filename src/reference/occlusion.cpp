@@ -34,7 +34,7 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
         requireRadius(ao->radius, "AmbientOcclusion::radius");
         const AmbientOcclusion q = *ao;
         return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
-            const glm::vec3 origin = offsetOrigin(p.position, p.normal);
+            const glm::vec3 origin = surfaceOrigin(scene, p);
             double visible = 0.0;
             for (int i = 0; i < n; ++i) {
                 const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
@@ -50,7 +50,7 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
             throw Error(ErrorCode::InvalidArgument, "Obscurance::maxDistance must be finite and > 0 world units");
         const Obscurance q = *ob;
         return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
-            const glm::vec3 origin = offsetOrigin(p.position, p.normal);
+            const glm::vec3 origin = surfaceOrigin(scene, p);
             double sum = 0.0;
             for (int i = 0; i < n; ++i) {
                 const glm::dvec3 w = toWorld(cosineHemisphere(s.point(static_cast<std::uint32_t>(i))), p.normal);
@@ -64,7 +64,7 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
     const BentNormal q = std::get<BentNormal>(quantity);
     requireRadius(q.radius, "BentNormal::radius");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
-        const glm::vec3 origin = offsetOrigin(p.position, p.normal);
+        const glm::vec3 origin = surfaceOrigin(scene, p);
         glm::dvec3 sum(0.0);
         for (int i = 0; i < n; ++i) {
             const glm::dvec3 w = toWorld(cosineHemisphere(s.point(static_cast<std::uint32_t>(i))), p.normal);

@@ -134,6 +134,8 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     rtcCommitScene(d.rtc);
     if (rtcGetDeviceError(d.device) != RTC_ERROR_NONE)
         throw Error(ErrorCode::InvalidState, "Embree reported an error while building the scene");
+    const glm::dvec3 extent = glm::max(glm::abs(glm::dvec3(d.bounds.min)), glm::abs(glm::dvec3(d.bounds.max)));
+    d.floatError = d.bounds.empty ? 0.0 : std::ldexp(std::max({extent.x, extent.y, extent.z}), -20);
     d.hash = hashScene(scene);
     if (scene.environment) d.environment = std::make_unique<detail::EnvironmentMap>(*scene.environment);
 }

@@ -31,6 +31,10 @@ struct RayScene::Impl {
     RTCScene rtc = nullptr;
     std::vector<MeshRecord> meshes; //!< by Embree geometry id
     Bounds bounds;
+    //! 2^-20 of the largest coordinate magnitude in the scene: the float error of a
+    //! ray/triangle intersection is relative to the triangle's coordinates, so every ray
+    //! origin is lifted off its surface at least this much (see offsetOrigin).
+    double floatError = 0.0;
     std::size_t triangles = 0;
     std::uint64_t hash = 0;
     std::unique_ptr<detail::EnvironmentMap> environment;

@@ -2,6 +2,7 @@
 // Random numbers, low-discrepancy points and direction sampling for the reference.
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -82,23 +83,15 @@ inline glm::dvec3 uniformCone(const glm::dvec2& u, double cosMax) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-//! Moves a ray origin off the surface by a few float ulps along the normal (Wächter and
-//! Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems 2019):
-//! scale-invariant, so no epsilon in world units is needed.
-inline glm::vec3 offsetOrigin(const glm::dvec3& pd, const glm::dvec3& nd) {
-    const glm::vec3 p(pd), n(nd);
-    constexpr float origin = 1.0f / 32.0f, floatScale = 1.0f / 65536.0f, intScale = 256.0f;
-    glm::vec3 out;
-    for (int i = 0; i < 3; ++i) {
-        const int of = static_cast<int>(intScale * n[i]);
-        std::int32_t bits;
-        std::memcpy(&bits, &p[i], 4);
-        bits += p[i] < 0 ? -of : of;
-        float moved;
-        std::memcpy(&moved, &bits, 4);
-        out[i] = std::fabs(p[i]) < origin ? p[i] + floatScale * n[i] : moved;
-    }
-    return out;
+//! Lifts a ray origin off the surface along its normal by
+//!   max(2^-20 |p|_inf, minimum):
+//! 2^-20 is 8 float ulps of the point's largest coordinate, above the float error of a
+//! point; `minimum` is the point's own known uncertainty (ShadingPoint::uncertainty: a ray
+//! hit's or a depth buffer's). Both are relative to the data, so no epsilon in world units is
+//! involved, and both stay far below a pixel's footprint.
+inline glm::vec3 offsetOrigin(const glm::dvec3& p, const glm::dvec3& n, double minimum = 0.0) {
+    const double magnitude = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return glm::vec3(p + n * std::max(std::ldexp(magnitude, -20), minimum));
 }
 
 } // namespace obscura::reference::detail

@@ -3,6 +3,7 @@
 #include "obscura/reference.hpp"
 #include "reference/ray_scene_impl.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace obscura::reference {
@@ -42,12 +43,29 @@ struct ViewRayMaker {
     }
 };
 
+// Float error of a hit at parameter t (Embree computes t in float).
+double hitUncertainty(double distance) { return std::ldexp(distance, -20); }
+
+// Four quantization steps of the 32F depth that stores view depth z, as a distance along the
+// view ray (the G-buffer reconstructs positions along it).
+double depthUncertainty(const Camera& camera, const glm::dvec3& viewPosition, const glm::dvec2& ndc) {
+    const glm::dvec4 clip = glm::dmat4(camera.projection) * glm::dvec4(viewPosition, 1.0);
+    const double zn = clip.z / clip.w;
+    const double d = camera.clipDepth == ClipDepth::ZeroToOne ? zn : 0.5 * zn + 0.5;
+    const float df = static_cast<float>(std::clamp(d, 0.0, 1.0));
+    const float next = std::nextafter(df, df < 1.0f ? 2.0f : -1.0f);
+    const double step = std::abs(viewPositionFromDepth(camera, ndc, next).z - viewPositionFromDepth(camera, ndc, df).z);
+    const double alongRay = std::abs(viewPosition.z) > 0.0 ? glm::length(viewPosition) / std::abs(viewPosition.z) : 1.0;
+    return 4.0 * step * alongRay;
+}
+
 void shade(const RayScene::Impl& scene, const Hit& hit, ShadingPoint& s) {
     s.distance = hit.distance;
     s.normal = glm::dot(hit.normal, s.direction) > 0.0 ? -hit.normal : hit.normal;
     s.shadingNormal = scene.shadingNormal(hit, s.normal);
     s.albedo = scene.albedo(hit);
     s.emission = scene.emission(hit);
+    s.uncertainty = hitUncertainty(hit.distance);
 }
 
 } // namespace
@@ -94,6 +112,8 @@ ShadingPoints fromGBuffer(const RayScene& scene, const Camera& camera, const Ima
             if (maker.perspective && s.distance > 0.0) s.direction = toPoint / s.distance;
             const double nl = glm::length(nv);
             s.normal = nl > 0.0 ? rotation * (nv / nl) : -s.direction;
+            const glm::dvec2 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0);
+            s.uncertainty = depthUncertainty(camera, pv, ndc) + hitUncertainty(s.distance);
             // The surface's material: the triangle the view ray reaches at (about) that distance.
             s.shadingNormal = s.normal;
             if (auto hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, kInfinity, tnear)) {

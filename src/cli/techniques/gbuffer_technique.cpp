@@ -46,6 +46,34 @@ public:
         return out;
     }
 
+    GBufferSamples samples() override {
+        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+    }
+
+    // Positions and face normals against primary-ray hits (the reconstruction and
+    // rasterization error); the unshadowed direct radiance against direct light with
+    // visibility (what the missing shadows and the area-light approximations cost).
+    std::vector<Measurement> measurements() override {
+        const GBufferSamples s = samples();
+        const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view_.camera.view));
+        Image position = rgb(s.viewPositions), normal = rgb(s.viewNormals);
+        for (int y = 0; y < position.height; ++y)
+            for (int x = 0; x < position.width; ++x) {
+                const glm::dvec3 p(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2));
+                const glm::dvec3 n(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+                const glm::dvec3 pw = glm::dvec3(toWorld * glm::dvec4(p, 1.0)), nw = glm::dmat3(toWorld) * n;
+                for (int c = 0; c < 3; ++c) {
+                    position.at(x, y, c) = static_cast<float>(pw[c]);
+                    normal.at(x, y, c) = static_cast<float>(nw[c]);
+                }
+            }
+        return {
+            {"position", position, std::nullopt, Measurement::Geometry::Position},
+            {"normal", normal, std::nullopt, Measurement::Geometry::Normal},
+            {"direct", rgb(readTexture(ctx_, view_.directRadiance)), reference::DirectLight{true}, Measurement::Geometry::None},
+        };
+    }
+
 private:
     TechniqueOutput output(const std::string& name) {
         TechniqueOutput o;
@@ -103,6 +131,7 @@ const TechniqueRegistrar registrar({
     "G-buffer: hardware depth, view-space face normal, albedo, unshadowed direct radiance",
     {"direct", "albedo", "normal", "depth", "position", "distance"},
     {{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert, unshadowed)"}},
+    {{"default", {}}},
     [](Context& ctx) { return std::make_unique<GBufferRun>(ctx); },
 });
 

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
+# Cornell box and four real models (Debian's assimp-testmodels) against the Embree
+# reference, then draws the Pareto plots. References are cached in the build directory.
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+obscura_setup
+obscura_build -DOBSCURA_BUILD_CLI=ON -- obscura_cli
+models=/usr/share/assimp/models
+out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell \
+  --scene "$models/PLY/Wuson.ply" \
+  --scene "$models/OBJ/spider.obj" \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --scene "$models/Collada/duck.dae" \
+  --size 128x128 --frames 20 --spp 1024 --reference-performance \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
+/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" --out "$OBSCURA_ROOT/docs"

@@ -1,0 +1,261 @@
+// obscura bench: scene x technique x preset -> time per pass and error against the reference.
+#include "commands.hpp"
+#include "obscura/error.hpp"
+#include "obscura/headless.hpp"
+#include "obscura/metrics.hpp"
+#include "obscura/profiler.hpp"
+#include "obscura/reference.hpp"
+#include "scene_options.hpp"
+#include "technique_registry.hpp"
+
+#include <fnmatch.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace obscura::cli {
+namespace {
+
+struct BenchOptions {
+    std::vector<std::string> scenes{"cornell"};
+    std::string techniques = "*";
+    std::string presets; //!< comma-separated; empty = every preset of each technique
+    std::string size = "128x128";
+    int frames = 20;
+    int spp = 1024;
+    std::string cache;
+    std::string out = "out/bench";
+    bool referencePerformance = false;
+};
+
+// The CSV columns of the design map, then extras.
+const char* const kColumns[] = {"scene",    "technique", "preset",   "width",    "height",         "quantity",
+                                "clock",    "gpu_ms",    "cpu_ms",   "rmse",     "relmse",         "ssim",
+                                "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
+                                "inf_count", "ref_spp",  "frames",   "renderer"};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+// Primary-ray hits as the reference for positions and normals (exact: no noise).
+Image geometryReference(const reference::ShadingPoints& pts, Measurement::Geometry g, Image& mask) {
+    Image img;
+    img.width = pts.width;
+    img.height = pts.height;
+    img.channels = 3;
+    img.pixels.assign(pts.points.size() * 3, 0.0f);
+    for (std::size_t i = 0; i < pts.points.size(); ++i) {
+        const auto& p = pts.points[i];
+        if (!p.surface()) {
+            mask.pixels[i] = 0.0f;
+            continue;
+        }
+        const glm::dvec3 v = g == Measurement::Geometry::Position ? p.position : p.normal;
+        for (int c = 0; c < 3; ++c) img.pixels[i * 3 + static_cast<std::size_t>(c)] = static_cast<float>(v[c]);
+    }
+    return img;
+}
+
+Image gbufferMask(const GBufferSamples& s) {
+    Image m;
+    m.width = s.viewPositions.width;
+    m.height = s.viewPositions.height;
+    m.channels = 1;
+    m.pixels.resize(static_cast<std::size_t>(m.width) * m.height);
+    for (std::size_t i = 0; i < m.pixels.size(); ++i) m.pixels[i] = s.viewPositions.pixels[i * 4 + 3] > 0.0f ? 1.0f : 0.0f;
+    return m;
+}
+
+struct Row {
+    nlohmann::ordered_json fields;
+    nlohmann::json passes;
+};
+
+class Bench {
+public:
+    explicit Bench(const BenchOptions& o) : o_(o) {
+        if (o.frames < 20) throw Error(ErrorCode::Parse, "--frames must be >= 20 (the median of at least 20 warm frames)");
+        cache_ = o.cache.empty() ? std::filesystem::path(o.out) / "reference-cache" : std::filesystem::path(o.cache);
+    }
+
+    void runScene(const std::string& sceneName, Context& ctx) {
+        SceneOptions so;
+        so.scene = sceneName;
+        so.size = o_.size;
+        const ResolvedScene r = resolveScene(so);
+        const reference::RayScene rays(r.scene.scene);
+        const reference::ShadingPoints cameraPoints = reference::fromCamera(rays, r.camera, r.width, r.height);
+        std::printf("scene %s: %zu triangles, %dx%d\n", r.scene.name.c_str(), rays.triangleCount(), r.width, r.height);
+        for (const auto& [name, info] : techniques()) {
+            if (fnmatch(o_.techniques.c_str(), name.c_str(), 0) != 0) continue;
+            for (const Preset& preset : info.presets) {
+                const auto wanted = split(o_.presets);
+                if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), preset.name) == wanted.end()) continue;
+                runTechnique(ctx, r, rays, cameraPoints, info, preset);
+            }
+        }
+    }
+
+    void referencePerformance(const std::string& sceneName) {
+        SceneOptions so;
+        so.scene = sceneName;
+        so.size = "256x256";
+        const ResolvedScene r = resolveScene(so);
+        const reference::RayScene rays(r.scene.scene);
+        const reference::ShadingPoints pts = reference::fromCamera(rays, r.camera, r.width, r.height);
+        const Bounds b = rays.bounds();
+        // A fifth of the scene's diagonal, rounded to two significant digits for the report.
+        const double diagonal = 0.2 * glm::length(glm::dvec3(b.max - b.min));
+        const double unit = std::pow(10.0, std::floor(std::log10(diagonal)) - 1);
+        const double radius = std::round(diagonal / unit) * unit;
+        reference::RenderSettings s;
+        s.samplesPerPixel = 256;
+        s.progress = true;
+        const reference::Reference ref = reference::render(rays, pts, reference::AmbientOcclusion{radius, true}, s);
+        const double rate = static_cast<double>(ref.rays) / ref.seconds;
+        perf_.push_back({{"scene", sceneName}, {"width", 256}, {"height", 256}, {"spp", 256},
+                         {"quantity", reference::describe(reference::AmbientOcclusion{radius, true})},
+                         {"rays", ref.rays}, {"seconds", ref.seconds}, {"rays_per_second", rate},
+                         {"threads", static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))}});
+        std::printf("reference performance, %s AO 256x256 x 256 spp: %.2f M rays/s\n", sceneName.c_str(), rate * 1e-6);
+    }
+
+    void write() const {
+        const std::filesystem::path dir(o_.out);
+        std::filesystem::create_directories(dir);
+        std::ofstream csv(dir / "bench.csv");
+        for (std::size_t i = 0; i < std::size(kColumns); ++i) csv << (i ? "," : "") << kColumns[i];
+        csv << "\n";
+        nlohmann::json rows = nlohmann::json::array();
+        for (const Row& row : rows_) {
+            for (std::size_t i = 0; i < std::size(kColumns); ++i) {
+                const auto& v = row.fields.at(kColumns[i]);
+                csv << (i ? "," : "") << (v.is_string() ? v.get<std::string>() : v.dump());
+            }
+            csv << "\n";
+            nlohmann::json j = row.fields;
+            j["passes"] = row.passes;
+            rows.push_back(j);
+        }
+        nlohmann::json doc = {{"rows", rows}, {"reference_performance", perf_}};
+        std::ofstream(dir / "bench.json") << doc.dump(2) << "\n";
+        std::printf("wrote %s and %s (%zu rows)\n", (dir / "bench.csv").string().c_str(), (dir / "bench.json").string().c_str(),
+                    rows_.size());
+    }
+
+private:
+    void runTechnique(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
+                      const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset) {
+        auto run = info.create(ctx);
+        for (const auto& [key, value] : preset.settings) run->set(key, value);
+        const FrameSetup frame{r.scene, r.camera, r.width, r.height};
+        run->run(frame); // warm-up: compilation and allocation are not timed
+        ctx.profiler().reset();
+        std::vector<double> cpu;
+        for (int i = 0; i < o_.frames; ++i) {
+            const auto t0 = std::chrono::steady_clock::now();
+            run->run(frame);
+            cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
+        double gpu = 0.0;
+        nlohmann::json passes = nlohmann::json::array();
+        for (const PassStatistics& s : ctx.profiler().statistics(/*wait=*/true)) {
+            gpu += s.medianMs;
+            passes.push_back({{"pass", s.name}, {"median_ms", s.medianMs}, {"min_ms", s.minMs}, {"max_ms", s.maxMs},
+                              {"samples", s.samples}});
+        }
+        const GBufferSamples samples = run->samples();
+        const Image samplesMask = gbufferMask(samples);
+        const reference::ShadingPoints gbufferPoints =
+            reference::fromGBuffer(rays, r.camera, samples.viewPositions, samples.viewNormals);
+        for (const Measurement& m : run->measurements()) {
+            Image mask = samplesMask, expected;
+            double noise = 0.0;
+            int spp = 0;
+            if (m.geometry != Measurement::Geometry::None) {
+                expected = geometryReference(cameraPoints, m.geometry, mask);
+            } else {
+                reference::RenderSettings rs;
+                rs.samplesPerPixel = o_.spp;
+                rs.progress = true;
+                const reference::Reference ref = reference::renderCached(cache_, rays, gbufferPoints, *m.reference, rs);
+                expected = ref.value;
+                noise = ref.noiseMse;
+                spp = ref.samplesPerPixel;
+            }
+            metrics::Options mo;
+            mo.mask = &mask;
+            const metrics::Report e = metrics::compare(m.value, expected, mo);
+            Row row;
+            row.fields = {{"scene", r.scene.name},   {"technique", info.name},  {"preset", preset.name},
+                          {"width", r.width},        {"height", r.height},      {"quantity", m.quantity},
+                          {"clock", toString(ctx.profiler().clock())},       {"gpu_ms", gpu},
+                          {"cpu_ms", median(cpu)},   {"rmse", e.rmse},          {"relmse", e.relMse},
+                          {"ssim", e.ssim},          {"max_abs", e.maxAbs},     {"nan_count", e.nanCount},
+                          {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", std::isinf(e.psnr) ? 999.0 : e.psnr},
+                          {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
+                          {"frames", o_.frames},     {"renderer", ctx.info().renderer}};
+            row.passes = passes;
+            std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g\n",
+                        info.name.c_str(), preset.name.c_str(), m.quantity.c_str(), gpu, toString(ctx.profiler().clock()),
+                        e.rmse, e.relMse, e.ssim, std::sqrt(noise));
+            rows_.push_back(std::move(row));
+        }
+    }
+
+    BenchOptions o_;
+    std::filesystem::path cache_;
+    std::vector<Row> rows_;
+    nlohmann::json perf_ = nlohmann::json::array();
+};
+
+void runBench(const BenchOptions& o) {
+    Bench bench(o);
+    headless::HeadlessContext gl;
+    Context ctx(gl.contextDesc());
+    std::printf("%s on %s, clock %s\n", ctx.info().version.c_str(), ctx.info().renderer.c_str(),
+                toString(ctx.profiler().clock()));
+    for (const auto& scene : o.scenes) bench.runScene(scene, ctx);
+    if (o.referencePerformance)
+        for (const auto& scene : o.scenes) bench.referencePerformance(scene);
+    bench.write();
+}
+
+} // namespace
+
+void addBenchCommand(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* cmd = app.add_subcommand("bench", "Time every technique and measure its error against the reference");
+    cmd->add_option("--scene", o->scenes, "Scene(s): built-in name, JSON scene or mesh file (repeatable)")
+        ->capture_default_str();
+    cmd->add_option("--techniques", o->techniques, "Glob of technique names")->capture_default_str();
+    cmd->add_option("--presets", o->presets, "Comma-separated presets (default: all of each technique)");
+    cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
+    cmd->add_option("--frames", o->frames, "Timed frames after a warm-up frame (>= 20)")->capture_default_str();
+    cmd->add_option("--spp", o->spp, "Reference samples per pixel")->capture_default_str();
+    cmd->add_option("--cache", o->cache, "Reference cache directory (default OUT/reference-cache)");
+    cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
+    cmd->add_flag("--reference-performance", o->referencePerformance,
+                  "Also time the AO reference (256x256, 256 spp) of each scene, in rays/s");
+    cmd->callback([o] { runBench(*o); });
+}
+
+} // namespace obscura::cli

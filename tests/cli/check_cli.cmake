@@ -1,0 +1,54 @@
+# The command-line pipeline end to end: `obscura reference` writes EXR + JSON with a noise
+# floor, `obscura bench` writes the CSV columns of the design map, and plot_report.py turns
+# that into results.md with plots.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+endfunction()
+
+run("${OBSCURA}" reference --scene plane --size 16x12 --integrator ao --set radius=2 --spp 16 --quiet --halves
+    --out "${WORK_DIR}/ao.exr")
+foreach(f ao.exr ao.json ao.a.exr ao.b.exr)
+  if(NOT EXISTS "${WORK_DIR}/${f}")
+    message(FATAL_ERROR "obscura reference did not write ${f}")
+  endif()
+endforeach()
+file(READ "${WORK_DIR}/ao.json" meta)
+foreach(key noise_rmse noise_mse spp rays_per_second quantity)
+  string(JSON value ERROR_VARIABLE missing GET "${meta}" ${key})
+  if(missing)
+    message(FATAL_ERROR "ao.json lacks ${key}: ${meta}")
+  endif()
+endforeach()
+
+# A bad integrator is refused with the list of known ones.
+execute_process(COMMAND "${OBSCURA}" reference --scene plane --integrator nope --out "${WORK_DIR}/x.exr"
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "known:.*ao")
+  message(FATAL_ERROR "an unknown integrator was not refused clearly: ${err}")
+endif()
+
+run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench")
+file(STRINGS "${WORK_DIR}/bench/bench.csv" csv)
+list(GET csv 0 header)
+foreach(col scene technique preset width height quantity clock gpu_ms cpu_ms rmse relmse ssim max_abs nan_count
+            ref_noise_rmse)
+  if(NOT "${header}" MATCHES "(^|,)${col}(,|$)")
+    message(FATAL_ERROR "bench.csv lacks the column ${col}: ${header}")
+  endif()
+endforeach()
+list(LENGTH csv lines)
+if(lines LESS 2)
+  message(FATAL_ERROR "bench.csv has no rows")
+endif()
+
+run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json" --out "${WORK_DIR}/docs")
+file(GLOB plots "${WORK_DIR}/docs/results/*.png")
+if(NOT EXISTS "${WORK_DIR}/docs/results.md" OR NOT plots)
+  message(FATAL_ERROR "plot_report.py wrote no results.md or no plots")
+endif()
