@@ -71,9 +71,13 @@ def plot(scene, quantity, rows, path):
 
 
 def fmt(v, digits=4):
+    if v is None:
+        return "n/a"
     if isinstance(v, float):
         if v == 0:
             return "0"
+        if math.isnan(v):
+            return "n/a"
         if math.isinf(v):
             return "inf"
         return f"{v:.{digits}g}"

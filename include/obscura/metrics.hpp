@@ -25,7 +25,10 @@ struct Report {
     double rmse = 0.0;     //!< sqrt(mse)
     double relMse = 0.0;   //!< mean of (t - r)^2 / (r^2 + epsilon)
     double psnr = 0.0;     //!< 10 log10(peak^2 / mse), dB; +inf when mse = 0
-    double ssim = 1.0;     //!< SSIM (Wang et al. 2004) of the tonemapped images, in [-1, 1]
+    //! SSIM (Wang et al. 2004) of the tonemapped images, in [-1, 1]; NaN when the reference
+    //! has negative values (signed data such as positions and normals: the tonemap is for
+    //! radiance-like quantities).
+    double ssim = 1.0;
     double meanAbs = 0.0;  //!< mean of |t - r|
     double maxAbs = 0.0;   //!< max of |t - r|
     std::size_t nanCount = 0; //!< NaN values in test (over the compared pixels and channels)
@@ -43,7 +46,7 @@ OBSCURA_API double psnr(const Image& test, const Image& reference, const Options
 //! Gaussian window 11x11, sigma 1.5, C1 = (0.01)^2, C2 = (0.03)^2 on images tonemapped per
 //! channel by x / (1 + x) (negative values clamped to 0), so the dynamic range is 1. The
 //! SSIM map is averaged over channels and masked pixels; windows are cut at the borders and
-//! the mask (weights renormalized).
+//! the mask (weights renormalized). NaN when the reference has negative values.
 OBSCURA_API double ssim(const Image& test, const Image& reference, const Options& options = {});
 
 //! MSE(A, B) / 4: the estimated MSE of the mean of two independent estimates A and B.

@@ -136,7 +136,9 @@ struct IndirectLight {
 //! sphere lights the fraction of their irradiance that arrives, E_visible / E_unoccluded.
 //! Channel 1 is 1 where the light reaches the surface's front side at all (unoccluded
 //! irradiance > 0, geometric normal), else 0 (and channel 0 is 0): only those pixels are
-//! lit or shadowed, the others face away or lie outside a spot's cone.
+//! lit or shadowed, the others face away or lie outside a spot's cone. The area-light
+//! fraction is a ratio of two estimates from the same samples: consistent, with a bias of
+//! order 1/samples that the two-halves noise estimate does not include.
 struct Shadow {
     std::size_t light = 0;
 };

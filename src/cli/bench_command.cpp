@@ -148,7 +148,12 @@ public:
         for (const Row& row : rows_) {
             for (std::size_t i = 0; i < std::size(kColumns); ++i) {
                 const auto& v = row.fields.at(kColumns[i]);
-                csv << (i ? "," : "") << (v.is_string() ? v.get<std::string>() : v.dump());
+                // JSON has no NaN or Inf (they are written as null): the CSV spells them out.
+                const bool nonFinite = v.is_number_float() && !std::isfinite(v.get<double>());
+                const std::string text = v.is_string() ? v.get<std::string>()
+                                         : nonFinite   ? (std::isnan(v.get<double>()) ? "nan" : "inf")
+                                                       : v.dump();
+                csv << (i ? "," : "") << text;
             }
             csv << "\n";
             nlohmann::json j = row.fields;
@@ -210,7 +215,7 @@ private:
                           {"clock", toString(ctx.profiler().clock())},       {"gpu_ms", gpu},
                           {"cpu_ms", median(cpu)},   {"rmse", e.rmse},          {"relmse", e.relMse},
                           {"ssim", e.ssim},          {"max_abs", e.maxAbs},     {"nan_count", e.nanCount},
-                          {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", std::isinf(e.psnr) ? 999.0 : e.psnr},
+                          {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
                           {"frames", o_.frames},     {"renderer", ctx.info().renderer}};
             row.passes = passes;

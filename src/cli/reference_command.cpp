@@ -28,6 +28,7 @@ struct ReferenceOptions {
     std::string out;
     bool quiet = false;
     bool halves = false;
+    std::string cache; //!< directory; empty: always render
 };
 
 reference::ShadingPoints samplesFromGBuffer(const ResolvedScene& r, const reference::RayScene& scene) {
@@ -55,7 +56,8 @@ void runReference(const ReferenceOptions& o) {
     settings.seed = o.seed;
     settings.threads = o.threads;
     settings.progress = !o.quiet;
-    const reference::Reference ref = reference::render(scene, points, quantity, settings);
+    const reference::Reference ref = o.cache.empty() ? reference::render(scene, points, quantity, settings)
+                                                     : reference::renderCached(o.cache, scene, points, quantity, settings);
 
     const std::filesystem::path out(o.out);
     assets::writeImage(out, ref.value);
@@ -100,6 +102,7 @@ void addReferenceCommand(CLI::App& app) {
     cmd->add_option("--out", o->out, "Output FILE.exr (metadata in FILE.json)")->required();
     cmd->add_flag("--quiet", o->quiet, "No progress bar");
     cmd->add_flag("--halves", o->halves, "Also write the two halves as FILE.a.exr and FILE.b.exr");
+    cmd->add_option("--cache", o->cache, "Reuse a cached reference from (and store it in) this directory");
     cmd->callback([o] { runReference(*o); });
 }
 

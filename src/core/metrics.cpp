@@ -99,6 +99,8 @@ double ssim(const Image& t, const Image& r, const Options& o) {
     double kernel[2 * radius + 1];
     for (int i = -radius; i <= radius; ++i) kernel[i + radius] = std::exp(-(i * i) / (2.0 * sigma * sigma));
     const int w = t.width, h = t.height, c = t.channels;
+    for (float v : r.pixels)
+        if (v < 0.0f) return std::numeric_limits<double>::quiet_NaN();
     const auto usable = [&](int x, int y, int k) {
         const std::size_t p = static_cast<std::size_t>(y) * w + x;
         return counted(o, p) && std::isfinite(t.pixels[p * c + k]);

@@ -20,7 +20,7 @@ std::uint64_t cacheKey(const RayScene& scene, const ShadingPoints& points, const
     h.add(points.width).add(points.height);
     for (const ShadingPoint& p : points.points)
         h.add(p.origin).add(p.direction).add(p.distance).add(p.position).add(p.normal).add(p.shadingNormal).add(p.albedo)
-            .add(p.emission);
+            .add(p.emission).add(p.uncertainty);
     h.add(std::string_view(describe(quantity))).add(settings.samplesPerPixel).add(settings.seed);
     return h.value();
 }

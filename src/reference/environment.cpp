@@ -2,6 +2,7 @@
 
 #include "obscura/assets.hpp"
 #include "obscura/error.hpp"
+#include "reference/hash.hpp"
 #include "reference/sampling.hpp"
 
 #include <algorithm>
@@ -52,6 +53,13 @@ EnvironmentMap::EnvironmentMap(const Environment& env) : intensity_(env.intensit
         marginal_[static_cast<std::size_t>(y) + 1] = marginal_[static_cast<std::size_t>(y)] + row[width_];
     }
     total_ = marginal_.back();
+}
+
+std::uint64_t EnvironmentMap::contentHash() const {
+    Hasher h;
+    h.add(width_).add(height_).add(rotation_);
+    h.bytes(texels_.data(), texels_.size() * sizeof(glm::dvec3));
+    return h.value();
 }
 
 glm::dvec2 EnvironmentMap::toUv(const glm::dvec3& w) const {

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace obscura::reference::detail {
@@ -26,6 +27,8 @@ public:
     //! A direction drawn proportionally to luminance x sin(theta), with its solid-angle pdf.
     glm::dvec3 sample(const glm::dvec2& u, double& pdf) const;
     double pdf(const glm::dvec3& w) const;
+    //! A hash of the texels as loaded (with intensity): references key their caches on it.
+    std::uint64_t contentHash() const;
 
 private:
     glm::dvec2 toUv(const glm::dvec3& w) const;

@@ -16,13 +16,6 @@ struct LightSample {
     glm::dvec3 unoccluded{0.0};
 };
 
-double spotCone(double c, double cosInner, double cosOuter) {
-    const double width = cosInner - cosOuter;
-    if (!(width > 0.0)) return c >= cosOuter ? 1.0 : 0.0;
-    const double t = std::clamp((c - cosOuter) / width, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 // Distance along unit d from o to the sphere (c, r), or infinity.
 double sphereHit(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& c, double r) {
     const glm::dvec3 oc = o - c;
@@ -44,7 +37,7 @@ public:
         switch (l.type) {
         case LightType::Directional: {
             const glm::dvec3 w = -glm::normalize(glm::dvec3(l.direction));
-            return hard(radiance * std::max(0.0, glm::dot(ns, w)), ng, w, origin, kInfinity, rays);
+            return hard(radiance * std::max(0.0, glm::dot(ns, w)), ng, w, origin, nullptr, rays);
         }
         case LightType::Point:
         case LightType::Spot: {
@@ -58,7 +51,8 @@ public:
             if (l.type == LightType::Spot)
                 falloff *= spotCone(glm::dot(-w, glm::normalize(glm::dvec3(l.direction))), std::cos(double(l.innerAngle)),
                                     std::cos(double(l.outerAngle)));
-            return hard(radiance * (falloff * std::max(0.0, glm::dot(ns, w))), ng, w, origin, d, rays);
+            const glm::dvec3 target(l.position);
+            return hard(radiance * (falloff * std::max(0.0, glm::dot(ns, w))), ng, w, origin, &target, rays);
         }
         case LightType::Rect: return rect(l, radiance, x, ng, ns, origin, u, rays);
         case LightType::Sphere: return sphere(l, radiance, x, ng, ns, origin, u, rays);
@@ -67,14 +61,25 @@ public:
     }
 
 private:
+    // Shadow rays run from the lifted origin to the light, stopping 2^-16 of the way short of
+    // it: a light that lies on geometry (an emitter modelled both as a mesh and as a light)
+    // must not shadow itself. Distant lights (target = nullptr) run to infinity.
     LightSample hard(const glm::dvec3& e, const glm::dvec3& ng, const glm::dvec3& w, const glm::vec3& origin,
-                     double distance, std::uint64_t& rays) const {
+                     const glm::dvec3* target, std::uint64_t& rays) const {
         if (glm::dot(ng, w) <= 0.0 || e == glm::dvec3(0.0)) return {};
         LightSample s{e, e};
-        if (visibility_) {
-            ++rays;
-            if (scene_.occluded(origin, w, distance)) s.irradiance = glm::dvec3(0.0);
+        if (!visibility_) return s;
+        glm::dvec3 dir = w;
+        double distance = kInfinity;
+        if (target) {
+            const glm::dvec3 toLight = *target - glm::dvec3(origin);
+            distance = glm::length(toLight);
+            if (!(distance > 0.0)) return s;
+            dir = toLight / distance;
+            distance *= 1.0 - std::ldexp(1.0, -16);
         }
+        ++rays;
+        if (scene_.occluded(origin, dir, distance)) s.irradiance = glm::dvec3(0.0);
         return s;
     }
 
@@ -92,7 +97,7 @@ private:
         const double cosLight = glm::dot(n, -w);
         if (cosLight <= 0.0) return {};
         const double area = double(l.size.x) * l.size.y;
-        return hard(radiance * (area * cosLight * std::max(0.0, glm::dot(ns, w)) / d2), ng, w, origin, std::sqrt(d2), rays);
+        return hard(radiance * (area * cosLight * std::max(0.0, glm::dot(ns, w)) / d2), ng, w, origin, &q, rays);
     }
 
     // Uniform sampling of the cone the sphere subtends: E = L cos / pdf.
@@ -101,12 +106,14 @@ private:
         const glm::dvec3 c(l.position);
         const double r = l.radius, d = glm::length(c - x);
         if (!(d > r)) return {radiance * kPi, radiance * kPi}; // inside the emitter: radiance from everywhere
-        const double cosMax = std::sqrt(std::max(0.0, 1.0 - (r / d) * (r / d)));
-        const glm::dvec3 w = toWorld(uniformCone(u, cosMax), (c - x) / d);
-        const double pdf = 1.0 / (2.0 * kPi * (1.0 - cosMax));
+        // 1 - cos(half-angle) = x / (1 + sqrt(1 - x)), x = (r/d)^2: no cancellation for tiny spheres.
+        const double s2 = (r / d) * (r / d), oneMinusCos = s2 / (1.0 + std::sqrt(std::max(0.0, 1.0 - s2)));
+        const glm::dvec3 w = toWorld(uniformCone(u, oneMinusCos), (c - x) / d);
+        const double pdf = 1.0 / (2.0 * kPi * oneMinusCos);
         const double distance = sphereHit(x, w, c, r);
         if (std::isinf(distance)) return {};
-        return hard(radiance * (std::max(0.0, glm::dot(ns, w)) / pdf), ng, w, origin, distance, rays);
+        const glm::dvec3 onSphere = x + distance * w;
+        return hard(radiance * (std::max(0.0, glm::dot(ns, w)) / pdf), ng, w, origin, &onSphere, rays);
     }
 
     const RayScene::Impl& scene_;
@@ -152,10 +159,12 @@ Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
             if (!hit) continue;
             const glm::dvec3 y = glm::dvec3(origin) + hit->distance * w;
             const glm::dvec3 ng = glm::dot(hit->normal, w) > 0.0 ? -hit->normal : hit->normal;
-            // The hit point carries the float error of its ray parameter.
+            // The hit point carries the float error of its ray parameter. Its light sample must
+            // be independent of the bounce direction (a second R2 stream with the same index
+            // would only shift it), so it comes from the pixel's PCG stream.
             const double offset = std::ldexp(hit->distance + glm::length(glm::dvec3(origin)), -20);
             sum += directRadiance(lights, scene.scene, y, ng, scene.shadingNormal(*hit, ng), scene.albedo(*hit),
-                                  scene.emission(*hit), s.lightPoint(static_cast<std::uint32_t>(i)), offset, rays);
+                                  scene.emission(*hit), s.uniform2(), offset, rays);
         }
         return glm::dvec4(p.albedo * sum / double(n), 0.0);
     };

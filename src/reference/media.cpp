@@ -62,6 +62,44 @@ struct Equiangular {
     }
 };
 
+// Where along the view ray to scatter: a mixture of the equiangular distribution toward the
+// light (point and spot lights), one truncated exponential per colour channel (so that a
+// channel with little extinction keeps a heavy enough tail when another is dense) and a
+// uniform part (so the pdf is never 0 on the segment). One-sample MIS: the estimate divides
+// by the mixture's pdf.
+class DistanceMixture {
+public:
+    DistanceMixture(const Equiangular& eq, bool useEquiangular, const glm::dvec3& sigmaT, double t0, double t1)
+        : eq_(eq), t0_(t0), length_(t1 - t0) {
+        for (int c = 0; c < 3; ++c) exp_[c] = Exponential{sigmaT[c], length_};
+        weightEq_ = useEquiangular ? 0.4 : 0.0;
+        weightExp_ = (1.0 - weightEq_ - kWeightUniform) / 3.0;
+    }
+    double sample(const glm::dvec2& u) const {
+        double pick = u.y;
+        if (pick < weightEq_) return eq_.sample(u.x);
+        pick -= weightEq_;
+        for (int c = 0; c < 3; ++c) {
+            if (pick < weightExp_) return t0_ + exp_[c].sample(u.x);
+            pick -= weightExp_;
+        }
+        return t0_ + u.x * length_;
+    }
+    double pdf(double t) const {
+        double p = kWeightUniform / length_;
+        if (weightEq_ > 0.0) p += weightEq_ * eq_.pdf(t);
+        for (const Exponential& e : exp_) p += weightExp_ * e.pdf(t - t0_);
+        return p;
+    }
+
+private:
+    static constexpr double kWeightUniform = 0.1;
+    Equiangular eq_;
+    double t0_, length_;
+    Exponential exp_[3]{};
+    double weightEq_ = 0.0, weightExp_ = 0.0;
+};
+
 } // namespace
 
 Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScattering& q) {
@@ -83,23 +121,16 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
         if (!(t1 > t0)) return glm::dvec4(0, 0, 0, 1);
         const double length = t1 - t0;
         const glm::dvec3 viewT = glm::exp(-sigmaT * length);
-        const double meanSigma = (sigmaT.r + sigmaT.g + sigmaT.b) / 3.0;
-        const Exponential exponential{meanSigma, length};
         glm::dvec3 sum(0.0);
         for (const Light& l : scene.scene.lights) {
             if (l.type == LightType::Rect || l.type == LightType::Sphere) continue; // area lights: not in this quantity
             const bool distant = l.type == LightType::Directional;
             const Equiangular equiangular(p.origin, p.direction, glm::dvec3(l.position), t0, t1);
-            const bool useEquiangular = !distant && equiangular.valid();
+            const DistanceMixture mixture(equiangular, !distant && equiangular.valid(), sigmaT, t0, t1);
             const glm::dvec3 radiance = glm::dvec3(l.color) * double(l.intensity);
             for (int i = 0; i < n; ++i) {
-                // One-sample MIS of the transmittance and the equiangular distributions.
-                const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
-                const bool pickEquiangular = useEquiangular && u.y < 0.5;
-                const double t = pickEquiangular ? equiangular.sample(u.x) : t0 + exponential.sample(u.x);
-                double pdf = exponential.pdf(t - t0);
-                if (useEquiangular) pdf = 0.5 * pdf + 0.5 * equiangular.pdf(t);
-                if (!(pdf > 0.0) || !std::isfinite(pdf)) continue;
+                const double t = std::clamp(mixture.sample(s.point(static_cast<std::uint32_t>(i))), t0, t1);
+                const double pdf = mixture.pdf(t);
                 const glm::dvec3 x = p.origin + t * p.direction;
                 glm::dvec3 w;
                 double distance, falloff = 1.0;
@@ -112,17 +143,15 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
                     if (!(distance > 0.0)) continue;
                     w = toLight / distance;
                     falloff = 1.0 / std::max(distance * distance, double(l.radius) * l.radius);
-                    if (l.type == LightType::Spot) {
-                        const double c = glm::dot(-w, glm::normalize(glm::dvec3(l.direction))), ci = std::cos(double(l.innerAngle)),
-                                     co = std::cos(double(l.outerAngle));
-                        const double tt = ci > co ? std::clamp((c - co) / (ci - co), 0.0, 1.0) : (c >= co ? 1.0 : 0.0);
-                        falloff *= ci > co ? tt * tt * (3.0 - 2.0 * tt) : tt;
-                    }
+                    if (l.type == LightType::Spot)
+                        falloff *= spotCone(glm::dot(-w, glm::normalize(glm::dvec3(l.direction))),
+                                            std::cos(double(l.innerAngle)), std::cos(double(l.outerAngle)));
                 }
                 if (falloff == 0.0) continue;
                 if (q.shadows) {
+                    // Stop short of the light, as surface shadow rays do (lights placed on geometry).
                     ++rays;
-                    if (scene.occluded(glm::vec3(x), w, distance)) continue;
+                    if (scene.occluded(glm::vec3(x), w, distance * (1.0 - std::ldexp(1.0, -16)))) continue;
                 }
                 // Phase angle: between the light's travel direction (-w) and the direction toward the camera.
                 const double phase = phaseFunction(medium.phase, medium.anisotropy, glm::dot(-w, -p.direction));

@@ -54,17 +54,22 @@ glm::dvec3 sampleTexture(const TextureImage& img, glm::dvec2 uv) {
 
 std::uint64_t hashScene(const Scene& s) {
     detail::Hasher h;
-    h.add(std::string_view("obscura.reference.scene.v1"));
+    // Bump the version whenever an estimator changes: cached references are then rendered again.
+    h.add(std::string_view("obscura.reference.scene.v2"));
     for (const Mesh& m : s.meshes) {
         h.add(m.model).add(m.material);
         h.add(m.data->positions.size());
         h.bytes(m.data->positions.data(), m.data->positions.size() * sizeof(glm::vec3));
         h.bytes(m.data->indices.data(), m.data->indices.size() * sizeof(std::uint32_t));
         h.bytes(m.data->texcoords.data(), m.data->texcoords.size() * sizeof(glm::vec2));
+        h.bytes(m.data->normals.data(), m.data->normals.size() * sizeof(glm::vec3));
     }
     for (const Material& m : s.materials) {
         h.add(m.albedo).add(m.emission);
-        if (m.albedoImage) h.bytes(m.albedoImage->rgba.data(), m.albedoImage->rgba.size());
+        if (m.albedoImage) {
+            h.add(m.albedoImage->width).add(m.albedoImage->height);
+            h.bytes(m.albedoImage->rgba.data(), m.albedoImage->rgba.size());
+        }
     }
     for (const Light& l : s.lights)
         h.add(l.type).add(l.color).add(l.intensity).add(l.position).add(l.direction).add(l.tangent).add(l.size)
@@ -88,16 +93,17 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
                                                     "texture the reference cannot read: give Material::albedoImage too");
     auto& d = *impl_;
     d.scene = scene;
-    d.device = rtcNewDevice(nullptr);
+    d.device.reset(rtcNewDevice(nullptr));
     if (!d.device) throw Error(ErrorCode::UnsupportedFeature, "Embree: rtcNewDevice failed");
-    d.rtc = rtcNewScene(d.device);
+    d.rtcScene.reset(rtcNewScene(d.device.get()));
+    d.rtc = d.rtcScene.get();
     rtcSetSceneFlags(d.rtc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(d.rtc, RTC_BUILD_QUALITY_HIGH);
     for (const Mesh& mesh : scene.meshes) {
         const MeshData& m = *mesh.data;
         const std::size_t count = (m.indices.empty() ? m.positions.size() : m.indices.size()) / 3;
         if (count == 0) continue;
-        RTCGeometry geometry = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        RTCGeometry geometry = rtcNewGeometry(d.device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                               3 * sizeof(float), m.positions.size()));
         const glm::dmat4 model(mesh.model);
@@ -132,19 +138,16 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         d.triangles += count;
     }
     rtcCommitScene(d.rtc);
-    if (rtcGetDeviceError(d.device) != RTC_ERROR_NONE)
+    if (rtcGetDeviceError(d.device.get()) != RTC_ERROR_NONE)
         throw Error(ErrorCode::InvalidState, "Embree reported an error while building the scene");
     const glm::dvec3 extent = glm::max(glm::abs(glm::dvec3(d.bounds.min)), glm::abs(glm::dvec3(d.bounds.max)));
     d.floatError = d.bounds.empty ? 0.0 : std::ldexp(std::max({extent.x, extent.y, extent.z}), -20);
-    d.hash = hashScene(scene);
     if (scene.environment) d.environment = std::make_unique<detail::EnvironmentMap>(*scene.environment);
+    // The environment by content, not by file name: a changed file is a different scene.
+    d.hash = detail::Hasher().add(hashScene(scene)).add(d.environment ? d.environment->contentHash() : 0).value();
 }
 
-RayScene::~RayScene() {
-    if (!impl_) return;
-    if (impl_->rtc) rtcReleaseScene(impl_->rtc);
-    if (impl_->device) rtcReleaseDevice(impl_->device);
-}
+RayScene::~RayScene() = default;
 
 const Scene& RayScene::scene() const noexcept { return impl_->scene; }
 Bounds RayScene::bounds() const noexcept { return impl_->bounds; }

@@ -26,9 +26,19 @@ struct RayScene::Impl {
         std::uint32_t material = 0;
     };
 
+    struct DeviceDeleter {
+        void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
+    };
+    struct SceneDeleter {
+        void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
+    };
+
     Scene scene;
-    RTCDevice device = nullptr;
-    RTCScene rtc = nullptr;
+    // Declared in this order so the scene is released before its device, also when the
+    // constructor throws half-way.
+    std::unique_ptr<RTCDeviceTy, DeviceDeleter> device;
+    std::unique_ptr<RTCSceneTy, SceneDeleter> rtcScene;
+    RTCScene rtc = nullptr; //!< rtcScene.get(), for the queries
     std::vector<MeshRecord> meshes; //!< by Embree geometry id
     Bounds bounds;
     //! 2^-20 of the largest coordinate magnitude in the scene: the float error of a

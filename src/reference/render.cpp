@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <cstdio>
 #include <mutex>
 #include <sstream>
@@ -32,13 +33,30 @@ Estimator makeEstimator(const RayScene::Impl& scene, const Quantity& quantity, b
 
 namespace {
 
-// Embree's advice: flush denormals in every thread that traces rays.
-void flushDenormals() {
+// Embree's advice: flush denormals in every thread that traces rays. The calling thread
+// is the host's: its previous modes are restored when the render ends.
+class FlushDenormals {
+public:
+    FlushDenormals() {
 #if defined(__SSE__) || defined(__x86_64__)
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+        flush_ = _MM_GET_FLUSH_ZERO_MODE();
+        denormals_ = _MM_GET_DENORMALS_ZERO_MODE();
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 #endif
-}
+    }
+    ~FlushDenormals() {
+#if defined(__SSE__) || defined(__x86_64__)
+        _MM_SET_FLUSH_ZERO_MODE(flush_);
+        _MM_SET_DENORMALS_ZERO_MODE(denormals_);
+#endif
+    }
+    FlushDenormals(const FlushDenormals&) = delete;
+    FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+private:
+    unsigned flush_ = 0, denormals_ = 0;
+};
 
 class ProgressBar {
 public:
@@ -134,8 +152,10 @@ Reference render(const RayScene& scene, const ShadingPoints& points, const Quant
     std::atomic<std::uint64_t> rays{0};
     detail::ProgressBar progress(settings.progress, points.height);
     const auto start = std::chrono::steady_clock::now();
-    const auto worker = [&] {
-        detail::flushDenormals();
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    const auto work = [&] {
+        const detail::FlushDenormals flush;
         std::uint64_t localRays = 0;
         for (int y = nextRow++; y < points.height; y = nextRow++) {
             for (int x = 0; x < points.width; ++x) {
@@ -156,10 +176,21 @@ Reference render(const RayScene& scene, const ShadingPoints& points, const Quant
         }
         rays += localRays;
     };
+    // An exception in any thread stops the others (they run out of rows) and is rethrown here.
+    const auto worker = [&] {
+        try {
+            work();
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failureMutex);
+            if (!failure) failure = std::current_exception();
+            nextRow = points.height;
+        }
+    };
     std::vector<std::thread> pool;
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
     ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ref.rays = rays;
 
@@ -174,6 +205,14 @@ Reference render(const RayScene& scene, const ShadingPoints& points, const Quant
         ++count;
     }
     ref.noiseMse = count ? sq / static_cast<double>(count) / 4.0 : 0.0;
+    // A bent normal is a direction: the mean of the halves is normalized again.
+    if (std::holds_alternative<BentNormal>(quantity))
+        for (std::size_t i = 0; i + 2 < ref.value.pixels.size(); i += 3) {
+            const glm::dvec3 v(ref.value.pixels[i], ref.value.pixels[i + 1], ref.value.pixels[i + 2]);
+            const double len = glm::length(v);
+            if (len > 0.0)
+                for (int k = 0; k < 3; ++k) ref.value.pixels[i + static_cast<std::size_t>(k)] = static_cast<float>(v[k] / len);
+        }
     return ref;
 }
 

@@ -77,9 +77,11 @@ inline glm::dvec3 uniformHemisphere(const glm::dvec2& u) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-//! Uniform direction in the cone of half-angle acos(cosMax) about +z; pdf = 1 / (2 pi (1 - cosMax)).
-inline glm::dvec3 uniformCone(const glm::dvec2& u, double cosMax) {
-    const double z = 1.0 - u.x * (1.0 - cosMax), r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u.y;
+//! Uniform direction in the cone about +z with 1 - cos(half-angle) = oneMinusCosMax (given
+//! directly, so tiny cones do not cancel to 0); pdf = 1 / (2 pi oneMinusCosMax).
+inline glm::dvec3 uniformCone(const glm::dvec2& u, double oneMinusCosMax) {
+    const double oneMinusZ = u.x * oneMinusCosMax;
+    const double z = 1.0 - oneMinusZ, r = std::sqrt(std::max(0.0, oneMinusZ * (2.0 - oneMinusZ))), phi = 2.0 * kPi * u.y;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 

@@ -114,9 +114,15 @@ ShadingPoints fromGBuffer(const RayScene& scene, const Camera& camera, const Ima
             s.normal = nl > 0.0 ? rotation * (nv / nl) : -s.direction;
             const glm::dvec2 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0);
             s.uncertainty = depthUncertainty(camera, pv, ndc) + hitUncertainty(s.distance);
-            // The surface's material: the triangle the view ray reaches at (about) that distance.
+            // The surface's material: the triangle the view ray reaches at that distance (within
+            // the sample's uncertainty plus a pixel's slack of 2^-10 of the distance), else the
+            // nearest one (a silhouette pixel whose centre misses the rasterized triangle).
             s.shadingNormal = s.normal;
-            if (auto hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, kInfinity, tnear)) {
+            const double slack = 4.0 * s.uncertainty + std::ldexp(s.distance, -10);
+            auto hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, s.distance + slack,
+                                              std::max(tnear, s.distance - slack));
+            if (!hit) hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, kInfinity, tnear);
+            if (hit) {
                 s.albedo = scene.impl().albedo(*hit);
                 s.emission = scene.impl().emission(*hit);
                 s.shadingNormal = scene.impl().shadingNormal(*hit, s.normal);

@@ -26,6 +26,15 @@ foreach(key noise_rmse noise_mse spp rays_per_second quantity)
   endif()
 endforeach()
 
+# A real HDR environment through a JSON scene: image-based light with visibility.
+run("${OBSCURA}" reference --scene "${SOURCE_DIR}/scenes/wuson_forest.json" --size 16x12 --integrator ibl --spp 16
+    --quiet --out "${WORK_DIR}/ibl.exr")
+file(READ "${WORK_DIR}/ibl.json" meta)
+string(JSON rays GET "${meta}" rays)
+if(NOT rays GREATER 0)
+  message(FATAL_ERROR "the IBL reference traced no rays: ${meta}")
+endif()
+
 # A bad integrator is refused with the list of known ones.
 execute_process(COMMAND "${OBSCURA}" reference --scene plane --integrator nope --out "${WORK_DIR}/x.exr"
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
@@ -46,6 +55,23 @@ list(LENGTH csv lines)
 if(lines LESS 2)
   message(FATAL_ERROR "bench.csv has no rows")
 endif()
+# Values: the G-buffer's rows have times > 0, no NaN in the output, and positions within a
+# millimetre of the ray-traced hits (the Cornell box is in millimetres).
+file(READ "${WORK_DIR}/bench/bench.json" bench)
+string(JSON rows LENGTH "${bench}" rows)
+math(EXPR last "${rows} - 1")
+foreach(i RANGE ${last})
+  string(JSON quantity GET "${bench}" rows ${i} quantity)
+  string(JSON gpu GET "${bench}" rows ${i} gpu_ms)
+  string(JSON nans GET "${bench}" rows ${i} nan_count)
+  string(JSON rmse GET "${bench}" rows ${i} rmse)
+  if(NOT gpu GREATER 0 OR NOT nans EQUAL 0)
+    message(FATAL_ERROR "row ${i} (${quantity}): gpu_ms ${gpu}, nan_count ${nans}")
+  endif()
+  if(quantity STREQUAL "position" AND NOT rmse LESS 1)
+    message(FATAL_ERROR "G-buffer positions are ${rmse} mm off the ray-traced hits")
+  endif()
+endforeach()
 
 run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json" --out "${WORK_DIR}/docs")
 file(GLOB plots "${WORK_DIR}/docs/results/*.png")

@@ -161,3 +161,147 @@ TEST_CASE("A hard shadow mask follows the occluder's projection", "[reference][s
     CHECK(r.noiseMse == 0.0); // a hard light is exact
     CHECK_THROWS_AS(render(scene, points, Shadow{3}, settings), Error);
 }
+
+TEST_CASE("Point spot and directional light match Lambert's law with the shading normal", "[reference][direct]") {
+    // Vertex normals tilted by 0.3 rad about z: the receiver's cosine uses them (as the
+    // G-buffer does), the horizon the geometric normal.
+    auto floor = test::quadMesh(kFloor);
+    const glm::dvec3 tilted(std::sin(0.3), std::cos(0.3), 0.0);
+    floor->normals.assign(4, glm::vec3(tilted));
+    Scene s = test::meshScene({floor}, glm::vec3(0.8f));
+    const auto kind = GENERATE(0, 1, 2);
+    Light l;
+    l.intensity = 2.0f;
+    l.color = {1.0f, 0.5f, 0.25f};
+    if (kind == 2) {
+        l.type = LightType::Directional;
+        l.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.3f));
+    } else {
+        l.type = kind == 0 ? LightType::Point : LightType::Spot;
+        l.position = {0.3f, 1.5f, -0.2f};
+        l.direction = {0, -1, 0};
+        l.innerAngle = 0.2f;
+        l.outerAngle = 0.5f;
+    }
+    s.lights.push_back(l);
+    const RayScene scene(s);
+    std::vector<glm::dvec3> at = {{0, 0, 0}, {0.5, 0, 0.3}, {-0.4, 0, -0.6}, {1.5, 0, 1.0}};
+    reference::ShadingPoints points = test::pointsAt(at, {0, 1, 0}, glm::dvec3(0.8));
+    for (auto& p : points.points) p.shadingNormal = tilted;
+    RenderSettings settings;
+    settings.samplesPerPixel = 2;
+    const Reference r = render(scene, points, DirectLight{true}, settings);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        double e;
+        if (kind == 2) {
+            e = l.intensity * std::max(0.0, glm::dot(tilted, -glm::dvec3(l.direction)));
+        } else {
+            const glm::dvec3 d = glm::dvec3(l.position) - at[i];
+            const glm::dvec3 w = glm::normalize(d);
+            e = l.intensity * std::max(0.0, glm::dot(tilted, w)) / glm::dot(d, d);
+            if (kind == 1) {
+                const double c = w.y, c0 = std::cos(0.5), c1 = std::cos(0.2); // dot(-w, -y)
+                const double t = std::clamp((c - c0) / (c1 - c0), 0.0, 1.0);
+                e *= t * t * (3 - 2 * t);
+            }
+        }
+        for (int c = 0; c < 3; ++c)
+            CHECK(r.value.pixels[i * 3 + static_cast<std::size_t>(c)] == Approx(0.8 / kPi * e * l.color[c]).epsilon(1e-6));
+    }
+    CHECK(r.noiseMse == 0.0); // hard lights are exact
+}
+
+TEST_CASE("A half-plane occluder hides exactly half of a rectangular light", "[reference][shadow]") {
+    // Rect light centred above the origin at height 2; a half-plane x < 0 at height 1. From
+    // points on the x = 0 line every ray to the light's x < 0 half crosses the plate, and no
+    // ray to the x > 0 half does; the light is symmetric in x, so half the irradiance arrives.
+    Scene s = test::meshScene({test::quadMesh(kFloor),
+                               test::quadMesh({{{-50, 1, -50}, {0, 1, -50}, {0, 1, 50}, {-50, 1, 50}}})});
+    Light l;
+    l.type = LightType::Rect;
+    l.position = {0, 2, 0};
+    l.direction = {0, -1, 0};
+    l.size = {1.0f, 0.6f};
+    s.lights.push_back(l);
+    const RayScene scene(s);
+    std::vector<glm::dvec3> at = {{0, 0, 0}, {0, 0, 0.2}, {0, 0, -0.35}};
+    RenderSettings settings;
+    settings.samplesPerPixel = 8192;
+    const Reference r = render(scene, test::pointsAt(at, {0, 1, 0}), Shadow{0}, settings);
+    // Each half is a ratio of two means over n/2 samples; the visible fraction of a sample is
+    // 0 or 1, so its sampling error is at most 1/(2 sqrt(n/2)) per half: 4 of those, over both.
+    const double tolerance = 4 * 0.5 / std::sqrt(settings.samplesPerPixel / 2.0) / std::sqrt(2.0);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        CHECK(std::abs(r.value.pixels[i * 2] - 0.5) < tolerance);
+        CHECK(r.value.pixels[i * 2 + 1] == 1.0f);
+    }
+}
+
+TEST_CASE("Indirect light sampling area lights converges as the samples grow", "[reference][indirect]") {
+    // A floor and a wall lit by a rect light: the bounce needs a direction and a light sample
+    // per sample; if the two were tied together the error would stop shrinking.
+    Scene s = test::meshScene({test::quadMesh(kFloor), test::quadMesh({{{-5, 0, -1}, {5, 0, -1}, {5, 5, -1}, {-5, 5, -1}}})},
+                              glm::vec3(0.7f));
+    Light l;
+    l.type = LightType::Rect;
+    l.position = {0, 1.0f, 0.5f};
+    l.direction = {0, 0, -1};
+    l.size = {1.0f, 1.0f};
+    l.intensity = 5.0f;
+    s.lights.push_back(l);
+    const RayScene scene(s);
+    std::vector<glm::dvec3> at;
+    for (int i = 0; i < 16; ++i) at.emplace_back(-0.4 + 0.05 * i, 0, 0.2);
+    const auto noiseAt = [&](int spp) {
+        RenderSettings settings;
+        settings.samplesPerPixel = spp;
+        return render(scene, test::pointsAt(at, {0, 1, 0}, glm::dvec3(0.7)), IndirectLight{}, settings).noiseMse;
+    };
+    const double coarse = noiseAt(256), fine = noiseAt(4096);
+    INFO("noise MSE " << coarse << " at 256 spp, " << fine << " at 4096 spp");
+    // Independent samples: MSE ~ 1/n, so 16x fewer; allow a factor 2 for the spread of the
+    // estimates over 16 pixels.
+    CHECK(fine < coarse / 8);
+}
+
+TEST_CASE("The environment's azimuth and rotation follow the documented convention", "[reference][ibl]") {
+    // An environment bright only where the documented mapping puts +x (u = 0.75 is phi =
+    // pi/2: direction (sin theta, cos theta, 0) at the equator), dark elsewhere.
+    Image img;
+    img.width = 64;
+    img.height = 32;
+    img.channels = 3;
+    img.pixels.assign(64 * 32 * 3, 0.0f);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 40; x < 56; ++x) // u in [0.625, 0.875): phi in [pi/4, 3 pi/4], around +x
+            for (int c = 0; c < 3; ++c) img.at(x, y, c) = 1.0f;
+    const auto path = std::filesystem::temp_directory_path() / "obscura_quadrant_env.exr";
+    assets::writeImage(path, img);
+    Scene s = test::meshScene({});
+    s.materials[0].albedo = glm::vec3(1.0f);
+    for (float rotation : {0.0f, float(kPi)}) {
+        s.environment = Environment{path.string(), 1.0f, rotation};
+        const RayScene scene(s);
+        RenderSettings settings;
+        settings.samplesPerPixel = 1024;
+        // 16 points facing +x, then 16 facing -x, nothing around them.
+        reference::ShadingPoints pts = test::pointsAt(std::vector<glm::dvec3>(16, glm::dvec3(0.0)), {1, 0, 0});
+        const auto facingMinus = test::pointsAt(std::vector<glm::dvec3>(16, glm::dvec3(0.0)), {-1, 0, 0});
+        pts.points.insert(pts.points.end(), facingMinus.points.begin(), facingMinus.points.end());
+        pts.width = 32;
+        const Reference r = render(scene, pts, ImageBasedLight{true, false}, settings);
+        // The bright band spans phi in [pi/4, 3 pi/4]: its cosine-weighted irradiance on a
+        // surface facing its centre is Int cos = Int_0^pi sin^2 theta dtheta * Int cos(phi - pi/2) dphi
+        // = (pi/2) * 2 sin(pi/4) = pi / sqrt(2).
+        const double expected = kPi / std::sqrt(2.0);
+        Image plus = r.value, minus = r.value;
+        plus.width = minus.width = 16;
+        plus.pixels.assign(r.value.pixels.begin(), r.value.pixels.begin() + 48);
+        minus.pixels.assign(r.value.pixels.begin() + 48, r.value.pixels.end());
+        const test::Stats lit = test::stats(rotation == 0.0f ? plus : minus, 0);
+        const test::Stats dark = test::stats(rotation == 0.0f ? minus : plus, 0);
+        CAPTURE(rotation, lit.mean, dark.mean);
+        CHECK(std::abs(lit.mean - expected) < 4 * lit.stddev / std::sqrt(double(lit.n)) + 1e-9);
+        CHECK(dark.mean < 0.01 * expected);
+    }
+}

@@ -55,12 +55,17 @@ TEST_CASE("AO under a coaxial disc is one minus the view factor and 1 with a sho
         const double sigma = std::sqrt(expected * (1 - expected) / settings.samplesPerPixel);
         CHECK(std::abs(cosine.value.pixels[i] - expected) < 4 * sigma);
     }
+    // On the axis, 32 independent pixels: their mean within 4 standard errors, a tolerance
+    // from the estimator's actual spread (tighter than the Bernoulli bound above).
+    const std::vector<glm::dvec3> axis(32, glm::dvec3(0.0));
+    settings.samplesPerPixel = 1024;
+    const Reference onAxis = render(scene, test::pointsAt(axis, {0, 1, 0}), AmbientOcclusion{kInfinity, true}, settings);
+    const test::Stats st = test::stats(onAxis.value, 0);
+    CHECK(std::abs(st.mean - h * h / (h * h + a * a)) < 4 * st.stddev / std::sqrt(double(st.n)) + 1e-9);
     // Uniform-weighted, on the axis: 1 - (1 - cos alpha) = cos alpha, alpha the disc's half-angle.
-    const Reference uniform = render(scene, test::pointsAt({{0, 0, 0}}, {0, 1, 0}), AmbientOcclusion{kInfinity, false},
-                                     settings);
-    const double expectedUniform = h / std::sqrt(h * h + a * a);
-    const double sigma = std::sqrt(expectedUniform * (1 - expectedUniform) / settings.samplesPerPixel);
-    CHECK(std::abs(uniform.value.pixels[0] - expectedUniform) < 4 * sigma);
+    const Reference uniform = render(scene, test::pointsAt(axis, {0, 1, 0}), AmbientOcclusion{kInfinity, false}, settings);
+    const test::Stats su = test::stats(uniform.value, 0);
+    CHECK(std::abs(su.mean - h / std::sqrt(h * h + a * a)) < 4 * su.stddev / std::sqrt(double(su.n)) + 1e-9);
     // With a radius below the disc's height nothing is within reach.
     settings.samplesPerPixel = 256;
     const Reference limited = render(scene, points, AmbientOcclusion{0.99 * h, true}, settings);
@@ -93,6 +98,24 @@ TEST_CASE("Obscurance under a ceiling matches its one-dimensional integral", "[r
     CHECK(obscuranceWeight(ObscuranceFalloff::Smooth, 0.5, 1.0) == Approx(0.5));
     CHECK(obscuranceWeight(ObscuranceFalloff::Quadratic, 0.5, 2.0) == Approx(0.0625));
     CHECK(obscuranceWeight(ObscuranceFalloff::None, 3.0, 2.0) == 1.0);
+}
+
+TEST_CASE("The bent normal next to a wall leans away from it by the closed-form angle", "[reference][bent-normal]") {
+    // A floor and a huge wall at x = -0.001: every direction with w.x < 0 hits the wall, so the
+    // visible set is the half-hemisphere w.x > 0. Its cosine-weighted mean direction is
+    // (Int x y dw, Int y^2 dw, 0) over it = (2/3, pi/3, 0) up to a factor (with y up).
+    const test::QuadCorners wall{{{-0.001, 0, -500}, {-0.001, 500, -500}, {-0.001, 500, 500}, {-0.001, 0, 500}}};
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor), test::quadMesh(wall)}));
+    std::vector<glm::dvec3> at(16, glm::dvec3(0.0));
+    RenderSettings settings;
+    settings.samplesPerPixel = 4096;
+    const Reference r = render(scene, test::pointsAt(at, {0, 1, 0}), BentNormal{}, settings);
+    const glm::dvec3 expected = glm::normalize(glm::dvec3(2.0 / 3.0, kPi / 3.0, 0.0));
+    for (int c = 0; c < 3; ++c) {
+        const test::Stats st = test::stats(r.value, c);
+        INFO("component " << c << ": " << st.mean << " vs " << expected[c]);
+        CHECK(std::abs(st.mean - expected[c]) < 4 * st.stddev / std::sqrt(double(st.n)) + 1e-9);
+    }
 }
 
 TEST_CASE("Bent normals of symmetric configurations are the normal", "[reference][bent-normal]") {

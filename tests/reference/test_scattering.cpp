@@ -1,4 +1,5 @@
-// Single scattering against double-precision adaptive quadrature of the airlight integral.
+// Single scattering against double-precision adaptive quadrature of the airlight integral,
+// and the phase functions against hand-computed values.
 #include "reference_helpers.hpp"
 
 #include <catch2/catch.hpp>
@@ -7,6 +8,7 @@
 
 using namespace obscura;
 using namespace obscura::reference;
+using test::kPi;
 
 namespace {
 
@@ -16,12 +18,27 @@ double simpson(const std::function<double(double)>& f, double a, double b, doubl
     const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
     const double flm = f(lm), frm = f(rm);
     const double left = (m - a) / 6 * (fa + 4 * flm + fm), right = (b - m) / 6 * (fm + 4 * frm + fb);
-    if (depth <= 0 || std::abs(left + right - whole) <= 15 * tol) return left + right + (left + right - whole) / 15;
+    // Also stop where the difference is at the level of double rounding: a tolerance below it
+    // could never be met and would only split further.
+    const double delta = std::abs(left + right - whole);
+    if (depth <= 0 || delta <= 15 * tol || delta <= 1e-14 * std::abs(left + right))
+        return left + right + (left + right - whole) / 15;
     return simpson(f, a, m, fa, flm, fm, left, tol / 2, depth - 1) + simpson(f, m, b, fm, frm, fb, right, tol / 2, depth - 1);
 }
-double integrate(const std::function<double(double)>& f, double a, double b, double tol) {
-    const double fa = f(a), fb = f(b), fm = f(0.5 * (a + b));
-    return simpson(f, a, b, fa, fm, fb, (b - a) / 6 * (fa + 4 * fm + fb), tol, 50);
+// To a relative tolerance of the integral (estimated by a first pass), over pieces so that
+// sharp features (a light next to the ray, a dense channel's fast decay) are not missed.
+double integrate(const std::function<double(double)>& f, double a, double b, double relativeTolerance) {
+    const int pieces = 256;
+    double rough = 0.0;
+    for (int i = 0; i < pieces; ++i) rough += std::abs(f(a + (b - a) * (i + 0.5) / pieces)) * (b - a) / pieces;
+    const double tol = relativeTolerance * rough + 1e-300;
+    double sum = 0.0;
+    for (int i = 0; i < pieces; ++i) {
+        const double lo = a + (b - a) * i / pieces, hi = a + (b - a) * (i + 1) / pieces;
+        const double flo = f(lo), fhi = f(hi), fm = f(0.5 * (lo + hi));
+        sum += simpson(f, lo, hi, flo, fm, fhi, (hi - lo) / 6 * (flo + 4 * fm + fhi), tol / pieces, 30);
+    }
+    return sum;
 }
 
 // Length of the segment from p toward unit w (length `len`) inside the box [lo, hi].
@@ -40,84 +57,220 @@ double inside(glm::dvec3 p, glm::dvec3 w, double len, glm::dvec3 lo, glm::dvec3 
     return std::max(0.0, t1 - t0);
 }
 
+// Henyey-Greenstein and Rayleigh written out independently of the library.
+double phaseByHand(PhaseFunction f, double g, double c) {
+    if (f == PhaseFunction::Isotropic) return 1 / (4 * kPi);
+    if (f == PhaseFunction::Rayleigh) return 3 / (16 * kPi) * (1 + c * c);
+    return (1 - g * g) / (4 * kPi * std::pow(1 + g * g - 2 * g * c, 1.5));
+}
+
+struct MediumCase {
+    Scene scene;
+    glm::dvec3 origin{0.1, -0.2, -3.0}, dir = glm::normalize(glm::dvec3(0.05, 0.1, 1.0));
+    // Visibility of the light from a point, as the test's own geometry dictates.
+    std::function<bool(const glm::dvec3&)> visible = [](const glm::dvec3&) { return true; };
+
+    // The airlight integral of channel c, by quadrature, along the view ray inside the box.
+    double quadrature(int c) const {
+        const Medium& m = scene.media[0];
+        const Light& l = scene.lights[0];
+        double t0 = 0, t1 = 1e9;
+        for (int a = 0; a < 3; ++a) {
+            double ta = (m.boxMin[a] - origin[a]) / dir[a], tb = (m.boxMax[a] - origin[a]) / dir[a];
+            if (ta > tb) std::swap(ta, tb);
+            t0 = std::max(t0, ta);
+            t1 = std::min(t1, tb);
+        }
+        const double ss = m.scattering[c], st = m.scattering[c] + m.absorption[c];
+        const double radiance = l.intensity * l.color[c];
+        const auto f = [&](double t) {
+            const glm::dvec3 x = origin + t * dir;
+            glm::dvec3 w;
+            double d = 1e300, falloff = 1.0;
+            if (l.type == LightType::Directional) {
+                w = -glm::normalize(glm::dvec3(l.direction));
+            } else {
+                const glm::dvec3 toLight = glm::dvec3(l.position) - x;
+                d = glm::length(toLight);
+                w = toLight / d;
+                falloff = 1 / (d * d);
+                if (l.type == LightType::Spot) {
+                    const double cosAngle = glm::dot(-w, glm::normalize(glm::dvec3(l.direction)));
+                    const double ci = std::cos(double(l.innerAngle)), co = std::cos(double(l.outerAngle));
+                    const double s = std::clamp((cosAngle - co) / (ci - co), 0.0, 1.0);
+                    falloff *= s * s * (3 - 2 * s);
+                }
+            }
+            if (!visible(x)) return 0.0;
+            // Scattering angle between the light's travel direction (-w) and the way to the camera (-dir).
+            const double p = phaseByHand(m.phase, m.anisotropy, glm::dot(-w, -dir));
+            return ss * std::exp(-st * (t - t0)) * p * radiance * falloff *
+                   std::exp(-st * inside(x, w, d, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax)));
+        };
+        return integrate(f, t0, t1, 1e-8); // far below the Monte Carlo error it checks
+    }
+};
+
+MediumCase makeCase(const Light& light, const Medium& medium) {
+    MediumCase c;
+    c.scene.materials.push_back({});
+    c.scene.media.push_back(medium);
+    c.scene.lights.push_back(light);
+    return c;
+}
+
+Medium unitBox(glm::vec3 scattering, glm::vec3 absorption, PhaseFunction phase, float g) {
+    Medium m;
+    m.boxMin = {-1, -1, -1};
+    m.boxMax = {1, 1, 1};
+    m.scattering = scattering;
+    m.absorption = absorption;
+    m.phase = phase;
+    m.anisotropy = g;
+    return m;
+}
+
+// The estimate of each channel over `copies` independent pixels, within 4 standard errors of
+// the quadrature (and both finite).
+void checkAgainstQuadrature(const MediumCase& c, int spp, bool shadows = true, int copies = 64) {
+    const RayScene scene(c.scene);
+    RenderSettings settings;
+    settings.samplesPerPixel = spp;
+    const Reference r = render(scene, test::repeatedRay(c.origin, c.dir, copies), SingleScattering{0, shadows}, settings);
+    for (int ch = 0; ch < 3; ++ch) {
+        const double expected = c.quadrature(ch);
+        const test::Stats st = test::stats(r.value, ch);
+        INFO("channel " << ch << ": " << st.mean << " vs quadrature " << expected << " (stddev " << st.stddev << ")");
+        CHECK(std::isfinite(st.mean));
+        CHECK(std::abs(st.mean - expected) <= 4 * st.stddev / std::sqrt(double(st.n)) + 1e-12 * std::abs(expected));
+    }
+}
+
 } // namespace
+
+TEST_CASE("Phase functions match hand-computed values and integrate to 1", "[reference][media]") {
+    CHECK(phaseFunction(PhaseFunction::Isotropic, 0, 0.3) == Approx(0.0795774715));
+    CHECK(phaseFunction(PhaseFunction::Rayleigh, 0, 1.0) == Approx(6.0 / (16 * kPi)));
+    // HG with g = 0.5 straight ahead: (1 - 0.25) / (4 pi (0.25)^1.5) = 0.75 / (4 pi 0.125) = 1.5 / pi.
+    CHECK(phaseFunction(PhaseFunction::HenyeyGreenstein, 0.5, 1.0) == Approx(1.5 / kPi));
+    for (auto f : {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh}) {
+        // Integral over the sphere = 2 pi Int_{-1}^{1} p(c) dc (midpoint rule, 1e5 steps).
+        double sum = 0;
+        const int steps = 100000;
+        for (int i = 0; i < steps; ++i) sum += phaseFunction(f, 0.7, -1 + 2 * (i + 0.5) / steps) * 2.0 / steps;
+        CHECK(2 * kPi * sum == Approx(1.0).epsilon(1e-4));
+    }
+}
 
 TEST_CASE("Single scattering matches adaptive quadrature for every phase function", "[reference][media]") {
     const auto phase = GENERATE(PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh);
     // A light inside the box, and one outside it (the light path then leaves the medium).
     const bool lightInside = GENERATE(true, false);
     CAPTURE(static_cast<int>(phase), lightInside);
-    Scene s; // no geometry: nothing occludes
-    s.materials.push_back({});
-    Medium m;
-    m.boxMin = {-1, -1, -1};
-    m.boxMax = {1, 1, 1};
-    m.scattering = {0.5f, 0.8f, 1.1f};
-    m.absorption = {0.2f, 0.1f, 0.0f};
-    m.phase = phase;
-    m.anisotropy = 0.4f;
-    s.media.push_back(m);
     Light l;
     l.position = lightInside ? glm::vec3(0.3f, 0.5f, 0.2f) : glm::vec3(0.2f, 2.5f, -0.4f);
     l.intensity = 2.0f;
     l.color = {1.0f, 0.5f, 0.25f};
-    s.lights.push_back(l);
-    const RayScene scene(s);
-    const glm::dvec3 origin(0.1, -0.2, -3.0), dir = glm::normalize(glm::dvec3(0.05, 0.1, 1.0));
-    RenderSettings settings;
-    settings.samplesPerPixel = 512;
-    const Reference r = render(scene, test::repeatedRay(origin, dir, 64), SingleScattering{0, true}, settings);
-
-    // The view ray enters the box at t0 and leaves at t1.
+    MediumCase c = makeCase(l, unitBox({0.5f, 0.8f, 1.1f}, {0.2f, 0.1f, 0.0f}, phase, 0.4f));
+    checkAgainstQuadrature(c, 512);
+    // The view transmittance (4th channel) is exact: exp(-sigma_t L) averaged over RGB.
+    const RayScene scene(c.scene);
+    const Reference r = render(scene, test::repeatedRay(c.origin, c.dir, 1), SingleScattering{}, RenderSettings{});
     double t0 = 0, t1 = 1e9;
     for (int a = 0; a < 3; ++a) {
-        double ta = (m.boxMin[a] - origin[a]) / dir[a], tb = (m.boxMax[a] - origin[a]) / dir[a];
+        double ta = (-1 - c.origin[a]) / c.dir[a], tb = (1 - c.origin[a]) / c.dir[a];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
-    }
-    for (int c = 0; c < 3; ++c) {
-        const double ss = m.scattering[c], st = m.scattering[c] + m.absorption[c], I = l.intensity * l.color[c];
-        const auto integrand = [&](double t) {
-            const glm::dvec3 x = origin + t * dir, toLight = glm::dvec3(l.position) - x;
-            const double d = glm::length(toLight);
-            const glm::dvec3 w = toLight / d;
-            const double p = phaseFunction(m.phase, m.anisotropy, glm::dot(-w, -dir));
-            return ss * std::exp(-st * (t - t0)) * p * I / (d * d) *
-                   std::exp(-st * inside(x, w, d, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax)));
-        };
-        const double expected = integrate(integrand, t0, t1, 1e-12);
-        const test::Stats st64 = test::stats(r.value, c);
-        INFO("channel " << c << ": " << st64.mean << " vs quadrature " << expected << " (stddev " << st64.stddev << ")");
-        CHECK(std::abs(st64.mean - expected) < 4 * st64.stddev / std::sqrt(double(st64.n)));
-        // The view transmittance is exact.
-        const double t = std::exp(-st * (t1 - t0));
-        (void)t;
     }
     const double meanT = (std::exp(-0.7 * (t1 - t0)) + std::exp(-0.9 * (t1 - t0)) + std::exp(-1.1 * (t1 - t0))) / 3;
     CHECK(r.value.pixels[3] == Approx(meanT).epsilon(1e-6));
 }
 
-TEST_CASE("Dense and vanishing media stay finite and bounded", "[reference][media][stability]") {
-    for (float sigma : {0.0f, 1e-8f, 1e4f}) {
-        Scene s;
-        s.materials.push_back({});
-        Medium m;
-        m.boxMin = {-1, -1, -1};
-        m.boxMax = {1, 1, 1};
-        m.scattering = glm::vec3(sigma);
-        s.media.push_back(m);
-        Light l;
-        l.position = {0, 0, 0}; // on the view ray: the equiangular pdf is at its sharpest
-        s.lights.push_back(l);
-        const RayScene scene(s);
-        RenderSettings settings;
-        settings.samplesPerPixel = 64;
-        const Reference r = render(scene, test::repeatedRay({0, 0, -3}, {0, 0, 1}, 8), SingleScattering{}, settings);
-        for (float v : r.value.pixels) {
-            CHECK(std::isfinite(v));
-            CHECK(v >= 0.0f);
-        }
-        if (sigma == 0.0f) CHECK(r.value.pixels[0] == 0.0f);
+TEST_CASE("Spot and directional lights in media match quadrature", "[reference][media]") {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 0.8f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.1f};
+    spot.innerAngle = 0.3f;
+    spot.outerAngle = 0.6f;
+    spot.intensity = 3.0f;
+    checkAgainstQuadrature(makeCase(spot, unitBox(glm::vec3(0.6f), glm::vec3(0.1f), PhaseFunction::HenyeyGreenstein, -0.3f)),
+                           1024);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    sun.intensity = 1.5f;
+    checkAgainstQuadrature(makeCase(sun, unitBox(glm::vec3(0.4f), glm::vec3(0.0f), PhaseFunction::Rayleigh, 0.0f)), 512);
+}
+
+TEST_CASE("Coloured dense media keep every channel unbiased", "[reference][media][stability]") {
+    // One channel dense, two thin: a sampler matched to the mean extinction starves the thin
+    // channels (the tail they need is too light).
+    for (float dense : {300.0f, 2000.0f}) {
+        CAPTURE(dense);
+        Light sun;
+        sun.type = LightType::Directional;
+        sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+        checkAgainstQuadrature(makeCase(sun, unitBox({dense, 0.5f, 0.5f}, glm::vec3(0.0f), PhaseFunction::Isotropic, 0.0f)),
+                               1024);
     }
+}
+
+TEST_CASE("Shadowed media match quadrature with the occluder's visibility", "[reference][media]") {
+    // A large horizontal plate at y = 0.5 over x < 0.2 shadows the directional light for
+    // points below it on that side.
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0.0f, -1.0f, 0.0f};
+    MediumCase c = makeCase(sun, unitBox(glm::vec3(0.5f), glm::vec3(0.1f), PhaseFunction::HenyeyGreenstein, 0.2f));
+    c.scene.meshes.push_back({test::quadMesh({{{-50, 0.5, -50}, {0.2, 0.5, -50}, {0.2, 0.5, 50}, {-50, 0.5, 50}}}),
+                              glm::mat4(1.0f), 0, "plate"});
+    c.dir = glm::normalize(glm::dvec3(0.3, 0.02, 1.0));
+    c.visible = [](const glm::dvec3& x) { return !(x.x < 0.2 && x.y < 0.5); };
+    checkAgainstQuadrature(c, 1024);
+}
+
+TEST_CASE("Vanishing and very dense media match the limits", "[reference][media][stability]") {
+    Light l;
+    l.position = {0.0f, 0.3f, 0.0f};
+    for (float sigma : {0.0f, 1e-8f, 1e4f}) {
+        CAPTURE(sigma);
+        MediumCase c = makeCase(l, unitBox(glm::vec3(sigma), glm::vec3(0.0f), PhaseFunction::Isotropic, 0.0f));
+        c.dir = glm::dvec3(0, 0, 1);
+        c.origin = glm::dvec3(0, 0, -3);
+        if (sigma == 0.0f) {
+            const RayScene scene(c.scene);
+            const Reference r = render(scene, test::repeatedRay(c.origin, c.dir, 4), SingleScattering{}, RenderSettings{});
+            for (int i = 0; i < 4; ++i) CHECK(r.value.pixels[static_cast<std::size_t>(i) * 4] == 0.0f);
+            CHECK(r.value.pixels[3] == 1.0f);
+        } else {
+            checkAgainstQuadrature(c, 256);
+        }
+    }
+}
+
+TEST_CASE("Forward scattering is brighter looking toward the light", "[reference][media]") {
+    // The convention: p(cos) with cos between the light's travel direction and the way to the
+    // camera; g > 0 sends light onward, so a camera facing the sun sees more.
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0.0f, 0.0f, 1.0f}; // travels along +z
+    MediumCase c = makeCase(sun, unitBox(glm::vec3(0.3f), glm::vec3(0.0f), PhaseFunction::HenyeyGreenstein, 0.8f));
+    const RayScene scene(c.scene);
+    RenderSettings settings;
+    settings.samplesPerPixel = 256;
+    const Reference facing = render(scene, test::repeatedRay({0, 0, 3}, {0, 0, -1}, 64), SingleScattering{}, settings);
+    const Reference away = render(scene, test::repeatedRay({0, 0, -3}, {0, 0, 1}, 64), SingleScattering{}, settings);
+    // Facing the light (cos = 1): every point of the 2-unit path sees transmittance
+    // e^{-sigma (1 - z)} e^{-sigma (z + 1)} = e^{-2 sigma}: Ls = sigma E p(1) 2 e^{-2 sigma}.
+    // Away (cos = -1): e^{-2 sigma u} over u in [0, 2]: Ls = sigma E p(-1) (1 - e^{-4 sigma}) / (2 sigma).
+    const double sigma = 0.3, e = 1.0;
+    const double expectedFacing = sigma * e * phaseByHand(PhaseFunction::HenyeyGreenstein, 0.8, 1.0) * 2 * std::exp(-2 * sigma);
+    const double expectedAway =
+        sigma * e * phaseByHand(PhaseFunction::HenyeyGreenstein, 0.8, -1.0) * (1 - std::exp(-4 * sigma)) / (2 * sigma);
+    const test::Stats f = test::stats(facing.value, 0), a = test::stats(away.value, 0);
+    CHECK(std::abs(f.mean - expectedFacing) <= 4 * f.stddev / std::sqrt(double(f.n)) + 1e-12);
+    CHECK(std::abs(a.mean - expectedAway) <= 4 * a.stddev / std::sqrt(double(a.n)) + 1e-12);
+    CHECK(f.mean > 100 * a.mean); // p(1) / p(-1) = ((1 + g) / (1 - g))^3 = 729
 }

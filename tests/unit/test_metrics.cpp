@@ -77,6 +77,26 @@ TEST_CASE("SSIM is 1 for equal images and follows the closed form for constant i
     // Constant images: zero variance, so SSIM = (2 mx my + C1) / (mx^2 + my^2 + C1) with
     // the tonemapped values mx = 1/2 and my = 3/4.
     CHECK(metrics::ssim(a, b) == Approx((2 * 0.5 * 0.75 + 1e-4) / (0.25 + 0.5625 + 1e-4)));
+    // Two pixels, values chosen to tonemap to simple numbers (x/(1+x): 0 -> 0, 1 -> 1/2,
+    // 1/3 -> 1/4, 3 -> 3/4). Each pixel's window holds both pixels, with Gaussian weights 1
+    // (itself) and k = exp(-1/4.5) (the neighbour), normalized.
+    {
+        const Image t = image(2, 1, 1, {0.0f, 1.0f}), r = image(2, 1, 1, {1.0f / 3.0f, 3.0f});
+        const double k = std::exp(-1.0 / 4.5), c1 = 1e-4, c2 = 9e-4;
+        const double tx[2] = {0.0, 0.5}, ty[2] = {0.25, 0.75};
+        double expected = 0;
+        for (int p = 0; p < 2; ++p) {
+            const double w[2] = {p == 0 ? 1 / (1 + k) : k / (1 + k), p == 0 ? k / (1 + k) : 1 / (1 + k)};
+            const double mx = w[0] * tx[0] + w[1] * tx[1], my = w[0] * ty[0] + w[1] * ty[1];
+            const double vx = w[0] * tx[0] * tx[0] + w[1] * tx[1] * tx[1] - mx * mx;
+            const double vy = w[0] * ty[0] * ty[0] + w[1] * ty[1] * ty[1] - my * my;
+            const double cxy = w[0] * tx[0] * ty[0] + w[1] * tx[1] * ty[1] - mx * my;
+            expected += ((2 * mx * my + c1) * (2 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2)) / 2;
+        }
+        CHECK(metrics::ssim(t, r) == Approx(expected).epsilon(1e-6)); // 1/3 is stored as a float
+    }
+    // Signed references (positions, normals) have no SSIM.
+    CHECK(std::isnan(metrics::ssim(a, image(16, 16, 1, std::vector<float>(256, -1.0f)))));
     // A checkerboard against its inverse: anti-correlated, SSIM well below 0.
     std::vector<float> c(256), d(256);
     for (int i = 0; i < 256; ++i) {
