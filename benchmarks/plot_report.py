@@ -22,13 +22,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def load(paths):
-    rows, perf = [], []
+    rows, perf, voxel = [], [], {"voxelization": [], "traversal": []}
     for path in paths:
         with open(path) as f:
             doc = json.load(f)
         rows.extend(doc.get("rows", []))
         perf.extend(doc.get("reference_performance", []))
-    return rows, perf
+        for table in voxel:
+            voxel[table].extend(doc.get("voxel", {}).get(table, []))
+    return rows, perf, voxel
 
 
 def slug(text):
@@ -84,7 +86,94 @@ def fmt(v, digits=4):
     return str(v)
 
 
-def write_report(rows, perf, out_dir, sources):
+def plot_voxelization(rows, path):
+    fig, ax = plt.subplots(figsize=(5.5, 3.8), dpi=110)
+    for mode in sorted({r["mode"] for r in rows}):
+        mrows = sorted((r for r in rows if r["mode"] == mode), key=lambda r: r["resolution"] ** 2 * r["slices"])
+        ax.plot([r["resolution"] ** 2 * r["slices"] for r in mrows], [r["ms"] for r in mrows], "o-", label=mode)
+        for r in mrows:
+            ax.annotate(f'{r["resolution"]}²x{r["slices"]}', (r["resolution"] ** 2 * r["slices"], r["ms"]), fontsize=6,
+                        xytext=(3, 3), textcoords="offset points")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("voxels in the grid")
+    ax.set_ylabel(f'time per voxelization, ms ({rows[0]["clock"]})')
+    ax.set_title(f'voxelization of {rows[0]["triangles"]} triangles', fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def plot_traversal(rows, path):
+    """Time per segment against the share of answers that differ from the exact traversal."""
+    fig, ax = plt.subplots(figsize=(5.5, 3.8), dpi=110)
+    for r in rows:
+        t = r["ms"] * 1e6 / r["count"]
+        e = max(1.0 - r["agrees_with_exact"], 1e-6)
+        ax.scatter([t], [e], s=25)
+        ax.annotate(f'{r["scene"]} {r["segments"]} {r["method"]}', (t, e), fontsize=6, xytext=(3, 3),
+                    textcoords="offset points")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(f'time per segment, ns ({rows[0]["clock"]})')
+    ax.set_ylabel("share of hit/miss answers unlike exact (floor 1e-6)")
+    ax.set_title("visibility in voxel space", fontsize=9)
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def voxel_section(voxel, out_dir):
+    lines = []
+    if voxel["voxelization"]:
+        vrows = voxel["voxelization"]
+        first = vrows[0]
+        lines += ["## Voxelizer", "",
+                  f'Voxelization of {first["triangles"]} triangles ({first["copies"]} copies of {first["scene"]}), '
+                  f'{first["frames"]} timed frames each after a warm-up, clock `{first["clock"]}`. Times are the sum '
+                  "of the passes' medians; memory is the grid, its mips, the scratch grid and the mesh buffers.", "",
+                  "| mode | grid | targets | time ms | passes (median ms) | GPU MiB | open columns |",
+                  "|---|---|---|---|---|---|---|"]
+        for r in vrows:
+            passes = ", ".join(f'{p["pass"]} {fmt(p["median_ms"])}' for p in r["passes"])
+            lines.append(f'| {r["mode"]} | {r["resolution"]}² x {r["slices"]} | {r["targets"]} | {fmt(r["ms"])} | '
+                         f'{passes} | {fmt(r["memory_bytes"] / 2 ** 20)} | {r["open_columns"]} |')
+        lines.append("")
+        plot_voxelization(vrows, os.path.join(out_dir, "results", "voxelization.png"))
+        lines += ["![voxelization time](results/voxelization.png)", ""]
+    if voxel["traversal"]:
+        trows = voxel["traversal"]
+        first = trows[0]
+        lines += ["## Visibility in voxel space", "",
+                  f'{first["count"]} segments per row on a {first["resolution"]}² x {first["slices"]} surface grid: '
+                  '"random" joins two uniform points of the grid, "short" ones are at most 16 voxels long. '
+                  f'(a) march takes {max(r["march_steps"] for r in trows)} jittered samples; (b) exact and (c) '
+                  "hierarchical visit every voxel along the segment, so they agree with each other on every segment. "
+                  "Fetches are occupancy tests (texel fetches) per segment.", "",
+                  "| scene | segments | method | ms | M segments/s | fetches | hits | agrees with exact |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for r in trows:
+            lines.append(f'| {r["scene"]} | {r["segments"]} | {r["method"]} | {fmt(r["ms"])} | '
+                         f'{fmt(r["segments_per_second"] / 1e6)} | {fmt(r["mean_fetches"])} | {fmt(r["hit_fraction"])} | '
+                         f'{fmt(r["agrees_with_exact"], 6)} |')
+        lines += ["", "Texel fetches (c) saves:", ""]
+        groups = defaultdict(dict)
+        for r in trows:
+            groups[(r["scene"], r["segments"])][r["method"]] = r["mean_fetches"]
+        for (scene, kind), f in sorted(groups.items()):
+            if {"march", "exact", "hierarchical"} <= f.keys():
+                lines.append(f'- {scene}, {kind} segments: {fmt(100 * (1 - f["hierarchical"] / f["exact"]), 3)} % of '
+                             f'(b)\'s and {fmt(100 * (1 - f["hierarchical"] / f["march"]), 3)} % of (a)\'s.')
+        lines.append("")
+        plot_traversal(trows, os.path.join(out_dir, "results", "traversal.png"))
+        lines += ["![traversal time and agreement](results/traversal.png)", ""]
+    return lines
+
+
+def write_report(rows, perf, out_dir, sources, voxel):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -139,6 +228,7 @@ def write_report(rows, perf, out_dir, sources):
             lines.append(f"![{scene}: {quantity}](results/{name})")
         lines.append("")
 
+    lines += voxel_section(voxel, out_dir)
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
 
@@ -148,10 +238,10 @@ def main():
     parser.add_argument("inputs", nargs="+", help="bench.json files")
     parser.add_argument("--out", default="docs", help="directory for results.md and results/*.png")
     args = parser.parse_args()
-    rows, perf = load(args.inputs)
+    rows, perf, voxel = load(args.inputs)
     if not rows:
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
-    write_report(rows, perf, args.out, [os.path.basename(p) for p in args.inputs])
+    write_report(rows, perf, args.out, [os.path.basename(p) for p in args.inputs], voxel)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

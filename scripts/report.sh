@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
-# reference, then draws the Pareto plots. References are cached in the build directory.
+# reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
+# its traversals, then draws the plots. References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
 obscura_build -DOBSCURA_BUILD_CLI=ON -- obscura_cli
@@ -14,5 +15,6 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --scene "$models/Collada/duck.dae" \
   --size 128x128 --frames 20 --spp 1024 --reference-performance \
+  --voxels --voxel-scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" --out "$OBSCURA_ROOT/docs"

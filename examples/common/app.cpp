@@ -7,6 +7,7 @@
 
 #include "obscura/error.hpp"
 #include "obscura/headless.hpp"
+#include "obscura/profiler.hpp"
 
 #include <EGL/egl.h>
 
@@ -120,6 +121,17 @@ TextureImage App::present(const TextureImage& picture) {
     glfwSwapBuffers(impl_->window);
     glfwPollEvents();
     return shown;
+}
+
+void printPassTimes(Context& ctx) {
+    for (const PassStatistics& s : ctx.profiler().statistics(true))
+        std::printf("%s: median %.3f ms over %zu frames (%s)\n", s.name.c_str(), s.medianMs, s.samples, toString(s.clock));
+}
+
+void writeShown(const AppOptions& options, bool windowed, const TextureImage& shown) {
+    if (options.out.empty()) return;
+    assets::writePng(options.out, shown);
+    std::printf("wrote %s (%s)\n", options.out.c_str(), windowed ? "read back from the window" : "headless");
 }
 
 } // namespace obscura::examples

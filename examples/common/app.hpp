@@ -23,6 +23,11 @@ struct AppOptions {
 
 void addAppOptions(CLI::App& cli, AppOptions& options);
 
+//! Prints the context's per-pass statistics (median over the frames, and the clock).
+void printPassTimes(Context& ctx);
+//! Writes `shown` to options.out as PNG, if given, saying where the picture came from.
+void writeShown(const AppOptions& options, bool windowed, const TextureImage& shown);
+
 class App {
 public:
     explicit App(const AppOptions& options);

@@ -36,14 +36,9 @@ int main(int argc, char** argv) {
                 shown = app.present(assets::encodeDisplay(out.display, out.encoding));
                 ++presented;
             } while (!app.done(presented));
-            for (const PassStatistics& s : ctx.profiler().statistics(true))
-                std::printf("%s: median %.3f ms over %zu frames (%s)\n", s.name.c_str(), s.medianMs, s.samples,
-                            toString(s.clock));
+            examples::printPassTimes(ctx);
         }
-        if (!options.out.empty()) {
-            assets::writePng(options.out, shown);
-            std::printf("wrote %s (%s)\n", options.out.c_str(), app.windowed() ? "read back from the window" : "headless");
-        }
+        examples::writeShown(options, app.windowed(), shown);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;

@@ -8,6 +8,7 @@
 #include "obscura/export.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
+#include "obscura/voxelizer.hpp"
 
 #include <filesystem>
 #include <optional>
@@ -72,5 +73,16 @@ OBSCURA_API void writePng(const std::filesystem::path& path, const TextureImage&
 
 //! An sRGB RGBA8 texture from any image file (for Material::albedoImage).
 OBSCURA_API TextureImage readTextureImage(const std::filesystem::path& path);
+
+//! The set cells of a voxel grid as cubes: only faces between a set and an empty cell (or
+//! the grid's edge), two triangles each, with outward normals. Cell (x, y, z) spans
+//! origin + cellSize * [(x, y, z), (x, y, z) + 1] (world units). One mesh and material per
+//! colour group: cells of slice z go to group z / 32, i.e. channel (z / 32) % 4 (hue: red,
+//! green, blue, amber) of render target z / 128 (lighter for later targets) of the slicemap
+//! that stores them.
+OBSCURA_API Scene voxelCubesScene(const DenseVoxels& voxels, const glm::dvec3& origin, const glm::dvec3& cellSize);
+//! Writes the scene's CPU meshes (model transforms applied) as one binary little-endian PLY
+//! with per-vertex colours from the material albedo (sRGB 8-bit). Throws Error{Io}.
+OBSCURA_API void writePly(const std::filesystem::path& path, const Scene& scene);
 
 } // namespace obscura::assets

@@ -10,3 +10,4 @@
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/version.hpp"
+#include "obscura/voxelizer.hpp"

@@ -15,6 +15,7 @@
 #include "obscura/export.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
+#include "obscura/voxelizer.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -198,5 +199,27 @@ OBSCURA_API Reference renderCached(const std::filesystem::path& directory, const
 
 //! Which pixels have a surface (1) or not (0), as a 1-channel image for metrics masks.
 OBSCURA_API Image surfaceMask(const ShadingPoints& points);
+
+// ---- Voxels ----------------------------------------------------------------------------
+
+//! CPU surface voxelization on the layout of `grid` (its dims and worldToVoxel): a voxel is
+//! set when a triangle of the scene's CPU meshes overlaps its closed box (separating axis
+//! test in double precision), grown by `grow` voxel on every side, [0, 0.5) (0: exact; tests
+//! use a small value to bound the GPU's conservative rounding). A zero-area triangle sets the
+//! voxels its segment or point touches, as on the GPU.
+OBSCURA_API DenseVoxels voxelizeSurface(const Scene& scene, const VoxelGrid& grid, double grow = 0.0);
+//! CPU solid voxelization by parity: a voxel is set when the number of surfaces crossing
+//! its column (through the column's centre, along z) below the voxel's centre is odd.
+OBSCURA_API DenseVoxels voxelizeSolid(const Scene& scene, const VoxelGrid& grid);
+
+//! Edge counts of the scene's CPU meshes with vertices welded by exact world position: a
+//! watertight (closed, manifold) surface has every edge on exactly two triangles.
+struct MeshClosure {
+    std::size_t edges = 0;
+    std::size_t boundaryEdges = 0;    //!< on one triangle
+    std::size_t nonManifoldEdges = 0; //!< on three or more
+    bool watertight() const noexcept { return edges > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
+};
+OBSCURA_API MeshClosure meshClosure(const Scene& scene);
 
 } // namespace obscura::reference

@@ -13,6 +13,11 @@ using mat4 = glm::mat4;
 
 #define OBSCURA_FRAME_UBO_BINDING 0
 
+// Vertex attributes of every mesh Obscura draws (core/mesh_cache builds the VAOs).
+#define OBSCURA_ATTRIB_POSITION 0
+#define OBSCURA_ATTRIB_NORMAL 1
+#define OBSCURA_ATTRIB_TEXCOORD 2
+
 #define OBSCURA_PROJECTION_PERSPECTIVE 0
 #define OBSCURA_PROJECTION_ORTHOGRAPHIC 1
 

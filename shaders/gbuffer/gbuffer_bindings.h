@@ -3,16 +3,18 @@
 #ifndef OBSCURA_GBUFFER_BINDINGS_H
 #define OBSCURA_GBUFFER_BINDINGS_H
 
+#include "../common/common_bindings.h"
+
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 namespace obscura::shader {
 using vec4 = glm::vec4;
 #endif
 
-// Vertex attributes of the meshes we draw (our own VAOs always use these).
-#define GBUFFER_ATTRIB_POSITION 0
-#define GBUFFER_ATTRIB_NORMAL 1
-#define GBUFFER_ATTRIB_TEXCOORD 2
+// Vertex attributes: the mesh cache's (common_bindings.h).
+#define GBUFFER_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
+#define GBUFFER_ATTRIB_NORMAL OBSCURA_ATTRIB_NORMAL
+#define GBUFFER_ATTRIB_TEXCOORD OBSCURA_ATTRIB_TEXCOORD
 
 // Per-draw uniforms (explicit locations).
 #define GBUFFER_LOC_MODEL_VIEW 0

@@ -7,6 +7,7 @@
 #include "obscura/reference.hpp"
 #include "scene_options.hpp"
 #include "technique_registry.hpp"
+#include "voxel_bench.hpp"
 
 #include <fnmatch.h>
 #include <nlohmann/json.hpp>
@@ -32,6 +33,9 @@ struct BenchOptions {
     std::string cache;
     std::string out = "out/bench";
     bool referencePerformance = false;
+    bool voxels = false;
+    VoxelBenchOptions voxel;
+    std::string voxelResolutions = "128,512", voxelTargets = "1,4,8";
 };
 
 // The CSV columns of the design map, then extras.
@@ -161,12 +165,36 @@ public:
             rows.push_back(j);
         }
         nlohmann::json doc = {{"rows", rows}, {"reference_performance", perf_}};
+        if (!voxel_.is_null()) {
+            doc["voxel"] = nlohmann::json::parse(voxel_.dump()); // (key order only matters to the CSVs)
+            for (const char* table : {"voxelization", "traversal"}) writeTableCsv(dir / (std::string(table) + ".csv"), voxel_[table]);
+        }
         std::ofstream(dir / "bench.json") << doc.dump(2) << "\n";
         std::printf("wrote %s and %s (%zu rows)\n", (dir / "bench.csv").string().c_str(), (dir / "bench.json").string().c_str(),
                     rows_.size());
     }
 
+    void benchVoxels(Context& ctx) { voxel_ = benchVoxelizer(ctx, o_.voxel); }
+
 private:
+    // The scalar fields of JSON rows as CSV, in the first row's order.
+    static void writeTableCsv(const std::filesystem::path& path, const nlohmann::ordered_json& rows) {
+        std::ofstream csv(path);
+        if (rows.empty()) return;
+        std::vector<std::string> keys;
+        for (const auto& [key, value] : rows.front().items())
+            if (!value.is_structured()) keys.push_back(key);
+        for (std::size_t i = 0; i < keys.size(); ++i) csv << (i ? "," : "") << keys[i];
+        csv << "\n";
+        for (const auto& row : rows) {
+            for (std::size_t i = 0; i < keys.size(); ++i) {
+                const auto& v = row.at(keys[i]);
+                csv << (i ? "," : "") << (v.is_string() ? v.get<std::string>() : v.dump());
+            }
+            csv << "\n";
+        }
+    }
+
     void runTechnique(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
                       const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset) {
         auto run = info.create(ctx);
@@ -230,9 +258,27 @@ private:
     std::filesystem::path cache_;
     std::vector<Row> rows_;
     nlohmann::json perf_ = nlohmann::json::array();
+    nlohmann::ordered_json voxel_;
 };
 
-void runBench(const BenchOptions& o) {
+std::vector<int> parseIntList(const std::string& option, const std::string& text) {
+    std::vector<int> out;
+    for (const std::string& item : split(text)) {
+        try {
+            out.push_back(std::stoi(item));
+        } catch (const std::exception&) {
+            throw Error(ErrorCode::Parse, option + " " + text + ": expected comma-separated integers");
+        }
+    }
+    return out;
+}
+
+void runBench(BenchOptions o) {
+    o.voxel.frames = o.frames;
+    o.voxel.resolutions = parseIntList("--voxel-resolutions", o.voxelResolutions);
+    o.voxel.targets = parseIntList("--voxel-targets", o.voxelTargets);
+    o.voxel.traversalScenes = o.scenes;
+    if (o.voxel.scene.empty()) o.voxel.scene = o.scenes.back();
     Bench bench(o);
     headless::HeadlessContext gl;
     Context ctx(gl.contextDesc());
@@ -241,6 +287,7 @@ void runBench(const BenchOptions& o) {
     for (const auto& scene : o.scenes) bench.runScene(scene, ctx);
     if (o.referencePerformance)
         for (const auto& scene : o.scenes) bench.referencePerformance(scene);
+    if (o.voxels) bench.benchVoxels(ctx);
     bench.write();
 }
 
@@ -260,6 +307,15 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
     cmd->add_flag("--reference-performance", o->referencePerformance,
                   "Also time the AO reference (256x256, 256 spp) of each scene, in rays/s");
+    cmd->add_flag("--voxels", o->voxels,
+                  "Also time the voxelizer (voxelization.csv) and the voxel traversals on each scene (traversal.csv)");
+    cmd->add_option("--voxel-scene", o->voxel.scene, "Scene to voxelize, copied to about --voxel-triangles (default: the last --scene)");
+    cmd->add_option("--voxel-triangles", o->voxel.triangles, "Triangles to voxelize (whole copies of the scene, nearest count)")->capture_default_str();
+    cmd->add_option("--voxel-resolutions", o->voxelResolutions, "Grid resolutions R (R x R columns)")->capture_default_str();
+    cmd->add_option("--voxel-targets", o->voxelTargets, "Render-target counts k (128 k slices)")->capture_default_str();
+    cmd->add_option("--voxel-segments", o->voxel.segments, "Segments per traversal measurement")->capture_default_str();
+    cmd->add_option("--voxel-traversal-resolution", o->voxel.traversalResolution, "Grid resolution for the traversals")
+        ->capture_default_str();
     cmd->callback([o] { runBench(*o); });
 }
 

@@ -5,6 +5,8 @@ namespace obscura::cli {
 
 //! Adds `obscura render` to the app.
 void addRenderCommand(CLI::App& app);
+//! Adds `obscura voxelize` (grid.json + grid.u8, optional PLY of cubes).
+void addVoxelizeCommand(CLI::App& app);
 //! Adds `obscura info` (GL context, techniques, scenes).
 void addInfoCommand(CLI::App& app);
 //! Adds `obscura reference` and `obscura bench` (need obscura::reference).

@@ -1,4 +1,4 @@
-// obscura: command-line front end (render | info | reference | bench).
+// obscura: command-line front end (render | info | voxelize | reference | bench).
 #include "commands.hpp"
 #include "obscura/error.hpp"
 #include "obscura/version.hpp"
@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     obscura::cli::addRenderCommand(app);
     obscura::cli::addInfoCommand(app);
+    obscura::cli::addVoxelizeCommand(app);
 #ifdef OBSCURA_WITH_REFERENCE
     obscura::cli::addReferenceCommand(app);
     obscura::cli::addBenchCommand(app);

@@ -432,6 +432,8 @@ void applyDrawState(ContextImpl& ctx, const DrawState& s) {
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     // Dithering may perturb 8-bit targets (albedo): results must not depend on it.
     gl.Disable(GL_DITHER);
+    setEnabled(gl, GL_COLOR_LOGIC_OP, s.logicOp != GL_NONE);
+    gl.LogicOp(s.logicOp != GL_NONE ? s.logicOp : GL_COPY);
 }
 
 void setViewport(ContextImpl& ctx, int x, int y, int width, int height) {

@@ -84,6 +84,7 @@ struct DrawState {
     bool framebufferSrgb = false;
     GLenum clipDepth = GL_NEGATIVE_ONE_TO_ONE;
     bool depthClamp = false;
+    GLenum logicOp = GL_NONE; //!< GL_NONE: no logic op; else glLogicOp's mode (integer targets)
 };
 void applyDrawState(ContextImpl& ctx, const DrawState& state);
 //! Sets viewport index 0 only (glViewport would reset every index of the host).

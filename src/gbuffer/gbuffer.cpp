@@ -1,12 +1,13 @@
 #include "obscura/gbuffer.hpp"
 
+#include "core/compute.hpp"
 #include "core/context_impl.hpp"
 #include "core/frame_uniforms.hpp"
 #include "core/pass_scope.hpp"
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
-#include "gbuffer/mesh_cache.hpp"
+#include "core/mesh_cache.hpp"
 #include "obscura/context.hpp"
 #include "shaders/gbuffer/gbuffer_bindings.h"
 
@@ -51,11 +52,8 @@ shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
 }
 
 void dispatchOverImage(ContextImpl& ctx, int width, int height) {
-    const auto groups = [](int n) { return static_cast<GLuint>((n + GBUFFER_WORKGROUP_SIZE - 1) / GBUFFER_WORKGROUP_SIZE); };
-    ctx.gl.DispatchCompute(groups(width), groups(height), 1);
-    // Results are read by later passes, by the host (sampling) or by readTexture.
-    ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                         GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    dispatchCompute2D(ctx, width, height, GBUFFER_WORKGROUP_SIZE);
+    barrierForReaders(ctx);
 }
 
 } // namespace
@@ -145,12 +143,7 @@ struct GBuffer::Impl {
             ctx.state.bindTexture(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, texture);
             ctx.state.bindSampler(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, materialSamplerFor(material));
         }
-        gl.BindVertexArray(mesh.vao);
-        if (mesh.indexType != GL_NONE)
-            gl.DrawElements(GL_TRIANGLES, mesh.count, mesh.indexType,
-                            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(mesh.indexOffset)));
-        else
-            gl.DrawArrays(GL_TRIANGLES, 0, mesh.count);
+        drawMesh(ctx, mesh);
     }
 
     GLuint materialSamplerFor(const Material& m) {

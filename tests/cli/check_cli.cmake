@@ -4,12 +4,7 @@
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/run.cmake")
 
 run("${OBSCURA}" reference --scene plane --size 16x12 --integrator ao --set radius=2 --spp 16 --quiet --halves
     --out "${WORK_DIR}/ao.exr")
@@ -42,7 +37,8 @@ if(rc EQUAL 0 OR NOT err MATCHES "known:.*ao")
   message(FATAL_ERROR "an unknown integrator was not refused clearly: ${err}")
 endif()
 
-run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench")
+run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench"
+    --voxels --voxel-triangles 3000 --voxel-resolutions 16 --voxel-targets 1,2 --voxel-segments 4096)
 file(STRINGS "${WORK_DIR}/bench/bench.csv" csv)
 list(GET csv 0 header)
 foreach(col scene technique preset width height quantity clock gpu_ms cpu_ms rmse relmse ssim max_abs nan_count
@@ -73,8 +69,34 @@ foreach(i RANGE ${last})
   endif()
 endforeach()
 
+# The voxelizer's tables: every configuration timed, (b) and (c) agreeing, (c) fetching less
+# than (b) on the long segments.
+string(JSON voxelRows LENGTH "${bench}" voxel voxelization)
+if(NOT voxelRows EQUAL 4)
+  message(FATAL_ERROR "expected 4 voxelization rows (2 modes x 1 resolution x 2 target counts), got ${voxelRows}")
+endif()
+string(JSON traversalRows LENGTH "${bench}" voxel traversal)
+math(EXPR last "${traversalRows} - 1")
+foreach(i RANGE ${last})
+  string(JSON method GET "${bench}" voxel traversal ${i} method)
+  string(JSON agree GET "${bench}" voxel traversal ${i} agrees_with_exact)
+  string(JSON rate GET "${bench}" voxel traversal ${i} segments_per_second)
+  if(NOT rate GREATER 0 OR (NOT method STREQUAL "march" AND NOT agree EQUAL 1))
+    message(FATAL_ERROR "traversal row ${i} (${method}): ${rate} segments/s, agreement with exact ${agree}")
+  endif()
+endforeach()
+foreach(table voxelization traversal)
+  if(NOT EXISTS "${WORK_DIR}/bench/${table}.csv")
+    message(FATAL_ERROR "obscura bench --voxels wrote no ${table}.csv")
+  endif()
+endforeach()
+
 run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json" --out "${WORK_DIR}/docs")
 file(GLOB plots "${WORK_DIR}/docs/results/*.png")
 if(NOT EXISTS "${WORK_DIR}/docs/results.md" OR NOT plots)
   message(FATAL_ERROR "plot_report.py wrote no results.md or no plots")
+endif()
+file(READ "${WORK_DIR}/docs/results.md" report)
+if(NOT report MATCHES "## Voxelizer" OR NOT report MATCHES "## Visibility in voxel space")
+  message(FATAL_ERROR "results.md lacks the voxelizer sections")
 endif()

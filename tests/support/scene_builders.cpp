@@ -2,6 +2,10 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+
 namespace obscura::test {
 
 std::shared_ptr<MeshData> quadMesh(const QuadCorners& c, bool withNormals) {
@@ -13,6 +17,54 @@ std::shared_ptr<MeshData> quadMesh(const QuadCorners& c, bool withNormals) {
     }
     m->indices = {0, 1, 2, 0, 2, 3};
     return m;
+}
+
+std::shared_ptr<MeshData> cubeMesh() {
+    auto m = std::make_shared<MeshData>();
+    for (int i = 0; i < 8; ++i) m->positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    // Two triangles per face, counter-clockwise seen from outside.
+    m->indices = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                  2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+    return m;
+}
+
+std::shared_ptr<MeshData> icosphereMesh(int subdivisions) {
+    auto m = std::make_shared<MeshData>();
+    const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    for (const glm::vec3 v : {glm::vec3(-1, g, 0), glm::vec3(1, g, 0), glm::vec3(-1, -g, 0), glm::vec3(1, -g, 0),
+                              glm::vec3(0, -1, g), glm::vec3(0, 1, g), glm::vec3(0, -1, -g), glm::vec3(0, 1, -g),
+                              glm::vec3(g, 0, -1), glm::vec3(g, 0, 1), glm::vec3(-g, 0, -1), glm::vec3(-g, 0, 1)})
+        m->positions.push_back(glm::normalize(v));
+    m->indices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                  3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    for (int s = 0; s < subdivisions; ++s) {
+        // Each edge's midpoint once (shared by its two triangles), so the mesh stays closed.
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+        const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::minmax(a, b);
+            const auto [it, added] = midpoints.emplace(key, static_cast<std::uint32_t>(m->positions.size()));
+            if (added) m->positions.push_back(glm::normalize(m->positions[a] + m->positions[b]));
+            return it->second;
+        };
+        std::vector<std::uint32_t> finer;
+        for (std::size_t i = 0; i < m->indices.size(); i += 3) {
+            const std::uint32_t a = m->indices[i], b = m->indices[i + 1], c = m->indices[i + 2];
+            const std::uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            finer.insert(finer.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        m->indices = std::move(finer);
+    }
+    return m;
+}
+
+Scene singleMeshScene(std::shared_ptr<const MeshData> mesh, const glm::mat4& model) {
+    Scene s;
+    s.materials.push_back(Material{});
+    Mesh m;
+    m.data = std::move(mesh);
+    m.model = model;
+    s.meshes.push_back(m);
+    return s;
 }
 
 std::optional<double> AnalyticQuad::intersect(const glm::dvec3& o, const glm::dvec3& d) const {

@@ -26,6 +26,14 @@ struct AnalyticQuad {
 //! Scene of the given quads, one grey material (albedo 0.5) and no lights.
 Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::vec3(0.5f));
 
+//! Closed meshes (every edge on exactly two triangles, outward winding), indexed.
+//! The unit cube [0, 1]^3: 8 vertices, 12 triangles.
+std::shared_ptr<MeshData> cubeMesh();
+//! The unit sphere as a subdivided icosahedron (20 * 4^subdivisions triangles).
+std::shared_ptr<MeshData> icosphereMesh(int subdivisions);
+//! A scene of one mesh with the given transform and a grey material.
+Scene singleMeshScene(std::shared_ptr<const MeshData> mesh, const glm::mat4& model = glm::mat4(1.0f));
+
 //! Ray through the centre of pixel (x, y) of a width x height image (row 0 at the top),
 //! in view space, computed in double from the camera's float projection matrix.
 struct ViewRay {

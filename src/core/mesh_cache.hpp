@@ -25,6 +25,9 @@ struct DrawableMesh {
     bool hasTexcoords = false;
 };
 
+//! Binds the mesh's VAO and draws it as triangles (the caller has set up the program).
+void drawMesh(ContextImpl& ctx, const DrawableMesh& mesh);
+
 class MeshCache {
 public:
     explicit MeshCache(ContextImpl& ctx);

@@ -1,8 +1,8 @@
-#include "gbuffer/mesh_cache.hpp"
+#include "core/mesh_cache.hpp"
 
 #include "core/context_impl.hpp"
 #include "core/validate.hpp"
-#include "shaders/gbuffer/gbuffer_bindings.h"
+#include "shaders/common/common_bindings.h"
 
 #include <algorithm>
 #include <climits>
@@ -127,6 +127,15 @@ void detachStream(ContextImpl& ctx, GLuint vao, GLuint attrib) {
 
 } // namespace
 
+void drawMesh(ContextImpl& ctx, const DrawableMesh& mesh) {
+    ctx.gl.BindVertexArray(mesh.vao);
+    if (mesh.indexType != GL_NONE)
+        ctx.gl.DrawElements(GL_TRIANGLES, mesh.count, mesh.indexType,
+                            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(mesh.indexOffset)));
+    else
+        ctx.gl.DrawArrays(GL_TRIANGLES, 0, mesh.count);
+}
+
 MeshCache::MeshCache(ContextImpl& ctx) : ctx_(ctx) {}
 
 MeshCache::GpuMesh MeshCache::upload(const MeshData& d) {
@@ -148,10 +157,10 @@ MeshCache::GpuMesh MeshCache::upload(const MeshData& d) {
     m.buffer = createBuffer(ctx_, static_cast<GLsizeiptr>(bytes.size()), bytes.data(), 0, "gbuffer.mesh");
     m.vao = createVertexArray(ctx_, "gbuffer.mesh");
     const GLuint vao = m.vao.get(), buf = m.buffer.get();
-    attachStream(ctx_, vao, GBUFFER_ATTRIB_POSITION, {buf, 0, sizeof(glm::vec3), 3, GL_FLOAT, false});
-    if (nrmBytes) attachStream(ctx_, vao, GBUFFER_ATTRIB_NORMAL, {buf, posBytes, sizeof(glm::vec3), 3, GL_FLOAT, false});
+    attachStream(ctx_, vao, OBSCURA_ATTRIB_POSITION, {buf, 0, sizeof(glm::vec3), 3, GL_FLOAT, false});
+    if (nrmBytes) attachStream(ctx_, vao, OBSCURA_ATTRIB_NORMAL, {buf, posBytes, sizeof(glm::vec3), 3, GL_FLOAT, false});
     if (uvBytes)
-        attachStream(ctx_, vao, GBUFFER_ATTRIB_TEXCOORD, {buf, posBytes + nrmBytes, sizeof(glm::vec2), 2, GL_FLOAT, false});
+        attachStream(ctx_, vao, OBSCURA_ATTRIB_TEXCOORD, {buf, posBytes + nrmBytes, sizeof(glm::vec2), 2, GL_FLOAT, false});
     if (idxBytes) ctx_.gl.VertexArrayElementBuffer(vao, buf);
     m.drawable.vao = vao;
     m.drawable.indexType = idxBytes ? GL_UNSIGNED_INT : GL_NONE;
@@ -224,10 +233,10 @@ DrawableMesh MeshCache::hostMesh(std::size_t index, const MeshRef& ref) {
 
     while (hostVaos_.size() <= index) hostVaos_.push_back(createVertexArray(ctx_, "gbuffer.host_mesh"));
     const GLuint vao = hostVaos_[index].get();
-    attachStream(ctx_, vao, GBUFFER_ATTRIB_POSITION, position);
-    normal.buffer ? attachStream(ctx_, vao, GBUFFER_ATTRIB_NORMAL, normal) : detachStream(ctx_, vao, GBUFFER_ATTRIB_NORMAL);
-    texcoord.buffer ? attachStream(ctx_, vao, GBUFFER_ATTRIB_TEXCOORD, texcoord)
-                    : detachStream(ctx_, vao, GBUFFER_ATTRIB_TEXCOORD);
+    attachStream(ctx_, vao, OBSCURA_ATTRIB_POSITION, position);
+    normal.buffer ? attachStream(ctx_, vao, OBSCURA_ATTRIB_NORMAL, normal) : detachStream(ctx_, vao, OBSCURA_ATTRIB_NORMAL);
+    texcoord.buffer ? attachStream(ctx_, vao, OBSCURA_ATTRIB_TEXCOORD, texcoord)
+                    : detachStream(ctx_, vao, OBSCURA_ATTRIB_TEXCOORD);
     gl.VertexArrayElementBuffer(vao, elementBuffer);
 
     DrawableMesh d;
