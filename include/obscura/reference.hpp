@@ -212,14 +212,4 @@ OBSCURA_API DenseVoxels voxelizeSurface(const Scene& scene, const VoxelGrid& gri
 //! its column (through the column's centre, along z) below the voxel's centre is odd.
 OBSCURA_API DenseVoxels voxelizeSolid(const Scene& scene, const VoxelGrid& grid);
 
-//! Edge counts of the scene's CPU meshes with vertices welded by exact world position: a
-//! watertight (closed, manifold) surface has every edge on exactly two triangles.
-struct MeshClosure {
-    std::size_t edges = 0;
-    std::size_t boundaryEdges = 0;    //!< on one triangle
-    std::size_t nonManifoldEdges = 0; //!< on three or more
-    bool watertight() const noexcept { return edges > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
-};
-OBSCURA_API MeshClosure meshClosure(const Scene& scene);
-
 } // namespace obscura::reference

@@ -18,9 +18,14 @@
 // Solid mode (watertight meshes; a voxel is set when its centre is inside): one z pass with
 // glLogicOp(GL_XOR) into k render targets, each fragment toggling its column from the slice
 // behind it; the half-voxel shift of the method is corrected by toggling slices whose
-// centre lies behind the surface. Columns with an odd number of crossings along their whole
-// line, inside the box or not (the mesh is open there), are cleared and counted in
-// VoxelGrid::openColumns, with a warning.
+// centre lies behind the surface. It equals the parity fill at the column centres up to the
+// rasterizer's sub-pixel snapping of vertices (1/256 pixel on llvmpipe) and float depth
+// interpolation. Columns with an odd number of crossings along their whole line, inside
+// the box or not (the mesh is open there), are cleared and counted in
+// VoxelGrid::openColumns; CPU meshes that are not closed (meshClosure) are named in a
+// warning even where every column happens to cross them an even number of times.
+//
+// Voxels need not be cubes: each axis of the box is divided into its own number of voxels.
 //
 // Mipmaps (compute): the quadtree ORs 2x2 columns per level with all slices kept (mip levels
 // of `texture`); the octree also ORs pairs of slices, so a level-L cell covers 2^L voxels
@@ -52,13 +57,19 @@ struct VoxelizerSettings {
     //! extent on every side (an axis of zero extent gets that thickness too). Off: use
     //! boxMin and boxMax as given.
     bool fitBox = true;
-    float margin = 0.02f;           //!< fraction of the largest extent, [0, 1]
+    //! Fraction of the largest extent, [0, 1]; at least 1e-6 is used, so that geometry on
+    //! the bounds stays inside the box.
+    float margin = 0.02f;
     glm::vec3 boxMin{0.0f}, boxMax{1.0f}; //!< world units, boxMin < boxMax per axis (fitBox off)
     //! Re-voxelize on every call. Off (static scenes): only when the scene's meshes (their
     //! MeshData objects and transforms), the box or the settings change. Scenes with host
     //! MeshRefs are always re-voxelized (their buffers can change behind our back).
     bool dynamic = false;
     bool octree = true;             //!< build the octree mips (needed by hierarchical traversal)
+    //! Solid mode: read the open-column count back (VoxelGrid::openColumns and a warning).
+    //! The read-back waits for the GPU; per-frame users may turn it off (the columns are
+    //! still cleared, openColumns stays 0).
+    bool countOpenColumns = true;
 };
 
 //! The voxel grid, owned by the Voxelizer; valid until its next call.
@@ -78,7 +89,7 @@ struct VoxelGrid {
 enum class VoxelTraversal {
     March,        //!< (a) jittered ray marching, `marchSteps` occupancy samples (approximate)
     Exact,        //!< (b) every level-0 voxel along the segment (3D DDA, exact)
-    Hierarchical, //!< (c) the same voxels, skipping empty octree cells (exact)
+    Hierarchical, //!< (c) the same first hit as (b), skipping empty octree cells (exact, fewer fetches)
 };
 
 struct TraversalSettings {
@@ -88,14 +99,17 @@ struct TraversalSettings {
 };
 
 //! A segment in voxel coordinates ([0, dims] per axis; VoxelGrid::worldToVoxel maps world
-//! points there). Parts outside the grid are empty space.
+//! points there). Parts outside the grid are empty space. Endpoints are accepted within
+//! 2^24 voxels of the origin; NaN, Inf or farther give a miss.
 struct VoxelSegment {
     glm::vec3 from{0.0f}, to{0.0f};
 };
 
 struct VoxelHit {
     bool hit = false;
-    float t = 1.0f;          //!< segment parameter of the entry into the first occupied voxel, [0, 1]
+    //! Segment parameter in [0, 1] of the hit: for Exact and Hierarchical the entry into the
+    //! first occupied voxel, for March the sample that found it; 1 for a miss.
+    float t = 1.0f;
     glm::ivec3 voxel{-1};    //!< that voxel (level 0)
     std::uint32_t fetches = 0; //!< occupancy tests made (texel fetches)
 };
@@ -108,6 +122,17 @@ struct DenseVoxels {
         return voxels[(static_cast<std::size_t>(z) * dims.y + y) * dims.x + x];
     }
 };
+
+//! Edge counts of a mesh with its vertices welded by exact position: a watertight (closed,
+//! manifold) surface has every edge on exactly two triangles. Zero-area triangles are
+//! ignored. Solid voxelization checks every CPU mesh this way (once per MeshData).
+struct MeshClosure {
+    std::size_t edges = 0;
+    std::size_t boundaryEdges = 0;    //!< on one triangle
+    std::size_t nonManifoldEdges = 0; //!< on three or more
+    bool watertight() const noexcept { return edges > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
+};
+OBSCURA_API MeshClosure meshClosure(const MeshData& mesh);
 
 class OBSCURA_API Voxelizer {
 public:

@@ -16,6 +16,7 @@ layout(std430, binding = VOXEL_RESULTS_SSBO) writeonly buffer Results {
 layout(location = VOXEL_LOC_STEPS) uniform int steps;
 layout(location = VOXEL_LOC_SEED) uniform uint seed;
 layout(location = VOXEL_LOC_COUNT) uniform uint count;
+layout(location = VOXEL_LOC_FIRST) uniform uint first;
 
 // A per-segment jitter in [0, 1) (integer hash, Wang 1997).
 float jitterOf(uint i) {
@@ -29,7 +30,7 @@ float jitterOf(uint i) {
 }
 
 void main() {
-    const uint i = gl_GlobalInvocationID.x;
+    const uint i = first + gl_GlobalInvocationID.x;
     if (i >= count) return;
     const vec3 from = segments[2 * i].xyz, to = segments[2 * i + 1].xyz;
 #if METHOD == VOXEL_METHOD_MARCH

@@ -30,6 +30,7 @@ using ivec4 = glm::ivec4;
 #define VOXEL_LOC_STEPS 3
 #define VOXEL_LOC_SEED 4
 #define VOXEL_LOC_COUNT 5
+#define VOXEL_LOC_FIRST 6 // the first query of this dispatch (batches larger than one dispatch)
 
 #define VOXEL_METHOD_MARCH 0
 #define VOXEL_METHOD_EXACT 1

@@ -37,11 +37,17 @@ bool slicemapBit(uvec4 texel, int z) { return ((texel[(z >> 5) & 3] >> uint(z & 
 // Level-0 occupancy of a voxel inside the grid.
 bool voxelOccupied(ivec3 c) { return slicemapBit(texelFetch(voxelGrid, ivec3(c.xy, c.z >> 7), 0), c.z); }
 
+// Endpoints are accepted within this many voxels of the origin (beyond it float has lost
+// the voxel scale anyway, and differences could overflow); others give a miss (or empty space).
+const float kVoxelMaxCoordinate = 16777216.0;
+
+bool voxelAcceptedPoint(vec3 p) { return !any(isnan(p)) && all(lessThanEqual(abs(p), vec3(kVoxelMaxCoordinate))); }
+
 // Point occupancy: whether the voxel holding p (voxel coordinates; a point on a face belongs
 // to the voxel above it) is set. Points outside the grid, NaN or Inf are empty space.
 bool voxelOccupiedAtPoint(vec3 p) {
-    if (any(isnan(p)) || any(isinf(p))) return false;
-    const ivec3 c = ivec3(floor(clamp(p, vec3(-1.0), vec3(voxel.dims.xyz) + 1.0)));
+    if (!voxelAcceptedPoint(p)) return false;
+    const ivec3 c = ivec3(floor(p));
     return voxelInside(c, 0) && voxelOccupied(c);
 }
 
@@ -60,10 +66,11 @@ struct VoxelSegment {
     float t0, t1; // the clipped part of the original segment
 };
 
-// Clips the segment to the grid and quantizes it. NaN or empty overlap: invalid.
+// Clips the segment to the grid and quantizes it. NaN, Inf, beyond the accepted range or no
+// overlap with the grid: invalid.
 VoxelSegment voxelSegment(vec3 from, vec3 to) {
     VoxelSegment s = VoxelSegment(false, ivec3(0), ivec3(0), 0.0, 1.0);
-    if (any(isnan(from)) || any(isnan(to)) || any(isinf(from)) || any(isinf(to))) return s;
+    if (!voxelAcceptedPoint(from) || !voxelAcceptedPoint(to)) return s;
     const vec3 dims = vec3(voxel.dims.xyz), d = to - from;
     float ta = 0.0, tb = 1.0;
     for (int a = 0; a < 3; ++a) {
@@ -219,7 +226,7 @@ VoxelHit voxelTraceHierarchical(vec3 from, vec3 to) {
 // (a) `steps` occupancy samples at t = (i + jitter) / steps, jitter in [0, 1).
 VoxelHit voxelTraceMarch(vec3 from, vec3 to, int steps, float jitter) {
     VoxelHit r = voxelMiss();
-    if (any(isnan(from)) || any(isnan(to)) || any(isinf(from)) || any(isinf(to))) return r;
+    if (!voxelAcceptedPoint(from) || !voxelAcceptedPoint(to)) return r;
     for (int i = 0; i < steps; ++i) {
         const float t = (float(i) + jitter) / float(steps);
         const vec3 p = mix(from, to, t);

@@ -26,7 +26,8 @@ uint behind(int s, int word) {
 
 void main() {
     imageAtomicXor(parity, ivec3(ivec2(gl_FragCoord.xy), 0), 1u);
-    const int s = clamp(int(floor(vVoxel.z + 0.5)), 0, voxel.dims.z);
+    // Clamped as float first: depth far outside the box has no defined int.
+    const int s = int(clamp(floor(vVoxel.z + 0.5), 0.0, float(voxel.dims.z)));
     for (int t = 0; t < TARGETS; ++t)
         slices[t] = uvec4(behind(s, 4 * t), behind(s, 4 * t + 1), behind(s, 4 * t + 2), behind(s, 4 * t + 3));
 }

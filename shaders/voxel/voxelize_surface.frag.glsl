@@ -6,6 +6,7 @@
 flat in vec3 gA, gB, gC;
 flat in ivec3 gOrigin;
 flat in int gAxis;
+flat in vec3 gPlane;
 flat in float gGrow;
 
 layout(binding = VOXEL_SCRATCH_IMAGE, r32ui) coherent uniform uimage2DArray slices;
@@ -46,18 +47,17 @@ void main() {
     const ivec3 size = permute(voxel.dims.xyz, gAxis);
     if (uv.x >= size.x || uv.y >= size.y) return;
     const vec2 local = vec2(uv - gOrigin.xy); // this column's corner, triangle-relative
-    // The plane's depth over this pixel's square, clamped to the triangle's own depth range:
-    // with the dominant axis the slope is at most 1, so a few voxels at most. A zero-area
-    // triangle has no plane: its whole depth range is tested.
-    const vec3 n = cross(gB - gA, gC - gA);
+    // The plane's depth over this pixel's square (slopes from the geometry shader, at most 1
+    // along the dominant axis: a few voxels at most), clamped to the triangle's own depth
+    // range. A zero-area triangle has no plane: its whole depth range is tested.
     const float wMin = min(gA.z, min(gB.z, gC.z)), wMax = max(gA.z, max(gB.z, gC.z));
     float pMin = wMin, pMax = wMax;
-    if (n.z != 0.0) {
+    if (gPlane.z != 0.0) {
         pMin = 1e30;
         pMax = -1e30;
         for (int i = 0; i < 4; ++i) {
             const vec2 corner = local + vec2(i & 1, i >> 1);
-            const float w = gA.z - (n.x * (corner.x - gA.x) + n.y * (corner.y - gA.y)) / n.z;
+            const float w = gA.z + gPlane.x * (corner.x - gA.x) + gPlane.y * (corner.y - gA.y);
             pMin = min(pMin, w);
             pMax = max(pMax, w);
         }

@@ -31,8 +31,10 @@ struct VoxelizeOptions {
 
 VoxelizerSettings settingsFrom(const VoxelizeOptions& o) {
     VoxelizerSettings s;
+    if (o.resolution < 8 || o.resolution > 2048 || (o.resolution & (o.resolution - 1)) != 0)
+        throw Error(ErrorCode::Parse, "--res " + std::to_string(o.resolution) + ": expected a power of two in [8, 2048]");
     s.resolution = o.resolution;
-    if (o.slices % kSlicesPerTarget != 0)
+    if (o.slices % kSlicesPerTarget != 0 || o.slices < kSlicesPerTarget || o.slices > 8 * kSlicesPerTarget)
         throw Error(ErrorCode::Parse, "--slices " + std::to_string(o.slices) + ": expected a multiple of 128 in [128, 1024]");
     s.targets = o.slices / kSlicesPerTarget;
     if (o.mode == "surface") s.mode = VoxelMode::Surface;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <string>
 
 namespace obscura::reference {
@@ -69,6 +68,10 @@ bool ownsPoint(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& p, do
     return e.y < 0.0 || (e.y == 0.0 && e.x > 0.0);
 }
 
+// floor(v) as an index, clamped to [-1, n] in double first (coordinates far outside the
+// grid have no int).
+int cellIndex(double v, int n) { return static_cast<int>(std::clamp(std::floor(v), -1.0, static_cast<double>(n))); }
+
 DenseVoxels empty(const VoxelGrid& grid) {
     DenseVoxels out;
     out.dims = grid.dims;
@@ -92,8 +95,8 @@ DenseVoxels voxelizeSurface(const Scene& scene, const VoxelGrid& grid, double gr
     forEachTriangle(scene, grid.worldToVoxel, true, [&](const Triangle& t) {
         glm::ivec3 lo, hi;
         for (int a = 0; a < 3; ++a) {
-            lo[a] = std::max(0, static_cast<int>(std::floor(std::min({t[0][a], t[1][a], t[2][a]}) - grow)) - 1);
-            hi[a] = std::min(grid.dims[a] - 1, static_cast<int>(std::floor(std::max({t[0][a], t[1][a], t[2][a]}) + grow)) + 1);
+            lo[a] = std::max(0, cellIndex(std::min({t[0][a], t[1][a], t[2][a]}) - grow, grid.dims[a]) - 1);
+            hi[a] = std::min(grid.dims[a] - 1, cellIndex(std::max({t[0][a], t[1][a], t[2][a]}) + grow, grid.dims[a]) + 1);
         }
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
@@ -119,10 +122,10 @@ DenseVoxels voxelizeSolid(const Scene& scene, const VoxelGrid& grid) {
             std::swap(v[1], v[2]);
             area = -area;
         }
-        const int x0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].x, v[1].x, v[2].x}) - 0.5)));
-        const int x1 = std::min(grid.dims.x - 1, static_cast<int>(std::ceil(std::max({v[0].x, v[1].x, v[2].x}))));
-        const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].y, v[1].y, v[2].y}) - 0.5)));
-        const int y1 = std::min(grid.dims.y - 1, static_cast<int>(std::ceil(std::max({v[0].y, v[1].y, v[2].y}))));
+        const int x0 = std::max(0, cellIndex(std::min({v[0].x, v[1].x, v[2].x}) - 0.5, grid.dims.x));
+        const int x1 = std::min(grid.dims.x - 1, cellIndex(std::max({v[0].x, v[1].x, v[2].x}) + 1.0, grid.dims.x));
+        const int y0 = std::max(0, cellIndex(std::min({v[0].y, v[1].y, v[2].y}) - 0.5, grid.dims.y));
+        const int y1 = std::min(grid.dims.y - 1, cellIndex(std::max({v[0].y, v[1].y, v[2].y}) + 1.0, grid.dims.y));
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x) {
                 const glm::dvec2 p(x + 0.5, y + 0.5);
@@ -145,30 +148,6 @@ DenseVoxels voxelizeSolid(const Scene& scene, const VoxelGrid& grid) {
             }
         }
     return out;
-}
-
-MeshClosure meshClosure(const Scene& scene) {
-    validateScene(scene);
-    std::map<std::array<float, 3>, std::size_t> ids;
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> edges;
-    const auto id = [&](const glm::dvec3& p) {
-        const std::array<float, 3> key = {float(p.x), float(p.y), float(p.z)};
-        return ids.emplace(key, ids.size()).first->second;
-    };
-    forEachTriangle(scene, glm::dmat4(1.0), false, [&](const Triangle& t) {
-        const std::size_t v[3] = {id(t[0]), id(t[1]), id(t[2])};
-        for (int k = 0; k < 3; ++k) {
-            const std::size_t a = v[k], b = v[(k + 1) % 3];
-            ++edges[{std::min(a, b), std::max(a, b)}];
-        }
-    });
-    MeshClosure c;
-    c.edges = edges.size();
-    for (const auto& e : edges) {
-        if (e.second == 1) ++c.boundaryEdges;
-        if (e.second > 2) ++c.nonManifoldEdges;
-    }
-    return c;
 }
 
 } // namespace obscura::reference

@@ -24,7 +24,7 @@ using namespace detail;
 bool sameSettings(const VoxelizerSettings& a, const VoxelizerSettings& b) {
     return a.resolution == b.resolution && a.targets == b.targets && a.mode == b.mode && a.fitBox == b.fitBox &&
            a.margin == b.margin && a.boxMin == b.boxMin && a.boxMax == b.boxMax && a.dynamic == b.dynamic &&
-           a.octree == b.octree;
+           a.octree == b.octree && a.countOpenColumns == b.countOpenColumns;
 }
 
 bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
@@ -44,7 +44,10 @@ void validateSettings(const VoxelizerSettings& s) {
         requireFinite(s.boxMin, "VoxelizerSettings::boxMin");
         requireFinite(s.boxMax, "VoxelizerSettings::boxMax");
         if (glm::any(glm::lessThanEqual(s.boxMax, s.boxMin)))
-            throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::boxMax must exceed boxMin on every axis");
+            throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::boxMax must exceed boxMin on every axis, got boxMin (" +
+                                                    std::to_string(s.boxMin.x) + ", " + std::to_string(s.boxMin.y) + ", " +
+                                                    std::to_string(s.boxMin.z) + ") and boxMax (" + std::to_string(s.boxMax.x) +
+                                                    ", " + std::to_string(s.boxMax.y) + ", " + std::to_string(s.boxMax.z) + ")");
     }
 }
 
@@ -91,21 +94,49 @@ struct Voxelizer::Impl {
     Framebuffer solidFbo, surfaceFbo;
     Buffer params, counter, segments, results;
     std::size_t segmentCapacity = 0;
-    // What the current grid was built from (static scenes are not voxelized again).
-    std::vector<std::pair<const MeshData*, glm::mat4>> builtFrom;
+    // What the current grid was built from (static scenes are not voxelized again); weak, so
+    // a new MeshData at a freed one's address is not mistaken for it.
+    std::vector<std::pair<std::weak_ptr<const MeshData>, glm::mat4>> builtFrom;
     bool built = false;
+    // Watertightness per CPU mesh, computed once per MeshData for solid mode's warnings.
+    std::vector<std::pair<std::weak_ptr<const MeshData>, MeshClosure>> closures;
 
     void allocate(int r, int d, int k, bool withOctree) {
-        if (texture && grid.dims == glm::ivec3(r, r, d) && (bool(octree) == withOctree || !withOctree)) return;
-        solidFbo.reset();
-        surfaceFbo.reset();
         const int levels = log2i(r) + 1;
-        texture = createArrayTexture(GL_RGBA32UI, r, r, k, levels, "voxel.grid");
-        octree = withOctree ? createArrayTexture(GL_RGBA32UI, r / 2, r / 2, k, levels - 1, "voxel.octree") : Texture{};
-        scratch = createArrayTexture(GL_R32UI, r, r, (d + 31) / 32, 1, "voxel.scratch");
-        grid.dims = {r, r, d};
-        grid.targets = k;
-        built = false;
+        if (!texture || grid.dims != glm::ivec3(r, r, d)) {
+            solidFbo.reset();
+            surfaceFbo.reset();
+            octree.reset();
+            texture = createArrayTexture(GL_RGBA32UI, r, r, k, levels, "voxel.grid");
+            scratch = createArrayTexture(GL_R32UI, r, r, (d + 31) / 32, 1, "voxel.scratch");
+            grid.dims = {r, r, d};
+            grid.targets = k;
+        }
+        if (withOctree && !octree) octree = createArrayTexture(GL_RGBA32UI, r / 2, r / 2, k, levels - 1, "voxel.octree");
+        if (!withOctree) octree.reset(); // no stale levels, no memory held for them
+    }
+
+    const MeshClosure& closureOf(const std::shared_ptr<const MeshData>& data) {
+        std::erase_if(closures, [](const auto& c) { return c.first.expired(); });
+        for (const auto& [mesh, closure] : closures)
+            if (mesh.lock() == data) return closure;
+        closures.emplace_back(data, meshClosure(*data));
+        return closures.back().second;
+    }
+
+    // Solid mode: a CPU mesh that is not closed is reported even where no column crosses it
+    // an odd number of times.
+    void warnAboutOpenMeshes(const Scene& scene) {
+        for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+            const MeshClosure& c = closureOf(scene.meshes[i].data);
+            if (c.watertight()) continue;
+            const std::string& name = scene.meshes[i].name;
+            warnings.push_back("solid voxelization: Scene::meshes[" + std::to_string(i) + "]" +
+                               (name.empty() ? "" : " (" + name + ")") + " is not watertight (" +
+                               std::to_string(c.boundaryEdges) + " boundary and " + std::to_string(c.nonManifoldEdges) +
+                               " non-manifold edges of " + std::to_string(c.edges) +
+                               "); inside and outside follow the parity of the surfaces along z");
+        }
     }
 
     Texture createArrayTexture(GLenum format, int w, int h, int layers, int levels, const char* label) {
@@ -169,7 +200,7 @@ struct Voxelizer::Impl {
         barrierForReaders(ctx);
     }
 
-    void solidPass(const Scene& scene, const std::vector<DrawableMesh>& hostMeshes) {
+    void solidPass(const Scene& scene, const std::vector<DrawableMesh>& hostMeshes, bool countOpen) {
         PassScope pass(ctx, "voxel.solid");
         auto& gl = ctx.gl;
         uploadParams(grid.dims.x);
@@ -208,6 +239,7 @@ struct Voxelizer::Impl {
         gl.UseProgram(ctx.shaders->program({"voxel/open_columns.comp.glsl"}));
         dispatchCompute2D(ctx, grid.dims.x, grid.dims.y, VOXEL_WORKGROUP_2D);
         barrierForReaders(ctx);
+        if (!countOpen) return; // the read-back waits for the GPU: optional for per-frame use
         std::uint32_t open = 0;
         gl.GetNamedBufferSubData(counter.get(), 0, 4, &open);
         grid.openColumns = open;
@@ -247,12 +279,13 @@ struct Voxelizer::Impl {
     std::vector<glm::uvec4> runQueries(const std::vector<VoxelSegment>& queries, int method,
                                        const TraversalSettings& query);
 
-    bool upToDate(const Scene& scene, const VoxelizerSettings& s, const glm::dvec3& lo, const glm::dvec3& hi) const {
+    // The same meshes (alive, same transforms) and settings give the same box and grid.
+    bool upToDate(const Scene& scene, const VoxelizerSettings& s) const {
         if (!built || s.dynamic || !scene.meshRefs.empty()) return false;
-        if (!sameSettings(s, settings) || lo != grid.boxMin || hi != grid.boxMax) return false;
-        if (builtFrom.size() != scene.meshes.size()) return false;
+        if (!sameSettings(s, settings) || builtFrom.size() != scene.meshes.size()) return false;
         for (std::size_t i = 0; i < builtFrom.size(); ++i)
-            if (builtFrom[i].first != scene.meshes[i].data.get() || builtFrom[i].second != scene.meshes[i].model) return false;
+            if (builtFrom[i].first.lock() != scene.meshes[i].data || builtFrom[i].second != scene.meshes[i].model)
+                return false;
         return true;
     }
 };
@@ -262,12 +295,13 @@ Voxelizer::~Voxelizer() = default;
 
 const VoxelGrid& Voxelizer::voxelize(const Scene& scene, const VoxelizerSettings& settings) {
     validateSettings(settings);
-    validateScene(scene);
     auto& d = *impl_;
+    if (d.upToDate(scene, settings)) return d.grid; // validated when it was built
+    validateScene(scene);
     glm::dvec3 lo(0.0), hi(0.0);
     fitBox(scene, settings, lo, hi);
-    if (d.upToDate(scene, settings, lo, hi)) return d.grid;
 
+    d.built = false; // until this build completes: a failure must not leave a half-built grid current
     StateScope scope(d.ctx);
     d.warnings.clear();
     d.meshes.collectGarbage();
@@ -283,17 +317,21 @@ const VoxelGrid& Voxelizer::voxelize(const Scene& scene, const VoxelizerSettings
         d.grid.worldToVoxel[3][a] = -lo[a] * scale[a];
     }
     d.grid.openColumns = 0;
-    if (settings.mode == VoxelMode::Surface) d.surfacePass(scene, hostMeshes);
-    else d.solidPass(scene, hostMeshes);
+    if (settings.mode == VoxelMode::Surface) {
+        d.surfacePass(scene, hostMeshes);
+    } else {
+        d.solidPass(scene, hostMeshes, settings.countOpenColumns);
+        d.warnAboutOpenMeshes(scene);
+    }
     d.mips(settings.octree);
     d.uploadParams(0); // the final block (octree levels included) for shaders that query the grid
     d.grid.texture = d.texture.get();
-    d.grid.octree = d.octree ? d.octree.get() : 0;
+    d.grid.octree = settings.octree ? d.octree.get() : 0;
     d.grid.params = d.params.get();
     ++d.grid.version;
     d.settings = settings;
     d.builtFrom.clear();
-    for (const Mesh& m : scene.meshes) d.builtFrom.emplace_back(m.data.get(), m.model);
+    for (const Mesh& m : scene.meshes) d.builtFrom.emplace_back(m.data, m.model);
     d.built = true;
     return d.grid;
 }
@@ -301,8 +339,11 @@ const VoxelGrid& Voxelizer::voxelize(const Scene& scene, const VoxelizerSettings
 // Runs the batch query shader with METHOD = `method` on the segments; one uvec4 per segment.
 std::vector<glm::uvec4> Voxelizer::Impl::runQueries(const std::vector<VoxelSegment>& queries, int method,
                                                     const TraversalSettings& query) {
+    constexpr std::size_t kMaxQueries = std::size_t{1} << 26; // 2 GiB of segments and results
+    if (queries.size() > kMaxQueries)
+        throw Error(ErrorCode::InvalidArgument, "voxel queries: " + std::to_string(queries.size()) +
+                                                    " in one call; at most " + std::to_string(kMaxQueries) + " are accepted");
     StateScope scope(ctx);
-    PassScope pass(ctx, "voxel.trace");
     auto& gl = ctx.gl;
     if (segmentCapacity < queries.size()) {
         segments = createBuffer(ctx, static_cast<GLsizeiptr>(queries.size() * 2 * sizeof(glm::vec4)), nullptr,
@@ -332,7 +373,16 @@ std::vector<glm::uvec4> Voxelizer::Impl::runQueries(const std::vector<VoxelSegme
     gl.ProgramUniform1i(program, VOXEL_LOC_STEPS, query.marchSteps);
     gl.ProgramUniform1ui(program, VOXEL_LOC_SEED, query.seed);
     gl.ProgramUniform1ui(program, VOXEL_LOC_COUNT, static_cast<GLuint>(queries.size()));
-    dispatchCompute1D(ctx, queries.size(), VOXEL_WORKGROUP_1D);
+    {
+        // Only the traversal is timed, not the transfers. GL guarantees 65535 work groups
+        // per dispatch: larger batches take several.
+        PassScope pass(ctx, "voxel.trace");
+        const std::size_t perDispatch = std::size_t{65535} * VOXEL_WORKGROUP_1D;
+        for (std::size_t first = 0; first < queries.size(); first += perDispatch) {
+            gl.ProgramUniform1ui(program, VOXEL_LOC_FIRST, static_cast<GLuint>(first));
+            dispatchCompute1D(ctx, std::min(perDispatch, queries.size() - first), VOXEL_WORKGROUP_1D);
+        }
+    }
     gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::uvec4> raw(queries.size());
     gl.GetNamedBufferSubData(results.get(), 0, static_cast<GLsizeiptr>(raw.size() * sizeof(glm::uvec4)), raw.data());

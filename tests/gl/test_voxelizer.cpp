@@ -150,7 +150,7 @@ TEST_CASE("Solid voxelization equals the CPU parity fill on watertight meshes", 
             second.model = glm::translate(rotation, glm::vec3(0.5f, 0.3f, 0.2f));
             scene.meshes.push_back(second);
         }
-        REQUIRE(reference::meshClosure(test::singleMeshScene(scene.meshes[0].data)).watertight());
+        REQUIRE(meshClosure(*scene.meshes[0].data).watertight());
         for (int targets : {1, 3}) {
             CAPTURE(name, targets);
             VoxelizerSettings s = surfaceSettings(64, targets);
@@ -180,9 +180,6 @@ TEST_CASE("Solid voxelization of an open mesh reports it and leaves its open col
     auto open = std::make_shared<MeshData>(*sphere);
     open->indices.resize(open->indices.size() - 3 * 40); // a hole of 40 triangles
     const Scene scene = test::singleMeshScene(open, glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(1, 1, 0)));
-    const reference::MeshClosure closure = reference::meshClosure(scene);
-    CHECK(closure.boundaryEdges > 0);
-    CHECK_FALSE(closure.watertight());
 
     VoxelizerSettings s = surfaceSettings(64);
     s.mode = VoxelMode::Solid;
@@ -200,9 +197,61 @@ TEST_CASE("Solid voxelization of an open mesh reports it and leaves its open col
         }
     CHECK(openColumns > 0);
     CHECK(grid.openColumns == openColumns);
-    REQUIRE(voxelizer.warnings().size() == 1);
-    CHECK_THAT(voxelizer.warnings()[0], Catch::Contains("not watertight"));
+    // One warning for the columns, one naming the mesh and its boundary edges.
+    REQUIRE(voxelizer.warnings().size() == 2);
+    CHECK_THAT(voxelizer.warnings()[0], Catch::Contains("odd number of times"));
+    CHECK_THAT(voxelizer.warnings()[1], Catch::Contains("Scene::meshes[0]") && Catch::Contains("not watertight"));
     CHECK(test::compareVoxels(voxelizer.download(), cpu).differing() == 0);
+
+    SECTION("without counting: the same grid, no read-back, no count") {
+        VoxelizerSettings quiet = s;
+        quiet.countOpenColumns = false;
+        CHECK(voxelizer.voxelize(scene, quiet).openColumns == 0);
+        CHECK(test::compareVoxels(voxelizer.download(), cpu).differing() == 0);
+    }
+}
+
+TEST_CASE("A mesh open only where no column crosses it is still reported", "[voxel][reference]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    Voxelizer voxelizer(ctx);
+    // The cube without its x = 1 face, which is parallel to z: every column still crosses the
+    // top and bottom, so the parity fill cannot see the hole.
+    auto cube = std::make_shared<MeshData>(*test::cubeMesh());
+    cube->indices.erase(cube->indices.end() - 6, cube->indices.end());
+    const Scene scene = test::singleMeshScene(cube);
+    VoxelizerSettings s;
+    s.resolution = 16;
+    s.mode = VoxelMode::Solid;
+    const VoxelGrid& grid = voxelizer.voxelize(scene, s);
+    CHECK(grid.openColumns == 0);
+    REQUIRE(voxelizer.warnings().size() == 1);
+    CHECK_THAT(voxelizer.warnings()[0], Catch::Contains("4 boundary"));
+    CHECK(test::compareVoxels(voxelizer.download(), reference::voxelizeSolid(scene, grid)).differing() == 0);
+}
+
+TEST_CASE("Mesh closure counts boundary and non-manifold edges by welded position", "[voxel]") {
+    CHECK(meshClosure(*test::cubeMesh()).watertight());
+    CHECK(meshClosure(*test::cubeMesh()).edges == 18);
+    CHECK(meshClosure(*test::icosphereMesh(2)).watertight());
+    // Unindexed triangles (vertices repeated) weld by position.
+    MeshData soup;
+    const MeshData cube = *test::cubeMesh();
+    for (std::uint32_t i : cube.indices) soup.positions.push_back(cube.positions[i]);
+    CHECK(meshClosure(soup).watertight());
+    // A third triangle on an edge; a zero-area triangle changes nothing.
+    MeshData fin = *test::cubeMesh();
+    fin.positions.emplace_back(0.5f, -1.0f, 0.0f);
+    fin.positions.emplace_back(0.5f, 0.0f, 0.0f);
+    fin.indices.insert(fin.indices.end(), {0, 1, 8, 0, 9, 1});
+    const MeshClosure c = meshClosure(fin);
+    CHECK(c.nonManifoldEdges == 1);
+    CHECK(c.boundaryEdges == 2);
+    MeshData empty;
+    CHECK_FALSE(meshClosure(empty).watertight());
+    MeshData bad = *test::cubeMesh();
+    bad.indices[4] = 99;
+    CHECK_THROWS_AS(meshClosure(bad), Error);
 }
 
 TEST_CASE("Every render-target count lays slices out as documented", "[voxel][reference]") {
@@ -287,6 +336,21 @@ TEST_CASE("Voxelization is robust to flat scenes, far offsets and tiny or invali
             CHECK(std::abs(static_cast<double>(countSet(gpu)) - static_cast<double>(nearCount)) < 0.01 * static_cast<double>(nearCount));
         }
     }
+    SECTION("triangles reaching far beyond a set box, and far from the origin") {
+        // A floor 1e7 units wide under a box of a few units (a level's local region), and a
+        // triangle 1e12 units away: clipped to the grid in double before the float test.
+        const Scene scene = test::quadScene({{{glm::dvec3(-1e7, 0.3, -1e7), {-1e7, 0.3, 1e7}, {1e7, 0.3, 1e7}, {1e7, 0.3, -1e7}}},
+                                             {{glm::dvec3(1e12, 0, 0), {1e12, 1, 0}, {1e12, 1, 1}, {1e12, 0, 1}}}});
+        VoxelizerSettings s = surfaceSettings(32);
+        s.fitBox = false;
+        s.boxMin = glm::vec3(-1.0f, -0.2f, -1.0f);
+        s.boxMax = glm::vec3(1.0f, 1.0f, 1.0f);
+        const VoxelGrid& grid = voxelizer.voxelize(scene, s);
+        const DenseVoxels gpu = voxelizer.download();
+        checkConservativeSuperset(gpu, scene, grid, false);
+        // The floor at y = 0.3 is the slice y = (0.3 + 0.2) / 1.2 * 32 = 13.33: one full layer.
+        CHECK(countSet(gpu) == static_cast<std::size_t>(32 * 128));
+    }
     SECTION("NaN vertices are rejected before any GL work") {
         Scene scene = test::singleMeshScene(test::icosphereMesh(1));
         auto bad = std::make_shared<MeshData>(*scene.meshes[0].data);
@@ -338,4 +402,35 @@ TEST_CASE("Static scenes are voxelized once, dynamic ones on every call", "[voxe
     s.dynamic = true;
     CHECK(voxelizer.voxelize(scene, s).version > resized);
     CHECK(voxelizer.voxelize(scene, s).version > resized + 1);
+
+    // A new mesh in place of a freed one is a change even if it reuses the address.
+    s.dynamic = false;
+    const std::uint64_t before = voxelizer.voxelize(scene, s).version;
+    scene.meshes[0].data.reset();
+    scene.meshes[0].data = test::cubeMesh();
+    CHECK(voxelizer.voxelize(scene, s).version > before);
+
+    // Without the octree no octree is published (nor kept in memory).
+    const std::size_t withOctree = voxelizer.memoryBytes();
+    s.octree = false;
+    CHECK(voxelizer.voxelize(scene, s).octree == 0);
+    CHECK(voxelizer.grid().levels == 0);
+    CHECK(voxelizer.memoryBytes() < withOctree);
+}
+
+TEST_CASE("A failed voxelization leaves no half-built grid to query", "[voxel][stability]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    Voxelizer voxelizer(ctx);
+    Scene scene = test::singleMeshScene(test::cubeMesh());
+    VoxelizerSettings s;
+    s.resolution = 16;
+    voxelizer.voxelize(scene, s);
+    MeshRef bad;
+    bad.vao = 12345; // not a VAO of this context: refused while preparing the draw
+    bad.count = 3;
+    scene.meshRefs.push_back(bad);
+    CHECK_THROWS_AS(voxelizer.voxelize(scene, s), Error);
+    CHECK_THROWS_AS(voxelizer.trace({{glm::vec3(0.0f), glm::vec3(1.0f)}}, {}), Error);
+    CHECK(test::drainGlErrors().empty());
 }

@@ -84,7 +84,10 @@ std::vector<VoxelSegment> segmentMix(const DenseVoxels& grid, std::size_t count,
         case 0: s = {inside(0.1f), inside(0.1f)}; break;
         case 1: { // along one axis; half of them on voxel faces or edges
             s.from = inside(0.0f);
-            if (unit(rng) < 0.5f) s.from = glm::floor(s.from) + glm::vec3(glm::lessThan(glm::vec3(unit(rng)), glm::vec3(0.5f))) * glm::fract(s.from);
+            if (unit(rng) < 0.5f) { // snap each coordinate to a voxel face with probability 1/2
+                const glm::vec3 keep(unit(rng) < 0.5f, unit(rng) < 0.5f, unit(rng) < 0.5f);
+                s.from = glm::floor(s.from) + keep * glm::fract(s.from);
+            }
             s.to = s.from;
             const int a = axis();
             s.to[a] = unit(rng) * dims[a];
