@@ -1,6 +1,7 @@
 #pragma once
 // Obscura: real-time global-illumination approximations and visibility queries on the
 // host's OpenGL 4.5 context. One header per module; this one includes them all.
+#include "obscura/ambient_occlusion.hpp"
 #include "obscura/camera.hpp"
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"

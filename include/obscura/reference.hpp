@@ -12,6 +12,7 @@
 // their variance; averaging two halves it). Seeds are fixed: results are deterministic and
 // do not depend on the number of threads.
 #include "obscura/camera.hpp"
+#include "obscura/ambient_occlusion.hpp"
 #include "obscura/export.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
@@ -98,10 +99,11 @@ struct AmbientOcclusion {
     bool cosineWeighted = true;
 };
 
-//! Distance functions rho of obscurance, of t = d / maxDistance in [0, 1):
-//! None: 0 (obscurance = AO with radius maxDistance); Linear: t; Quadratic: t^2;
-//! Smooth: 3t^2 - 2t^3. Beyond maxDistance, or without a hit, rho = 1.
-enum class ObscuranceFalloff { None, Linear, Quadratic, Smooth };
+//! Distance functions rho of obscurance (obscura::ObscuranceFalloff, shared with the AO
+//! module), of t = d / maxDistance in [0, 1): None: 0 (obscurance = AO with radius
+//! maxDistance); Linear: t; Quadratic: t^2; Smooth: 3t^2 - 2t^3. Beyond maxDistance, or
+//! without a hit, rho = 1.
+using obscura::ObscuranceFalloff;
 OBSCURA_API double obscuranceWeight(ObscuranceFalloff falloff, double distance, double maxDistance);
 
 //! Obscurance, 1 channel in [0, 1]: W(x) = (1/pi) Integral rho(d(x, w)) (n.w) dw, d the

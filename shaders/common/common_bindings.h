@@ -13,6 +13,11 @@ using mat4 = glm::mat4;
 
 #define OBSCURA_FRAME_UBO_BINDING 0
 
+// The tiled random texture of sampling.glsl (RG32F, OBSCURA_NOISE_SIZE^2 texels), on a
+// texture unit no module uses for anything else.
+#define OBSCURA_NOISE_TEXTURE_UNIT 15
+#define OBSCURA_NOISE_SIZE 64
+
 // Vertex attributes of every mesh Obscura draws (core/mesh_cache builds the VAOs).
 #define OBSCURA_ATTRIB_POSITION 0
 #define OBSCURA_ATTRIB_NORMAL 1

@@ -32,7 +32,12 @@ bool voxelInside(ivec3 c, int level) {
 }
 
 // Bit z of a 128-slice column stored in one RGBA32UI texel.
-bool slicemapBit(uvec4 texel, int z) { return ((texel[(z >> 5) & 3] >> uint(z & 31)) & 1u) != 0u; }
+// (The word is selected, not indexed with a variable: see voxelNextCrossing.)
+bool slicemapBit(uvec4 texel, int z) {
+    const int c = (z >> 5) & 3;
+    const uint word = c == 0 ? texel.x : (c == 1 ? texel.y : (c == 2 ? texel.z : texel.w));
+    return ((word >> uint(z & 31)) & 1u) != 0u;
+}
 
 // Level-0 occupancy of a voxel inside the grid.
 bool voxelOccupied(ivec3 c) { return slicemapBit(texelFetch(voxelGrid, ivec3(c.xy, c.z >> 7), 0), c.z); }
@@ -68,20 +73,23 @@ struct VoxelSegment {
 
 // Clips the segment to the grid and quantizes it. NaN, Inf, beyond the accepted range or no
 // overlap with the grid: invalid.
+// The part of [0, 1] in which from + t d lies in [0, size] along one axis; empty (lo > hi)
+// when a segment parallel to the axis lies outside.
+vec2 voxelSlab(float from, float d, float size) {
+    if (d == 0.0) return (from < 0.0 || from > size) ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
+    const float s0 = -from / d, s1 = (size - from) / d;
+    return vec2(min(s0, s1), max(s0, s1));
+}
+
+// Clips the segment to the grid and quantizes it. NaN, Inf, beyond the accepted range or no
+// overlap with the grid: invalid. (Per-axis work is spelled out, not looped with a variable
+// index: see voxelTraceExact.)
 VoxelSegment voxelSegment(vec3 from, vec3 to) {
     VoxelSegment s = VoxelSegment(false, ivec3(0), ivec3(0), 0.0, 1.0);
     if (!voxelAcceptedPoint(from) || !voxelAcceptedPoint(to)) return s;
     const vec3 dims = vec3(voxel.dims.xyz), d = to - from;
-    float ta = 0.0, tb = 1.0;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (from[a] < 0.0 || from[a] > dims[a]) return s;
-            continue;
-        }
-        float s0 = -from[a] / d[a], s1 = (dims[a] - from[a]) / d[a];
-        ta = max(ta, min(s0, s1));
-        tb = min(tb, max(s0, s1));
-    }
+    const vec2 x = voxelSlab(from.x, d.x, dims.x), y = voxelSlab(from.y, d.y, dims.y), z = voxelSlab(from.z, d.z, dims.z);
+    const float ta = max(max(0.0, x.x), max(y.x, z.x)), tb = min(min(1.0, x.y), min(y.y, z.y));
     if (ta > tb) return s;
     const ivec3 limit = voxel.dims.xyz * kVoxelFixedOne;
     s.p0 = clamp(ivec3(round((from + ta * d) * float(kVoxelFixedOne))), ivec3(0), limit);
@@ -101,56 +109,76 @@ ivec3 voxelStartCells(VoxelSegment s) {
     return ivec3(voxelStartCell(s.p0.x, s.delta.x), voxelStartCell(s.p0.y, s.delta.y), voxelStartCell(s.p0.z, s.delta.z));
 }
 
-// Time n/den (den > 0) at which axis a leaves the level-`level` cell with index `cell`.
-void voxelCrossing(VoxelSegment s, int a, int cell, int level, out int n, out int den) {
-    const int boundary = ((cell + (s.delta[a] > 0 ? 1 : 0)) << level) << VOXEL_FIXED_SHIFT;
-    n = s.delta[a] > 0 ? boundary - s.p0[a] : s.p0[a] - boundary;
-    den = abs(s.delta[a]);
+// Time n/den (den > 0) at which an axis with start p and extent delta (fixed point) leaves
+// the level-`level` cell with index `cell`.
+void voxelCrossing(int p, int delta, int cell, int level, out int n, out int den) {
+    const int boundary = ((cell + (delta > 0 ? 1 : 0)) << level) << VOXEL_FIXED_SHIFT;
+    n = delta > 0 ? boundary - p : p - boundary;
+    den = abs(delta);
 }
 
 bool voxelTimeLess(int n1, int d1, int n2, int d2) { return i64Less(i64Mul(n1, d2), i64Mul(n2, d1)); }
 bool voxelTimeEqual(int n1, int d1, int n2, int d2) { return i64Equal(i64Mul(n1, d2), i64Mul(n2, d1)); }
 
+// Takes axis `axis` (its bit) into the earliest crossing found so far.
+void voxelConsiderAxis(int p, int delta, int cell, int level, int axis, inout bool found, inout int bn, inout int bd,
+                       inout int axes) {
+    if (delta == 0) return;
+    int n, d;
+    voxelCrossing(p, delta, cell, level, n, d);
+    if (!found || voxelTimeLess(n, d, bn, bd)) {
+        bn = n;
+        bd = d;
+        axes = axis;
+        found = true;
+    } else if (voxelTimeEqual(n, d, bn, bd)) {
+        axes |= axis;
+    }
+}
+
 // The earliest exit of the level-`level` cell `cells`: its time and the axes that exit then.
-// Returns false when the segment ends first (t > 1).
+// Returns false when the segment ends first (t > 1). The axes are spelled out rather than
+// looped over with a variable vector index: Mesa 22.3's llvmpipe gave nondeterministic
+// results for such indexing inside the integrators' per-ray loops.
 bool voxelNextCrossing(VoxelSegment s, ivec3 cells, int level, out int bn, out int bd, out bvec3 axes) {
-    bool any = false;
+    bool found = false;
     bn = 0;
     bd = 1;
-    axes = bvec3(false);
-    for (int a = 0; a < 3; ++a) {
-        if (s.delta[a] == 0) continue;
-        int n, d;
-        voxelCrossing(s, a, cells[a], level, n, d);
-        if (!any || voxelTimeLess(n, d, bn, bd)) {
-            bn = n;
-            bd = d;
-            axes = bvec3(false);
-            axes[a] = true;
-            any = true;
-        } else if (voxelTimeEqual(n, d, bn, bd)) {
-            axes[a] = true;
-        }
-    }
-    return any && bn <= bd;
+    int mask = 0;
+    voxelConsiderAxis(s.p0.x, s.delta.x, cells.x, level, 1, found, bn, bd, mask);
+    voxelConsiderAxis(s.p0.y, s.delta.y, cells.y, level, 2, found, bn, bd, mask);
+    voxelConsiderAxis(s.p0.z, s.delta.z, cells.z, level, 4, found, bn, bd, mask);
+    axes = bvec3((mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0);
+    return found && bn <= bd;
 }
 
 // The level-0 index along an axis at time n/den, exactly: the largest q with
 // q * 2^S * den <= p0 * den + n * delta (moving +, or not moving), or < (moving -).
+// Whether the point x / den (fixed point, scaled by den) is in voxel q or above it, with a
+// point on a face belonging to the voxel the segment moves into.
+bool voxelAtOrAbove(I64 x, int q, int delta, int den) {
+    const I64 face = i64Mul(q << VOXEL_FIXED_SHIFT, den);
+    return delta > 0 ? i64LessEqual(face, x) : i64Less(face, x);
+}
+
 int voxelCellAt(int p0, int delta, int n, int den) {
     const I64 x = i64Add(i64Mul(p0, den), i64Mul(n, delta));
     int q = int(floor((float(p0) + float(n) / float(den) * float(delta)) / float(kVoxelFixedOne)));
-    for (int i = 0; i < 4; ++i) { // the float estimate is off by at most one
-        const I64 next = i64Mul((q + 1) << VOXEL_FIXED_SHIFT, den);
-        if (delta > 0 ? i64LessEqual(next, x) : i64Less(next, x)) ++q;
-        else break;
-    }
-    for (int i = 0; i < 4; ++i) {
-        const I64 here = i64Mul(q << VOXEL_FIXED_SHIFT, den);
-        if (delta > 0 ? i64Less(x, here) : i64LessEqual(x, here)) --q;
-        else break;
-    }
+    // The float estimate is off by at most one; two corrections each way, unrolled (loops
+    // with a break here were miscompiled by llvmpipe inside the integrators' ray loops).
+    q += voxelAtOrAbove(x, q + 1, delta, den) ? 1 : 0;
+    q += voxelAtOrAbove(x, q + 1, delta, den) ? 1 : 0;
+    q -= voxelAtOrAbove(x, q, delta, den) ? 0 : 1;
+    q -= voxelAtOrAbove(x, q, delta, den) ? 0 : 1;
     return q;
+}
+
+// The level-0 index along one axis after a crossing at time bn/bd: the first voxel of the
+// next cell on a crossing axis, the exact index at that time on a moving one, unchanged on
+// a still one.
+int voxelCellAfter(bool crossed, int p, int delta, int cell, int level, int bn, int bd, int current) {
+    if (crossed) return delta > 0 ? (cell + 1) << level : (cell << level) - 1;
+    return delta != 0 ? voxelCellAt(p, delta, bn, bd) : current;
 }
 
 VoxelHit voxelMiss() { return VoxelHit(false, 1.0, ivec3(-1), 0u); }
@@ -158,25 +186,28 @@ VoxelHit voxelMiss() { return VoxelHit(false, 1.0, ivec3(-1), 0u); }
 float voxelHitParameter(VoxelSegment s, int tn, int td) { return s.t0 + float(tn) / float(td) * (s.t1 - s.t0); }
 
 // (b) Every level-0 voxel along the segment, in order.
+// The traversals leave their loops with `break` and return once, at the end: returning
+// from inside a loop of a function that is itself called in a loop (as the integrators do,
+// once per ray) was miscompiled by Mesa 22.3's llvmpipe into nondeterministic results.
 VoxelHit voxelTraceExact(vec3 from, vec3 to) {
     VoxelHit r = voxelMiss();
     const VoxelSegment s = voxelSegment(from, to);
-    if (!s.valid) return r;
     ivec3 c = voxelStartCells(s);
     int tn = 0, td = 1;
     const ivec3 dims = voxelDims(0);
-    for (int step = 0; step < dims.x + dims.y + dims.z + 3; ++step) {
-        if (!voxelInside(c, 0)) return r;
+    const int maxSteps = s.valid ? dims.x + dims.y + dims.z + 3 : 0;
+    for (int step = 0; step < maxSteps; ++step) {
+        if (!voxelInside(c, 0)) break;
         ++r.fetches;
         if (voxelOccupied(c)) {
             r.hit = true;
             r.voxel = c;
             r.t = voxelHitParameter(s, tn, td);
-            return r;
+            break;
         }
         int bn, bd;
         bvec3 axes;
-        if (!voxelNextCrossing(s, c, 0, bn, bd, axes)) return r;
+        if (!voxelNextCrossing(s, c, 0, bn, bd, axes)) break;
         c += ivec3(axes) * sign(s.delta);
         tn = bn;
         td = bd;
@@ -189,36 +220,36 @@ VoxelHit voxelTraceExact(vec3 from, vec3 to) {
 VoxelHit voxelTraceHierarchical(vec3 from, vec3 to) {
     VoxelHit r = voxelMiss();
     const VoxelSegment s = voxelSegment(from, to);
-    if (!s.valid) return r;
     ivec3 c = voxelStartCells(s);
     int tn = 0, td = 1;
     const int top = voxel.dims.w;
     int level = top;
     const ivec3 dims = voxelDims(0);
-    for (int step = 0; step < 2 * (top + 2) * (dims.x + dims.y + dims.z + 3); ++step) {
+    const int maxSteps = s.valid ? 2 * (top + 2) * (dims.x + dims.y + dims.z + 3) : 0;
+    for (int step = 0; step < maxSteps; ++step) {
         const ivec3 cell = c >> level;
-        if (!voxelInside(cell, level)) return r;
+        if (!voxelInside(cell, level)) break;
         ++r.fetches;
-        if (voxelOccupiedAt(level, cell)) {
-            if (level == 0) {
-                r.hit = true;
-                r.voxel = c;
-                r.t = voxelHitParameter(s, tn, td);
-                return r;
-            }
-            --level;
-            continue;
+        const bool occupied = voxelOccupiedAt(level, cell);
+        if (occupied && level == 0) {
+            r.hit = true;
+            r.voxel = c;
+            r.t = voxelHitParameter(s, tn, td);
+            break;
         }
-        int bn, bd;
-        bvec3 axes;
-        if (!voxelNextCrossing(s, cell, level, bn, bd, axes)) return r;
-        for (int a = 0; a < 3; ++a) {
-            if (axes[a]) c[a] = s.delta[a] > 0 ? (cell[a] + 1) << level : (cell[a] << level) - 1;
-            else if (s.delta[a] != 0) c[a] = voxelCellAt(s.p0[a], s.delta[a], bn, bd);
+        if (occupied) {
+            --level; // descend into the occupied cell
+        } else {
+            int bn, bd;
+            bvec3 axes;
+            if (!voxelNextCrossing(s, cell, level, bn, bd, axes)) break;
+            c = ivec3(voxelCellAfter(axes.x, s.p0.x, s.delta.x, cell.x, level, bn, bd, c.x),
+                      voxelCellAfter(axes.y, s.p0.y, s.delta.y, cell.y, level, bn, bd, c.y),
+                      voxelCellAfter(axes.z, s.p0.z, s.delta.z, cell.z, level, bn, bd, c.z));
+            tn = bn;
+            td = bd;
+            level = min(level + 1, top);
         }
-        tn = bn;
-        td = bd;
-        level = min(level + 1, top);
     }
     return r;
 }

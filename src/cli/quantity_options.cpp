@@ -29,6 +29,7 @@ struct IntegratorSpec {
 
 const std::map<std::string, IntegratorSpec>& specs() {
     using namespace reference;
+    using AmbientOcclusion = reference::AmbientOcclusion; // not obscura::AmbientOcclusion, the module
     static const std::map<std::string, IntegratorSpec> s = {
         {"ao",
          {AmbientOcclusion{},

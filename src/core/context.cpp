@@ -1,7 +1,9 @@
 #include "obscura/context.hpp"
 
 #include "core/context_impl.hpp"
+#include "core/sampling.hpp"
 #include "core/shader_library.hpp"
+#include "shaders/common/common_bindings.h"
 
 #include <algorithm>
 #include <cctype>
@@ -134,6 +136,23 @@ GLuint ContextImpl::nearestClampSampler() {
 GLuint ContextImpl::linearClampSampler() {
     if (!linearClamp) linearClamp = createSampler(*this, GL_LINEAR, GL_CLAMP_TO_EDGE, "obscura.linear_clamp");
     return linearClamp.get();
+}
+
+void ContextImpl::bindNoiseTexture() {
+    if (!noise) {
+        std::vector<glm::vec2> texels;
+        for (int y = 0; y < OBSCURA_NOISE_SIZE; ++y)
+            for (int x = 0; x < OBSCURA_NOISE_SIZE; ++x) texels.push_back(noiseTexel(x, y));
+        GLuint t = 0;
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
+        ++liveObjects;
+        noise = Texture(*this, t);
+        gl.ObjectLabel(GL_TEXTURE, t, -1, "obscura.noise");
+        gl.TextureStorage2D(t, 1, GL_RG32F, OBSCURA_NOISE_SIZE, OBSCURA_NOISE_SIZE);
+        gl.TextureSubImage2D(t, 0, 0, 0, OBSCURA_NOISE_SIZE, OBSCURA_NOISE_SIZE, GL_RG, GL_FLOAT, texels.data());
+    }
+    state.bindTexture(*this, OBSCURA_NOISE_TEXTURE_UNIT, noise.get());
+    state.bindSampler(*this, OBSCURA_NOISE_TEXTURE_UNIT, nearestClampSampler());
 }
 
 } // namespace detail

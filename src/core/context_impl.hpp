@@ -24,10 +24,13 @@ struct ContextImpl {
     VertexArray emptyVao;   //!< for attribute-less full-screen draws
     Sampler nearestClamp;
     Sampler linearClamp;
+    Texture noise;          //!< the tiled random texture of shaders/common/sampling.glsl
 
     GLuint emptyVertexArray();
     GLuint nearestClampSampler();
     GLuint linearClampSampler();
+    //! Binds the tiled random texture at OBSCURA_NOISE_TEXTURE_UNIT (created on first use).
+    void bindNoiseTexture();
 
     explicit ContextImpl(const ContextDesc& d);
     ~ContextImpl();

@@ -303,7 +303,7 @@ TEST_CASE("Quadtree and octree mipmaps are the OR-reductions of level 0", "[voxe
     }
 }
 
-TEST_CASE("Voxelization is robust to flat scenes, far offsets and tiny or invalid input", "[voxel][stability]") {
+TEST_CASE("Voxelization is robust to flat scenes and far offsets and tiny or invalid input", "[voxel][stability]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
     Voxelizer voxelizer(ctx);
@@ -383,7 +383,7 @@ TEST_CASE("Voxelization is robust to flat scenes, far offsets and tiny or invali
     }
 }
 
-TEST_CASE("Static scenes are voxelized once, dynamic ones on every call", "[voxel]") {
+TEST_CASE("Static scenes are voxelized once and dynamic ones on every call", "[voxel]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
     Voxelizer voxelizer(ctx);

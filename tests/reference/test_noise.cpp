@@ -15,7 +15,7 @@ struct CornellAo {
     assets::LoadedScene cornell = assets::builtinScene("cornell");
     RayScene scene{cornell.scene};
     ShadingPoints points = fromCamera(scene, assets::makeCamera(cornell.camera, 32, 32), 32, 32);
-    Quantity ao = AmbientOcclusion{150.0, true};
+    Quantity ao = reference::AmbientOcclusion{150.0, true};
 };
 } // namespace
 
@@ -84,7 +84,7 @@ TEST_CASE("References are deterministic whatever the thread count and are cached
     CHECK(cached.halfB.pixels == first.halfB.pixels);
     CHECK(cached.noiseMse == first.noiseMse);
     // Another quantity is another entry.
-    renderCached(dir, c.scene, c.points, AmbientOcclusion{100.0, true}, settings);
+    renderCached(dir, c.scene, c.points, reference::AmbientOcclusion{100.0, true}, settings);
     files = 0;
     for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
     CHECK(files == 4);

@@ -22,7 +22,7 @@ TEST_CASE("AO of an unoccluded plane is 1", "[reference][ao]") {
     for (bool cosine : {true, false}) {
         RenderSettings settings;
         settings.samplesPerPixel = 64;
-        const Reference r = render(builtin, camera, AmbientOcclusion{kInfinity, cosine}, settings);
+        const Reference r = render(builtin, camera, reference::AmbientOcclusion{kInfinity, cosine}, settings);
         int surfaces = 0;
         for (std::size_t i = 0; i < camera.points.size(); ++i) {
             if (!camera.points[i].surface()) continue;
@@ -30,7 +30,7 @@ TEST_CASE("AO of an unoccluded plane is 1", "[reference][ao]") {
             CHECK(std::abs(r.value.pixels[i] - 1.0) < 1e-3);
         }
         CHECK(surfaces > 100);
-        const Reference hand = render(scene, test::pointsAt(pointsNearCentre(), {0, 1, 0}), AmbientOcclusion{}, settings);
+        const Reference hand = render(scene, test::pointsAt(pointsNearCentre(), {0, 1, 0}), reference::AmbientOcclusion{}, settings);
         for (float v : hand.value.pixels) CHECK(std::abs(v - 1.0) < 1e-3);
     }
 }
@@ -46,7 +46,7 @@ TEST_CASE("AO under a coaxial disc is one minus the view factor and 1 with a sho
     // Cosine-weighted: 1 - F with the view factor from a differential area at distance r
     // from the axis to a parallel disc, F = (1 - (h^2 + r^2 - a^2) / sqrt((h^2 + r^2 + a^2)^2
     // - 4 r^2 a^2)) / 2, which on the axis is a^2 / (h^2 + a^2).
-    const Reference cosine = render(scene, points, AmbientOcclusion{kInfinity, true}, settings);
+    const Reference cosine = render(scene, points, reference::AmbientOcclusion{kInfinity, true}, settings);
     for (std::size_t i = 0; i < at.size(); ++i) {
         const double r2 = at[i].x * at[i].x + at[i].z * at[i].z;
         const double f = 0.5 * (1 - (h * h + r2 - a * a) / std::sqrt(std::pow(h * h + r2 + a * a, 2) - 4 * r2 * a * a));
@@ -59,16 +59,16 @@ TEST_CASE("AO under a coaxial disc is one minus the view factor and 1 with a sho
     // from the estimator's actual spread (tighter than the Bernoulli bound above).
     const std::vector<glm::dvec3> axis(32, glm::dvec3(0.0));
     settings.samplesPerPixel = 1024;
-    const Reference onAxis = render(scene, test::pointsAt(axis, {0, 1, 0}), AmbientOcclusion{kInfinity, true}, settings);
+    const Reference onAxis = render(scene, test::pointsAt(axis, {0, 1, 0}), reference::AmbientOcclusion{kInfinity, true}, settings);
     const test::Stats st = test::stats(onAxis.value, 0);
     CHECK(std::abs(st.mean - h * h / (h * h + a * a)) < 4 * st.stddev / std::sqrt(double(st.n)) + 1e-9);
     // Uniform-weighted, on the axis: 1 - (1 - cos alpha) = cos alpha, alpha the disc's half-angle.
-    const Reference uniform = render(scene, test::pointsAt(axis, {0, 1, 0}), AmbientOcclusion{kInfinity, false}, settings);
+    const Reference uniform = render(scene, test::pointsAt(axis, {0, 1, 0}), reference::AmbientOcclusion{kInfinity, false}, settings);
     const test::Stats su = test::stats(uniform.value, 0);
     CHECK(std::abs(su.mean - h / std::sqrt(h * h + a * a)) < 4 * su.stddev / std::sqrt(double(su.n)) + 1e-9);
     // With a radius below the disc's height nothing is within reach.
     settings.samplesPerPixel = 256;
-    const Reference limited = render(scene, points, AmbientOcclusion{0.99 * h, true}, settings);
+    const Reference limited = render(scene, points, reference::AmbientOcclusion{0.99 * h, true}, settings);
     for (float v : limited.value.pixels) CHECK(v == 1.0f);
 }
 

@@ -1,0 +1,100 @@
+#pragma once
+// Ambient occlusion and obscurance from a G-buffer, in screen space or in voxel space.
+//
+// Every method estimates the same quantities as obscura::reference (AmbientOcclusion,
+// Obscurance, BentNormal) with the geometric normal of the G-buffer:
+//   AO_r(x) = (1/pi) Integral V_r(x, w) (n.w) dw    (cosine-weighted; or (1/2pi) Integral V_r dw)
+//   W(x)    = (1/pi) Integral rho(d(x, w) / r) (n.w) dw   (obscurance, `falloff` != None)
+// V_r(x, w) = 1 when nothing is hit within the radius r. Directions are Hammersley points
+// mapped to the hemisphere (cosine or uniform, so the estimate is the plain mean of V or rho),
+// rotated per pixel by a tiled random texture (shaders/common/sampling.glsl).
+//
+// What the screen-space methods cannot see, they count as unoccluded: geometry outside the
+// image (the border policy), behind the depth buffer's front layer beyond `thickness`, and
+// depth samples more than a radius in front of the ray (objects "extending to infinity"
+// behind their front face are cut off at `thickness`).
+//
+// Output: `ao` holds AO_r or W in [0, 1] (1 = open) at the G-buffer's resolution, GL_R16F
+// (11-bit mantissa: values are rounded by at most 2^-12); background pixels are 1.
+// `bentNormal` (when asked for) holds the view-space bent normal, GL_RGBA16F, alpha 1 on
+// geometry.
+#include "obscura/export.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/texture.hpp"
+#include "obscura/voxelizer.hpp"
+
+#include <cstddef>
+#include <memory>
+
+namespace obscura {
+
+class Context;
+
+//! Distance weighting rho of obscurance, of t = d / radius in [0, 1): None: 0 (plain AO);
+//! Linear: t; Quadratic: t^2; Smooth: 3t^2 - 2t^3. No hit within the radius: 1.
+enum class ObscuranceFalloff { None, Linear, Quadratic, Smooth };
+
+enum class AoMethod {
+    RayMarch, //!< "ao.raymarch": `rays` directions, `steps` depth-buffer tests along each
+    Points,   //!< "ao.points": Crytek-style: `rays` points in the hemisphere ball of radius r;
+              //!< the share not behind the depth buffer (a volume estimate, not AO_r)
+    Horizon,  //!< "ao.horizon": per screen slice, the horizon angles found with `steps` samples
+              //!< on each side and the cosine-weighted integral above them (GTAO-style; exact
+              //!< for height fields); `rays` / 2 slices; cosine weighting only
+    Voxel,    //!< "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance)
+};
+
+enum class AoResolution { Full = 1, Half = 2, Quarter = 4 }; //!< of the G-buffer, per axis
+
+// Setting keys for tools (`--set`) are the field names in snake case (blurRadius: blur_radius).
+struct AmbientOcclusionSettings {
+    AoMethod method = AoMethod::RayMarch;
+    float radius = 1.0f;        //!< world units, (0, inf): the reach r of V_r and obscurance's distance scale
+    int rays = 16;              //!< directions (points for Points) per pixel, [1, 1024]; Horizon: [2, 1024], even
+    int steps = 8;              //!< depth samples per ray (RayMarch) or per side (Horizon), [1, 256]
+    bool cosineWeighted = true; //!< cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only
+    ObscuranceFalloff falloff = ObscuranceFalloff::None;
+    //! Screen space: how far behind a depth sample, in world units, a point still counts as
+    //! inside the object, (0, inf); 0 = the radius. Larger closes gaps behind thin objects,
+    //! smaller lets rays pass behind them.
+    float thickness = 0.0f;
+    AoResolution resolution = AoResolution::Full;
+    //! Geometry-aware separable blur at the AO resolution: taps each side, [0, 16] (0 = off).
+    int blurRadius = 0;
+    //! Blur and upsampling: relative view-depth difference weighted e^-1/2, (0, 1].
+    float blurDepthSigma = 0.05f;
+    //! Blur and upsampling: normal weight max(0, n.n')^power, [0, 256].
+    float blurNormalPower = 16.0f;
+    bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
+    //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
+    //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.
+    const VoxelGrid* voxels = nullptr;
+    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Voxel; March takes `steps` samples
+};
+
+struct AmbientOcclusionView {
+    TextureView ao;         //!< GL_R16F, the G-buffer's size
+    TextureView bentNormal; //!< GL_RGBA16F, view space; empty unless settings.bentNormals
+    int width = 0, height = 0;
+};
+
+class OBSCURA_API AmbientOcclusion {
+public:
+    explicit AmbientOcclusion(Context& context);
+    ~AmbientOcclusion();
+    AmbientOcclusion(const AmbientOcclusion&) = delete;
+    AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
+
+    //! Passes "ao.<method>", then "ao.blur" and "ao.upsample" when used. Throws
+    //! Error{InvalidArgument} for settings out of range, a G-buffer without depth or normal,
+    //! or the Voxel method without a grid. The view stays valid until the next run.
+    AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
+
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

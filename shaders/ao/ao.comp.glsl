@@ -1,0 +1,184 @@
+// Ambient occlusion / obscurance at the AO resolution: one invocation per AO pixel, at the
+// top-left G-buffer pixel of its block. Also writes the guide (view normal, view z) that
+// the blur and the upsampling weigh with.
+//! variant: METHOD=0
+//! variant: METHOD=1
+//! variant: METHOD=2
+//! variant: METHOD=3 TRAVERSAL=0
+//! variant: METHOD=3 TRAVERSAL=1
+//! variant: METHOD=3 TRAVERSAL=2
+#include "../common/sampling.glsl"
+#include "../visibility/screen_march.glsl"
+#include "ao_common.glsl"
+#if METHOD == AO_METHOD_VOXEL
+#include "../voxel/voxel_traversal.glsl"
+#endif
+
+layout(local_size_x = AO_WORKGROUP, local_size_y = AO_WORKGROUP) in;
+layout(binding = AO_OUT_IMAGE, r16f) writeonly uniform image2D aoOut;
+layout(binding = AO_BENT_OUT_IMAGE, rgba16f) writeonly uniform image2D bentOut;
+layout(binding = AO_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
+
+struct Estimate {
+    float sum;  // of V or rho over the samples
+    vec3 bent;  // sum of the unoccluded directions (cosine-weighted)
+    float count;
+};
+
+// The pixel's offset along the rays (and of the slices), independent of its rotation.
+float pixelJitter(ivec2 pixel) { return pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x; }
+
+// Direction i of n about the normal, in the weighting the settings ask for.
+vec3 aoDirection(uint i, uint n, vec2 rotation, vec3 normal) {
+    const vec2 u = rotateSample(hammersley(i, n), rotation);
+    return toFrame(aoCosine() ? cosineHemisphere(u) : uniformHemisphere(u), normal);
+}
+
+// Adds one ray's result: V (or rho at the hit), and to the bent normal the direction when
+// open (weighted by the cosine when the directions are uniform, so both estimate the
+// cosine-weighted mean).
+void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
+    const bool hit = hitDistance >= 0.0;
+    e.sum += hit ? aoHitValue(hitDistance) : 1.0;
+    if (!hit) e.bent += aoCosine() ? w : w * max(dot(w, normal), 0.0);
+    e.count += 1.0;
+}
+
+#if METHOD == AO_METHOD_RAYMARCH
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+    Estimate e = Estimate(0.0, vec3(0.0), 0.0);
+    const vec2 rotation = pixelRotation(pixel);
+    const float jitter = pixelJitter(pixel);
+    const uint n = uint(ao.counts.x);
+    for (uint i = 0u; i < n; ++i) {
+        const vec3 w = aoDirection(i, n, rotation, normal);
+        aoAdd(e, w, normal, screenMarch(p, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
+    }
+    return e;
+}
+#elif METHOD == AO_METHOD_POINTS
+// Crytek-style: points uniform in the ball of radius r cut to the normal's hemisphere (the
+// distance from p as r u^(1/3)); a hidden point counts as occluded at its distance.
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+    Estimate e = Estimate(0.0, vec3(0.0), 0.0);
+    const vec2 rotation = pixelRotation(pixel);
+    const float jitter = pixelJitter(pixel);
+    const uint n = uint(ao.counts.x);
+    for (uint i = 0u; i < n; ++i) {
+        const vec3 w = aoDirection(i, n, rotation, normal);
+        const float u = fract(radicalInverse2(i * 0x9E3779B9u) + jitter);
+        const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
+        aoAdd(e, w, normal, screenHidden(p + w * d, ao.shape.y) ? d : -1.0);
+    }
+    return e;
+}
+#elif METHOD == AO_METHOD_HORIZON
+// The cosine-weighted visible arc of one slice, between horizon angles h1 <= h2 measured
+// from the view direction, for a normal at angle g in the slice plane (GTAO's inner integral).
+float aoArc(float h1, float h2, float g) {
+    return 0.25 * (-cos(2.0 * h1 - g) + cos(g) + 2.0 * h1 * sin(g)) +
+           0.25 * (-cos(2.0 * h2 - g) + cos(g) + 2.0 * h2 * sin(g));
+}
+
+// Slices through the view direction at angles phi; on each side `steps` depth samples out
+// to the radius projected at p find the highest point within the radius above p's tangent
+// plane. The result is normalized by the same sum for an open hemisphere, so a plane with
+// nothing above it is exactly 1 for any number of slices.
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+    Estimate e = Estimate(0.0, vec3(0.0), 0.0);
+    const vec2 rotation = pixelRotation(pixel);
+    const float jitter = pixelJitter(pixel);
+    const vec3 v = viewDirectionTo(p);
+    const int slices = max(ao.counts.x / 2, 1);
+    // Pixels per world unit at p (perspective: the projection's y scale over the distance).
+    const float pixelsPerUnit = 0.5 * float(frameSize().y) * frame.projection[1][1] /
+                                (isPerspective() ? max(-p.z, 1e-30) : 1.0);
+    const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
+    const ivec2 fullPixel = pixel * aoScale();
+    float visible = 0.0, open = 0.0;
+    for (int s = 0; s < slices; ++s) {
+        const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
+        const vec2 dir = vec2(cos(phi), sin(phi));
+        // The slice plane holds v and the screen direction; `axis` is its normal, and
+        // cross(v, axis) points from v toward +dir: angles are positive that way.
+        const vec3 axis = safeNormalize(cross(vec3(dir, 0.0), v), vec3(0.0, 0.0, 1.0));
+        const vec3 projected = normal - axis * dot(normal, axis);
+        const float weight = length(projected);
+        if (!(weight > 0.0)) continue;
+        const vec3 np = projected / weight;
+        const float g = sign(dot(np, cross(v, axis))) * acos(clamp(dot(np, v), -1.0, 1.0));
+        float h[2];
+        for (int side = 0; side < 2; ++side) {
+            const float sgn = side == 0 ? -1.0 : 1.0;
+            float best = -1.0; // cosine of the horizon angle from v; -1: none found
+            for (int j = 0; j < ao.counts.y; ++j) {
+                const float offset = reach * (float(j) + jitter) / float(ao.counts.y);
+                const ivec2 q = fullPixel + ivec2(round(sgn * dir * max(offset, 1.0)));
+                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frameSize()))) break; // border: open
+                const float depth = texelFetch(visDepth, q, 0).r;
+                if (isBackground(depth)) continue;
+                const vec3 d = viewPositionFromDepth(pixelCenterUv(q), depth) - p;
+                const float len = length(d);
+                // Within the radius and above p's tangent plane (beyond float rounding).
+                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= kScreenPlaneTolerance * length(p) * 4.0) continue;
+                best = max(best, dot(d / len, v));
+            }
+            // Angle from v toward the side; limited by the hemisphere of the normal.
+            const float limit = g + sgn * 0.5 * OBSCURA_PI;
+            const float found = sgn * acos(clamp(best, -1.0, 1.0));
+            h[side] = side == 0 ? max(found, limit) : min(found, limit);
+        }
+        visible += weight * aoArc(h[0], h[1], g);
+        open += weight * aoArc(g - 0.5 * OBSCURA_PI, g + 0.5 * OBSCURA_PI, g);
+    }
+    e.sum = open > 0.0 ? visible / open : 1.0;
+    e.count = 1.0;
+    e.bent = normal; // the horizon method gives no bent normal of its own
+    return e;
+}
+#else
+// Rays of length r through the voxel grid from a start lifted off the surface's voxels.
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+    Estimate e = Estimate(0.0, vec3(0.0), 0.0);
+    const vec2 rotation = pixelRotation(pixel);
+    const float jitter = pixelJitter(pixel);
+    const vec3 start = p + normal * ao.shape.z;
+    const vec3 startVoxel = (ao.viewToVoxel * vec4(start, 1.0)).xyz;
+    const uint n = uint(ao.counts.x);
+    for (uint i = 0u; i < n; ++i) {
+        const vec3 w = aoDirection(i, n, rotation, normal);
+        const vec3 endVoxel = (ao.viewToVoxel * vec4(start + w * ao.shape.x, 1.0)).xyz;
+        // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
+#if TRAVERSAL == VOXEL_METHOD_MARCH
+        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, ao.counts.y, jitter);
+#elif TRAVERSAL == VOXEL_METHOD_EXACT
+        const VoxelHit hit = voxelTraceExact(startVoxel, endVoxel);
+#else
+        const VoxelHit hit = voxelTraceHierarchical(startVoxel, endVoxel);
+#endif
+        aoAdd(e, w, normal, hit.hit ? hit.t * ao.shape.x : -1.0);
+    }
+    return e;
+}
+#endif
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, aoSize()))) return;
+    const ivec2 full = min(pixel * aoScale(), frameSize() - 1);
+    const float depth = texelFetch(visDepth, full, 0).r;
+    const vec4 normalTexel = texelFetch(visNormal, full, 0);
+    if (isBackground(depth) || normalTexel.a == 0.0) {
+        imageStore(aoOut, pixel, vec4(1.0));
+        if (aoBent()) imageStore(bentOut, pixel, vec4(0.0));
+        imageStore(guideOut, pixel, vec4(0.0));
+        return;
+    }
+    const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
+    const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+    const Estimate e = aoEstimate(p, normal, pixel);
+    const float value = e.count > 0.0 ? clamp(e.sum / e.count, 0.0, 1.0) : 1.0;
+    imageStore(aoOut, pixel, vec4(value));
+    if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));
+    imageStore(guideOut, pixel, vec4(normal, p.z));
+}

@@ -1,0 +1,26 @@
+// The AO parameter block and what every AO pass shares.
+#include "ao_bindings.h"
+
+layout(std140, binding = AO_PARAMS_UBO_BINDING) uniform AoBlock {
+    AoParams ao;
+};
+
+bool aoCosine() { return (ao.counts.z & AO_FLAG_COSINE) != 0; }
+bool aoBent() { return (ao.counts.z & AO_FLAG_BENT) != 0; }
+ivec2 aoSize() { return ao.sizes.xy; }
+int aoScale() { return ao.sizes.z; }
+
+// The normal weight of the blur and the upsampling: max(0, dot)^power, and 1 for power 0
+// (pow(0, 0) is undefined in GLSL).
+float aoNormalWeight(vec3 a, vec3 b) { return ao.blur.y > 0.0 ? pow(max(dot(a, b), 0.0), ao.blur.y) : 1.0; }
+
+// Obscurance's rho(d / r) for a hit at distance d (see ObscuranceFalloff); AO: 0.
+float aoHitValue(float d) {
+    const float t = clamp(d / ao.shape.x, 0.0, 1.0);
+    switch (ao.counts.w) {
+    case AO_FALLOFF_LINEAR: return t;
+    case AO_FALLOFF_QUADRATIC: return t * t;
+    case AO_FALLOFF_SMOOTH: return t * t * (3.0 - 2.0 * t);
+    default: return 0.0;
+    }
+}

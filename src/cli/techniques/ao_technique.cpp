@@ -1,0 +1,196 @@
+// "ao.raymarch", "ao.points", "ao.horizon", "ao.voxel" and "obscurance.raymarch": the
+// AmbientOcclusion module on the G-buffer of the scene (and, for ao.voxel, its voxel grid).
+#include "obscura/ambient_occlusion.hpp"
+#include "obscura/error.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/voxelizer.hpp"
+#include "technique_registry.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace obscura::cli {
+namespace {
+
+const std::vector<SettingInfo> kSettings = {
+    {"radius", "world units", "(0, inf)", "reach of V_r (default: a tenth of the scene's bounding-box diagonal)"},
+    {"rays", "", "[1, 1024]", "directions (points) per pixel; horizon: 2 per slice"},
+    {"steps", "", "[1, 256]", "depth samples per ray (per side for horizon; voxel march samples)"},
+    {"cosine_weighted", "", "0|1", "cosine (AO_r) or uniform hemisphere weighting"},
+    {"falloff", "", "none|linear|quadratic|smooth", "obscurance distance weighting (none: AO)"},
+    {"thickness", "world units", "[0, inf)", "assumed thickness behind depth samples (0: the radius)"},
+    {"resolution", "", "full|half|quarter", "AO resolution relative to the G-buffer"},
+    {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
+    {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
+    {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
+    {"bent_normals", "", "0|1", "also compute the bent normal (default 1; not for ao.horizon)"},
+    {"voxel_resolution", "voxels", "8..2048, power of two", "ao.voxel: grid columns per axis (128 slices)"},
+    {"voxel_traversal", "", "march|exact|hierarchical", "ao.voxel: visibility query"},
+};
+
+template <typename E>
+E parseEnum(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {
+    const auto it = names.find(value);
+    if (it != names.end()) return it->second;
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
+    throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
+}
+
+class AoRun final : public TechniqueRun {
+public:
+    AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx) {
+        settings_.method = method;
+        settings_.falloff = falloff;
+        // Bent normals are part of the output (and of the bench's error report) by default;
+        // the horizon method does not estimate them.
+        settings_.bentNormals = method != AoMethod::Horizon;
+    }
+
+    void set(const std::string& key, const std::string& value) override {
+        auto& s = settings_;
+        if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
+        else if (key == "rays") s.rays = static_cast<int>(parseNumber(key, value, 1, 1024, ""));
+        else if (key == "steps") s.steps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
+        else if (key == "cosine_weighted") s.cosineWeighted = parseBool(key, value);
+        else if (key == "falloff")
+            s.falloff = parseEnum<ObscuranceFalloff>(key, value, {{"none", ObscuranceFalloff::None},
+                                                                  {"linear", ObscuranceFalloff::Linear},
+                                                                  {"quadratic", ObscuranceFalloff::Quadratic},
+                                                                  {"smooth", ObscuranceFalloff::Smooth}});
+        else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
+        else if (key == "resolution")
+            s.resolution = parseEnum<AoResolution>(key, value, {{"full", AoResolution::Full},
+                                                                {"half", AoResolution::Half},
+                                                                {"quarter", AoResolution::Quarter}});
+        else if (key == "blur_radius") s.blurRadius = static_cast<int>(parseNumber(key, value, 0, 16, "taps"));
+        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
+        else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
+        else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
+        else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
+        else if (key == "voxel_traversal")
+            s.voxelTraversal = parseEnum<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
+                                                                      {"exact", VoxelTraversal::Exact},
+                                                                      {"hierarchical", VoxelTraversal::Hierarchical}});
+        else {
+            std::string keys;
+            for (const auto& k : kSettings) keys += (keys.empty() ? "" : ", ") + k.key;
+            throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + keys + ")");
+        }
+    }
+
+    void run(const FrameSetup& frame) override {
+        const Bounds b = sceneBounds(frame.scene.scene);
+        settings_.radius = static_cast<float>(radius_ ? *radius_ : 0.1 * glm::length(glm::dvec3(b.max - b.min)));
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, false, {}});
+        if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
+        result_ = ao_.run(view_, settings_);
+    }
+
+    std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
+        std::vector<TechniqueOutput> out;
+        for (const std::string& name : names) {
+            TechniqueOutput o;
+            o.name = name;
+            if (name == "ao") {
+                o.image = readTexture(ctx_, result_.ao);
+                o.display = o.image;
+            } else if (name == "bent_normal" && result_.bentNormal) {
+                o.image = rgb(readTexture(ctx_, result_.bentNormal));
+                o.display = o.image;
+                for (float& v : o.display.pixels) v = v * 0.5f + 0.5f;
+            } else {
+                throw Error(ErrorCode::InvalidArgument, "ao has no output \"" + name +
+                                                            "\" (outputs: ao, bent_normal with bent_normals=1)");
+            }
+            o.encoding = assets::PngEncoding::Linear;
+            out.push_back(o);
+        }
+        return out;
+    }
+
+    GBufferSamples samples() override {
+        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+    }
+
+    std::vector<Measurement> measurements() override {
+        std::vector<Measurement> m;
+        const double radius = settings_.radius;
+        if (settings_.falloff == ObscuranceFalloff::None)
+            m.push_back({"ao", readTexture(ctx_, result_.ao), reference::AmbientOcclusion{radius, settings_.cosineWeighted}});
+        else
+            m.push_back({"obscurance", readTexture(ctx_, result_.ao), reference::Obscurance{radius, settings_.falloff}});
+        if (result_.bentNormal) {
+            // View space to world space, as the reference reports it.
+            Image world = rgb(readTexture(ctx_, result_.bentNormal));
+            const glm::mat3 toWorld(glm::inverse(glm::dmat4(view_.camera.view)));
+            for (std::size_t i = 0; i + 2 < world.pixels.size(); i += 3) {
+                const glm::vec3 w = toWorld * glm::vec3(world.pixels[i], world.pixels[i + 1], world.pixels[i + 2]);
+                for (int c = 0; c < 3; ++c) world.pixels[i + static_cast<std::size_t>(c)] = w[c];
+            }
+            m.push_back({"bent_normal", world, reference::BentNormal{radius}});
+        }
+        return m;
+    }
+
+private:
+    static Image rgb(const Image& src) {
+        Image out{src.width, src.height, 3, {}};
+        out.pixels.reserve(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) * 3);
+        for (std::size_t i = 0; i < src.pixels.size(); i += static_cast<std::size_t>(src.channels))
+            for (int c = 0; c < 3; ++c) out.pixels.push_back(src.pixels[i + static_cast<std::size_t>(c)]);
+        return out;
+    }
+
+    Context& ctx_;
+    GBuffer gbuffer_;
+    AmbientOcclusion ao_;
+    Voxelizer voxelizer_;
+    AmbientOcclusionSettings settings_;
+    VoxelizerSettings voxelSettings_;
+    std::optional<double> radius_;
+    GBufferView view_;
+    AmbientOcclusionView result_;
+};
+
+using Settings = std::vector<std::pair<std::string, std::string>>;
+
+// Quality presets shared by the ray-based methods; "medium_half" is "medium" at half
+// resolution with a blur, for the resolution trade-off.
+std::vector<Preset> presets(const Settings& extra = {}) {
+    std::vector<Preset> p = {
+        {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
+        {"medium", {{"rays", "16"}, {"steps", "8"}}},
+        {"medium_half", {{"rays", "16"}, {"steps", "8"}, {"resolution", "half"}, {"blur_radius", "3"}}},
+        {"high", {{"rays", "64"}, {"steps", "16"}}},
+        {"ultra", {{"rays", "256"}, {"steps", "32"}}},
+    };
+    for (auto& preset : p) preset.settings.insert(preset.settings.end(), extra.begin(), extra.end());
+    return p;
+}
+
+TechniqueInfo aoTechnique(const std::string& name, const std::string& description, AoMethod method,
+                          ObscuranceFalloff falloff = ObscuranceFalloff::None) {
+    std::vector<std::string> outputs = {"ao"};
+    if (method != AoMethod::Horizon) outputs.push_back("bent_normal");
+    return {name, description, outputs, kSettings, presets(),
+            [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
+}
+
+const TechniqueRegistrar raymarch(aoTechnique(
+    "ao.raymarch", "Ambient occlusion AO_r: rays x steps through the depth buffer (screen space)", AoMethod::RayMarch));
+const TechniqueRegistrar points(aoTechnique(
+    "ao.points", "Crytek-style point sampling in the normal's hemisphere ball (screen space)", AoMethod::Points));
+const TechniqueRegistrar horizon(aoTechnique(
+    "ao.horizon", "Horizon-based cosine-weighted AO per screen slice (GTAO-style, screen space)", AoMethod::Horizon));
+const TechniqueRegistrar voxel(aoTechnique(
+    "ao.voxel", "Ambient occlusion AO_r: rays through the voxelized scene (voxel space)", AoMethod::Voxel));
+const TechniqueRegistrar obscurance(aoTechnique(
+    "obscurance.raymarch", "Obscurance with the linear falloff (set falloff=...) by ray marching (screen space)",
+    AoMethod::RayMarch, ObscuranceFalloff::Linear));
+
+} // namespace
+} // namespace obscura::cli

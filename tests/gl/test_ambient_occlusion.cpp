@@ -1,0 +1,295 @@
+// Ambient occlusion: closed forms (an open plane, a floor in front of a wall), screen space
+// against voxel space, and stability over sizes, projections and the sky.
+#include "gl_fixture.hpp"
+#include "scene_builders.hpp"
+
+#include "obscura/assets.hpp"
+#include "obscura/obscura.hpp"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+using namespace obscura;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const AoMethod kAllMethods[] = {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel};
+
+const char* nameOf(AoMethod m) {
+    switch (m) {
+    case AoMethod::RayMarch: return "raymarch";
+    case AoMethod::Points: return "points";
+    case AoMethod::Horizon: return "horizon";
+    case AoMethod::Voxel: return "voxel";
+    }
+    return "?";
+}
+
+// The G-buffer, the voxel grid and the AO of one scene and camera.
+struct AoFixture {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Voxelizer voxelizer{ctx};
+    AmbientOcclusion ao{ctx};
+    GBufferView view;
+    Image positions; // view space, alpha = geometry
+
+    void render(const Scene& scene, const Camera& camera, int width, int height) {
+        view = gbuffer.render(scene, camera, {width, height, false, {}});
+        positions = readTexture(ctx, gbuffer.positions(view));
+    }
+
+    Image run(const Scene& scene, AmbientOcclusionSettings s, const VoxelizerSettings& voxels = {}) {
+        if (s.method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(scene, voxels);
+        return readTexture(ctx, ao.run(view, s).ao);
+    }
+
+    bool geometry(int x, int y) const { return positions.at(x, y, 3) > 0.0f; }
+    glm::dvec3 world(int x, int y) const {
+        const glm::dvec4 v(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0);
+        return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
+    }
+};
+
+Scene floorScene(double half = 50.0) {
+    return test::quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
+}
+
+Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode mode = DepthMode::Standard) {
+    return Camera::perspective({eye, target, {0, 1, 0}}, glm::radians(50.0f), float(width) / float(height), 0.05f, 200.0f, mode);
+}
+
+// Cosine-weighted AO_r of a floor point at distance D from an infinite wall: the directions
+// that reach the wall within r are those with horizontal component toward it >= D / r,
+// whose share of the projected unit disc is a circular segment.
+double wallAo(double distance, double radius) {
+    const double c = distance / radius;
+    if (c >= 1.0) return 1.0;
+    return 1.0 - (std::acos(c) - c * std::sqrt(1.0 - c * c)) / kPi;
+}
+
+} // namespace
+
+TEST_CASE("An open plane gives AO = 1 exactly for every method resolution and falloff", "[ao]") {
+    AoFixture f;
+    const Scene scene = floorScene();
+    constexpr int W = 64, H = 48;
+    f.render(scene, lookAt({0, 3, 6}, {0, 0, 0}, W, H), W, H);
+    for (AoMethod method : kAllMethods)
+        for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter})
+            for (ObscuranceFalloff falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Smooth}) {
+                CAPTURE(nameOf(method), static_cast<int>(resolution), static_cast<int>(falloff));
+                AmbientOcclusionSettings s;
+                s.method = method;
+                s.radius = 2.0f;
+                s.rays = 32;
+                s.resolution = resolution;
+                s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
+                s.falloff = falloff;
+                VoxelizerSettings v;
+                v.resolution = 64;
+                const Image ao = f.run(scene, s, v);
+                std::size_t notOne = 0, pixels = 0;
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x) {
+                        if (!f.geometry(x, y)) continue;
+                        ++pixels;
+                        notOne += ao.at(x, y, 0) != 1.0f;
+                    }
+                CHECK(pixels > W * H / 2);
+                CHECK(notOne == 0);
+            }
+}
+
+TEST_CASE("A floor in front of a wall matches the closed form within the sampling error", "[ao]") {
+    AoFixture f;
+    // The wall's plane z = -1 faces the camera; floor points at distance D = z + 1 from it.
+    const Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
+                                         {{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
+    constexpr int W = 96, H = 72;
+    f.render(scene, lookAt({0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, W, H), W, H);
+    constexpr double radius = 1.0;
+    constexpr int rays = 1024, steps = 32;
+    // The voxel grid covers the region around the floor points finely: voxel sides 4/128 m.
+    VoxelizerSettings voxels;
+    voxels.resolution = 128;
+    voxels.fitBox = false;
+    voxels.boxMin = glm::vec3(-2.0f, -0.5f, -1.5f);
+    voxels.boxMax = glm::vec3(2.0f, 3.5f, 2.5f);
+    const double voxelSide = 4.0 / 128.0;
+    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel}) {
+        CAPTURE(nameOf(method));
+        AmbientOcclusionSettings s;
+        s.method = method;
+        s.radius = static_cast<float>(radius);
+        s.rays = rays;
+        s.steps = steps;
+        const Image ao = f.run(scene, s, voxels);
+        double meanError = 0.0;
+        int checked = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (!f.geometry(x, y)) continue;
+                const glm::dvec3 p = f.world(x, y);
+                // Floor points whose whole radius lies inside the grid and whose rays stay on
+                // screen (checked by the margin from the image border).
+                if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
+                const double distance = p.z + 1.0;
+                // Ray marching misses walls hit between its last sample, at least at
+                // r (1 - 1/steps), and r; voxels bring the wall closer by up to a voxel side.
+                double lo = wallAo(distance, radius), hi = lo;
+                if (method == AoMethod::RayMarch) hi = wallAo(distance, radius * (1.0 - 1.0 / steps));
+                else lo = wallAo(std::max(distance - voxelSide, 0.0), radius);
+                // Five standard deviations of the mean of `rays` independent samples (the
+                // rotated Hammersley set is used as if it were random: a conservative bound).
+                const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+                // The stored value is a 16-bit float: rounded by at most 2^-12.
+                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
+                CAPTURE(x, y, distance, value, lo, hi);
+                CHECK(value >= lo - tolerance);
+                CHECK(value <= hi + tolerance);
+                meanError += value - 0.5 * (lo + hi);
+                ++checked;
+            }
+        CHECK(checked > 200);
+        // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
+        // error over the pixels stays within the bias window plus 5 sigma / sqrt(pixels).
+        INFO("mean error " << meanError / checked << " over " << checked << " pixels");
+        CHECK(std::abs(meanError / checked) < 0.5 * (wallAo(0.5, radius * (1.0 - 1.0 / steps)) - wallAo(0.5 - voxelSide, radius)) +
+                                                  5.0 * 0.5 / std::sqrt(double(rays) * checked));
+    }
+}
+
+TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ where something is", "[ao]") {
+    AoFixture f;
+    // A thin ceiling slab at y = 1 over part of the floor, seen exactly edge-on: the depth
+    // buffer never holds it, the voxel grid does.
+    Scene scene = floorScene(10.0);
+    const Scene slab = test::quadScene({{{glm::dvec3(-3, 1, -6), {3, 1, -6}, {3, 1, -2}, {-3, 1, -2}}},
+                                        {{glm::dvec3(-3, 1, -2), {3, 1, -2}, {3, 1, -6}, {-3, 1, -6}}}});
+    for (const Mesh& m : slab.meshes) scene.meshes.push_back(m);
+    constexpr int W = 96, H = 64;
+    f.render(scene, lookAt({0, 1, 4}, {0, 1, -4}, W, H), W, H);
+    VoxelizerSettings voxels;
+    voxels.resolution = 128;
+    voxels.fitBox = false;
+    voxels.boxMin = glm::vec3(-4.0f, -0.5f, -8.0f);
+    voxels.boxMax = glm::vec3(4.0f, 3.5f, 0.0f);
+    AmbientOcclusionSettings s;
+    s.radius = 1.5f;
+    s.rays = 256;
+    s.steps = 32;
+    const Image screen = f.run(scene, s);
+    s.method = AoMethod::Voxel;
+    const Image voxel = f.run(scene, s, voxels);
+    // The voxel rays start lifted by a voxel diagonal (sqrt(3) x 8/128) and the slab's voxels
+    // reach down by up to a voxel (4/128): the ceiling is effectively h in [0.861, 0.892].
+    const double lift = std::sqrt(3.0) * 8.0 / 128.0, hMax = 1.0 - lift, hMin = hMax - 4.0 / 128.0;
+    int open = 0, covered = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (!f.geometry(x, y)) continue;
+            const glm::dvec3 p = f.world(x, y);
+            if (std::abs(p.y) > 1e-3) continue;
+            CAPTURE(x, y, p.x, p.z, screen.at(x, y, 0), voxel.at(x, y, 0));
+            if (p.z > -0.4 && p.z < 0.0 && std::abs(p.x) < 2.0) {
+                // More than the radius from the slab (sqrt(1.6^2 + 1) > 1.5): open in both.
+                ++open;
+                CHECK(screen.at(x, y, 0) == 1.0f);
+                CHECK(voxel.at(x, y, 0) == 1.0f);
+            } else if (p.z > -4.8 && p.z < -3.2 && std::abs(p.x) < 1.8) {
+                // The slab covers every direction that reaches height h within the radius
+                // (horizontal reach r sqrt(1 - (h/r)^2) < 1.2): AO_r = (h / r)^2 for the
+                // cosine-weighted hemisphere. Screen space does not see the slab at all.
+                ++covered;
+                const double lo = std::pow(hMin / 1.5, 2.0), hi = std::pow(hMax / 1.5, 2.0);
+                const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -12);
+                CHECK(screen.at(x, y, 0) == 1.0f);
+                CHECK(voxel.at(x, y, 0) >= lo - tolerance);
+                CHECK(voxel.at(x, y, 0) <= hi + tolerance);
+            }
+        }
+    CHECK(open > 10);
+    CHECK(covered > 10);
+}
+
+TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orthographic views and the sky", "[ao][stability]") {
+    AoFixture f;
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    struct View {
+        int width, height;
+        DepthMode mode;
+        bool infiniteFar, orthographic;
+    };
+    for (const View& v : {View{1, 1, DepthMode::Standard, false, false}, View{37, 23, DepthMode::Standard, false, false},
+                          View{23, 41, DepthMode::Reversed, false, false}, View{40, 30, DepthMode::Reversed, true, false},
+                          View{33, 33, DepthMode::StandardZeroToOne, false, true},
+                          View{30, 20, DepthMode::Reversed, false, true}}) {
+        CAPTURE(v.width, v.height, static_cast<int>(v.mode), v.infiniteFar, v.orthographic);
+        const float aspect = float(v.width) / float(v.height);
+        // Looking out of the box's open side too, so the sky (background) is in view.
+        const LookAt look{{278, 273, -1200}, {278, 273, 0}, {0, 1, 0}};
+        const Camera camera = v.orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, 5000.0f, v.mode)
+                                             : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f,
+                                                                   v.infiniteFar ? INFINITY : 5000.0f, v.mode);
+        f.render(cornell.scene, camera, v.width, v.height);
+        for (AoMethod method : kAllMethods)
+            for (AoResolution resolution : {AoResolution::Full, AoResolution::Quarter}) {
+                CAPTURE(nameOf(method), static_cast<int>(resolution));
+                AmbientOcclusionSettings s;
+                s.method = method;
+                s.radius = 100.0f;
+                s.rays = 8;
+                s.resolution = resolution;
+                s.blurRadius = 2;
+                s.bentNormals = method != AoMethod::Horizon;
+                if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(cornell.scene, {});
+                const AmbientOcclusionView out = f.ao.run(f.view, s);
+                const Image ao = readTexture(f.ctx, out.ao);
+                REQUIRE(ao.width == v.width);
+                REQUIRE(ao.height == v.height);
+                std::size_t bad = 0, sky = 0;
+                for (int y = 0; y < v.height; ++y)
+                    for (int x = 0; x < v.width; ++x) {
+                        const float a = ao.at(x, y, 0);
+                        bad += !(a >= 0.0f && a <= 1.0f);
+                        if (!f.geometry(x, y)) sky += a == 1.0f;
+                    }
+                CHECK(bad == 0);
+                if (v.width * v.height > 100) CHECK(sky > 0); // the open side shows the background
+                if (s.bentNormals) {
+                    const Image bent = readTexture(f.ctx, out.bentNormal);
+                    for (float value : bent.pixels) CHECK(std::isfinite(value));
+                }
+            }
+    }
+}
+
+TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-input]") {
+    AoFixture f;
+    const Scene scene = floorScene();
+    f.render(scene, lookAt({0, 3, 6}, {0, 0, 0}, 16, 16), 16, 16);
+    const auto before = test::liveGlObjects();
+    for (auto change : std::vector<void (*)(AmbientOcclusionSettings&)>{
+             [](AmbientOcclusionSettings& s) { s.radius = 0.0f; }, [](AmbientOcclusionSettings& s) { s.radius = NAN; },
+             [](AmbientOcclusionSettings& s) { s.rays = 0; }, [](AmbientOcclusionSettings& s) { s.rays = 2000; },
+             [](AmbientOcclusionSettings& s) { s.steps = 0; }, [](AmbientOcclusionSettings& s) { s.thickness = -1.0f; },
+             [](AmbientOcclusionSettings& s) { s.blurRadius = 17; }, [](AmbientOcclusionSettings& s) { s.blurDepthSigma = 0.0f; },
+             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.rays = 7; },
+             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.cosineWeighted = false; },
+             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Voxel; }}) {
+        AmbientOcclusionSettings s;
+        change(s);
+        CHECK_THROWS_AS(f.ao.run(f.view, s), Error);
+    }
+    GBufferView noDepth = f.view;
+    noDepth.depth = f.view.normal;
+    CHECK_THROWS_AS(f.ao.run(noDepth, {}), Error);
+    CHECK(test::drainGlErrors().empty());
+    CHECK(test::liveGlObjects() == before);
+}

@@ -1,0 +1,90 @@
+// The sampling library's CPU mirror (src/core/sampling.hpp, the same formulas as
+// shaders/common/sampling.glsl): sequences, hemisphere mappings and the tangent frame.
+#include "core/sampling.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace obscura::detail;
+
+TEST_CASE("Hammersley points are the base-2 radical inverse of the index", "[sampling]") {
+    CHECK(radicalInverse2(0) == 0.0f);
+    CHECK(radicalInverse2(1) == 0.5f);
+    CHECK(radicalInverse2(2) == 0.25f);
+    CHECK(radicalInverse2(3) == 0.75f);
+    CHECK(radicalInverse2(6) == 0.375f);
+    // 16 points: every 1/4 x 1/4 cell holds exactly one (a (0, 4, 2)-net in base 2).
+    int cells[4][4] = {};
+    for (std::uint32_t i = 0; i < 16; ++i) {
+        const glm::vec2 u = hammersley(i, 16);
+        ++cells[static_cast<int>(u.x * 4)][static_cast<int>(u.y * 4)];
+    }
+    for (auto& row : cells)
+        for (int c : row) CHECK(c == 1);
+}
+
+TEST_CASE("Hemisphere mappings give unit directions with the expected moments", "[sampling]") {
+    // Means over a 4096-point Hammersley set (exact to about 1/4096 for these smooth
+    // integrands): cosine weighting E[z] = 2/3, uniform E[z] = 1/2, both E[x] = E[y] = 0.
+    glm::dvec3 cosine(0.0), uniform(0.0);
+    constexpr std::uint32_t n = 4096;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::vec2 u = hammersley(i, n);
+        const glm::vec3 c = cosineHemisphere(u), w = uniformHemisphere(u);
+        CHECK(std::abs(glm::length(c) - 1.0f) < 1e-6f);
+        CHECK(std::abs(glm::length(w) - 1.0f) < 1e-6f);
+        CHECK(c.z >= 0.0f);
+        CHECK(w.z >= 0.0f);
+        cosine += glm::dvec3(c);
+        uniform += glm::dvec3(w);
+    }
+    cosine /= double(n);
+    uniform /= double(n);
+    CHECK(cosine.z == Approx(2.0 / 3.0).margin(2e-3));
+    CHECK(uniform.z == Approx(0.5).margin(2e-3));
+    CHECK(std::abs(cosine.x) < 2e-3);
+    CHECK(std::abs(uniform.y) < 2e-3);
+}
+
+TEST_CASE("The tangent frame is orthonormal for every normal including +z and -z", "[sampling]") {
+    std::vector<glm::vec3> normals = {{0, 0, 1}, {0, 0, -1}, {0, 0, -0.0f}, {1, 0, 0}, {0, -1, 0}};
+    normals.back() = glm::vec3(0, -1, 0);
+    normals[2] = glm::normalize(glm::vec3(1e-8f, 0, -1)); // just below the seam
+    for (std::uint32_t i = 0; i < 1000; ++i) {
+        const glm::vec3 d = uniformHemisphere(hammersley(i, 1000));
+        normals.push_back(i % 2 ? d : -d);
+    }
+    for (const glm::vec3& n : normals) {
+        CAPTURE(n.x, n.y, n.z);
+        glm::vec3 t, b;
+        tangentFrame(n, t, b);
+        CHECK(std::isfinite(t.x + t.y + t.z + b.x + b.y + b.z));
+        CHECK(std::abs(glm::dot(t, t) - 1.0f) < 1e-5f);
+        CHECK(std::abs(glm::dot(b, b) - 1.0f) < 1e-5f);
+        CHECK(std::abs(glm::dot(t, b)) < 1e-5f);
+        CHECK(std::abs(glm::dot(t, n)) < 1e-5f);
+        CHECK(std::abs(glm::dot(b, n)) < 1e-5f);
+        CHECK(glm::dot(glm::cross(t, b), n) > 0.99999f); // right-handed
+    }
+}
+
+TEST_CASE("The tiled random texture holds distinct uniform values below 1", "[sampling]") {
+    double sum = 0.0;
+    std::size_t repeats = 0;
+    glm::vec2 previous(-1.0f);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const glm::vec2 v = noiseTexel(x, y);
+            CHECK(v.x >= 0.0f);
+            CHECK(v.x < 1.0f);
+            CHECK(v.y >= 0.0f);
+            CHECK(v.y < 1.0f);
+            repeats += v == previous;
+            previous = v;
+            sum += v.x + v.y;
+        }
+    CHECK(repeats == 0);
+    // The mean of 8192 uniform values: 0.5 within 5 sigma = 5 / sqrt(12 * 8192).
+    CHECK(std::abs(sum / 8192.0 - 0.5) < 5.0 / std::sqrt(12.0 * 8192.0));
+}
