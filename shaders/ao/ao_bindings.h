@@ -14,14 +14,9 @@ using mat4 = glm::mat4;
 #include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
 
 #define AO_PARAMS_UBO_BINDING 2
-#define AO_GUIDE_UNIT 7    // low resolution: view normal xyz, view z (0 = background)
-#define AO_INPUT_UNIT 8    // blur / upsample input: AO
-#define AO_BENT_INPUT_UNIT 9
-#define AO_OUT_IMAGE 0     // r16f
-#define AO_BENT_OUT_IMAGE 1 // rgba16f
-#define AO_GUIDE_OUT_IMAGE 2 // rgba32f
-
-#define AO_LOC_DIRECTION 0 // blur: ivec2 step
+#define AO_OUT_IMAGE 0       // r16f, at the AO resolution
+#define AO_BENT_OUT_IMAGE 1  // rgba16f
+#define AO_GUIDE_OUT_IMAGE 2 // rgba32f: view normal xyz, view z (0 = background), for the filters
 
 #define AO_METHOD_RAYMARCH 0
 #define AO_METHOD_POINTS 1
@@ -41,8 +36,8 @@ using mat4 = glm::mat4;
 struct AoParams {
     vec4 shape;       // x: radius, y: thickness (world = view units), z: voxel start offset (view units), w: unused
     ivec4 counts;     // x: rays, y: steps, z: flags (AO_FLAG_*), w: falloff (AO_FALLOFF_*)
-    ivec4 sizes;      // x, y: AO resolution; z: scale (1, 2, 4); w: blur radius (taps each side)
-    vec4 blur;        // x: depth sigma (relative), y: normal power, z, w: unused
+    ivec4 sizes;      // x, y: AO resolution; z: scale (1, 2, 4); w: unused
+    vec4 unused;
     mat4 viewToVoxel; // Voxel: view space to voxel coordinates
     ivec4 voxel;      // x: traversal (VOXEL_METHOD_*), y, z, w: unused
 };

@@ -10,10 +10,6 @@ bool aoBent() { return (ao.counts.z & AO_FLAG_BENT) != 0; }
 ivec2 aoSize() { return ao.sizes.xy; }
 int aoScale() { return ao.sizes.z; }
 
-// The normal weight of the blur and the upsampling: max(0, dot)^power, and 1 for power 0
-// (pow(0, 0) is undefined in GLSL).
-float aoNormalWeight(vec3 a, vec3 b) { return ao.blur.y > 0.0 ? pow(max(dot(a, b), 0.0), ao.blur.y) : 1.0; }
-
 // Obscurance's rho(d / r) for a hit at distance d (see ObscuranceFalloff); AO: 0.
 float aoHitValue(float d) {
     const float t = clamp(d / ao.shape.x, 0.0, 1.0);

@@ -38,4 +38,23 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+std::string settingKeys(const std::vector<SettingInfo>& settings) {
+    std::string keys;
+    for (const auto& k : settings) keys += (keys.empty() ? "" : ", ") + k.key;
+    return keys;
+}
+
+double defaultRadius(const Scene& scene) {
+    const Bounds b = sceneBounds(scene);
+    return 0.1 * glm::length(glm::dvec3(b.max - b.min));
+}
+
+Image rgbOf(const Image& src) {
+    Image out{src.width, src.height, 3, {}};
+    out.pixels.reserve(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) * 3);
+    for (std::size_t i = 0; i + static_cast<std::size_t>(src.channels) <= src.pixels.size(); i += static_cast<std::size_t>(src.channels))
+        for (std::size_t c = 0; c < 3; ++c) out.pixels.push_back(c < static_cast<std::size_t>(src.channels) ? src.pixels[i + c] : 0.0f);
+    return out;
+}
+
 } // namespace obscura::cli

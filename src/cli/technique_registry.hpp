@@ -3,6 +3,7 @@
 // source file, so a new technique appears in every tool without editing them.
 #include "obscura/assets.hpp"
 #include "obscura/context.hpp"
+#include "obscura/error.hpp"
 #include "obscura/reference.hpp"
 
 #include <functional>
@@ -90,5 +91,21 @@ struct TechniqueRegistrar {
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.
 double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
+//! One of the named values; throws Error{Parse} listing them.
+template <typename E>
+E parseChoice(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {
+    const auto it = names.find(value);
+    if (it != names.end()) return it->second;
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
+    throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
+}
+//! "a, b, c": the keys of the settings, for error messages.
+std::string settingKeys(const std::vector<SettingInfo>& settings);
+//! The radius techniques use when none is set: a tenth of the scene's bounding-box
+//! diagonal (world units), so presets fit scenes of any scale.
+double defaultRadius(const Scene& scene);
+//! The first three channels of an image.
+Image rgbOf(const Image& image);
 
 } // namespace obscura::cli

@@ -428,8 +428,10 @@ void applyDrawState(ContextImpl& ctx, const DrawState& s) {
     setEnabled(gl, GL_FRAMEBUFFER_SRGB, s.framebufferSrgb);
     setEnabled(gl, GL_DEPTH_CLAMP, s.depthClamp);
     gl.ClipControl(GL_LOWER_LEFT, s.clipDepth);
-    gl.Disable(GL_BLEND);
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    setEnabled(gl, GL_BLEND, s.multiplyBlend);
+    gl.BlendEquation(GL_FUNC_ADD);
+    gl.BlendFunc(s.multiplyBlend ? GL_DST_COLOR : GL_ONE, GL_ZERO);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, s.writeAlpha ? GL_TRUE : GL_FALSE);
     // Dithering may perturb 8-bit targets (albedo): results must not depend on it.
     gl.Disable(GL_DITHER);
     setEnabled(gl, GL_COLOR_LOGIC_OP, s.logicOp != GL_NONE);

@@ -85,6 +85,8 @@ struct DrawState {
     GLenum clipDepth = GL_NEGATIVE_ONE_TO_ONE;
     bool depthClamp = false;
     GLenum logicOp = GL_NONE; //!< GL_NONE: no logic op; else glLogicOp's mode (integer targets)
+    bool multiplyBlend = false; //!< draw buffer 0: destination *= source (glBlendFunc(GL_DST_COLOR, GL_ZERO))
+    bool writeAlpha = true;     //!< off: the destination's alpha is kept
 };
 void applyDrawState(ContextImpl& ctx, const DrawState& state);
 //! Sets viewport index 0 only (glViewport would reset every index of the host).

@@ -31,15 +31,6 @@ const std::vector<SettingInfo> kSettings = {
     {"voxel_traversal", "", "march|exact|hierarchical", "ao.voxel: visibility query"},
 };
 
-template <typename E>
-E parseEnum(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {
-    const auto it = names.find(value);
-    if (it != names.end()) return it->second;
-    std::string known;
-    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
-    throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
-}
-
 class AoRun final : public TechniqueRun {
 public:
     AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx) {
@@ -57,13 +48,13 @@ public:
         else if (key == "steps") s.steps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
         else if (key == "cosine_weighted") s.cosineWeighted = parseBool(key, value);
         else if (key == "falloff")
-            s.falloff = parseEnum<ObscuranceFalloff>(key, value, {{"none", ObscuranceFalloff::None},
+            s.falloff = parseChoice<ObscuranceFalloff>(key, value, {{"none", ObscuranceFalloff::None},
                                                                   {"linear", ObscuranceFalloff::Linear},
                                                                   {"quadratic", ObscuranceFalloff::Quadratic},
                                                                   {"smooth", ObscuranceFalloff::Smooth}});
         else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
         else if (key == "resolution")
-            s.resolution = parseEnum<AoResolution>(key, value, {{"full", AoResolution::Full},
+            s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
                                                                 {"half", AoResolution::Half},
                                                                 {"quarter", AoResolution::Quarter}});
         else if (key == "blur_radius") s.blurRadius = static_cast<int>(parseNumber(key, value, 0, 16, "taps"));
@@ -72,19 +63,14 @@ public:
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
         else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
         else if (key == "voxel_traversal")
-            s.voxelTraversal = parseEnum<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
+            s.voxelTraversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
                                                                       {"exact", VoxelTraversal::Exact},
                                                                       {"hierarchical", VoxelTraversal::Hierarchical}});
-        else {
-            std::string keys;
-            for (const auto& k : kSettings) keys += (keys.empty() ? "" : ", ") + k.key;
-            throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + keys + ")");
-        }
+        else throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
-        const Bounds b = sceneBounds(frame.scene.scene);
-        settings_.radius = static_cast<float>(radius_ ? *radius_ : 0.1 * glm::length(glm::dvec3(b.max - b.min)));
+        settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, false, {}});
         if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
         result_ = ao_.run(view_, settings_);
@@ -99,7 +85,7 @@ public:
                 o.image = readTexture(ctx_, result_.ao);
                 o.display = o.image;
             } else if (name == "bent_normal" && result_.bentNormal) {
-                o.image = rgb(readTexture(ctx_, result_.bentNormal));
+                o.image = rgbOf(readTexture(ctx_, result_.bentNormal));
                 o.display = o.image;
                 for (float& v : o.display.pixels) v = v * 0.5f + 0.5f;
             } else {
@@ -125,7 +111,7 @@ public:
             m.push_back({"obscurance", readTexture(ctx_, result_.ao), reference::Obscurance{radius, settings_.falloff}});
         if (result_.bentNormal) {
             // View space to world space, as the reference reports it.
-            Image world = rgb(readTexture(ctx_, result_.bentNormal));
+            Image world = rgbOf(readTexture(ctx_, result_.bentNormal));
             const glm::mat3 toWorld(glm::inverse(glm::dmat4(view_.camera.view)));
             for (std::size_t i = 0; i + 2 < world.pixels.size(); i += 3) {
                 const glm::vec3 w = toWorld * glm::vec3(world.pixels[i], world.pixels[i + 1], world.pixels[i + 2]);
@@ -137,14 +123,6 @@ public:
     }
 
 private:
-    static Image rgb(const Image& src) {
-        Image out{src.width, src.height, 3, {}};
-        out.pixels.reserve(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) * 3);
-        for (std::size_t i = 0; i < src.pixels.size(); i += static_cast<std::size_t>(src.channels))
-            for (int c = 0; c < 3; ++c) out.pixels.push_back(src.pixels[i + static_cast<std::size_t>(c)]);
-        return out;
-    }
-
     Context& ctx_;
     GBuffer gbuffer_;
     AmbientOcclusion ao_;

@@ -1,0 +1,101 @@
+#pragma once
+// Final combine, tone mapping and output into the host's framebuffer.
+//
+// Combine (radiance, W/(sr m^2), per pixel; rho the albedo, L_dir the G-buffer's direct
+// radiance, L1 the one-bounce indirect radiance of IndirectLight, AO of AmbientOcclusion):
+//   Thesis:   L = rho AO L_amb + k L1 + AO L_dir
+//             (the source thesis's L = f_d (AO pi L_amb + k E_ind) + L_dir AO with f_d = rho/pi,
+//             E_ind = pi L1 / rho; AO darkens the direct light too, which is not physical)
+//   Physical: L = L_dir + k L1 + rho AO L_amb
+//             (indirect light replaces the ambient term where it is given: set L_amb = 0 with
+//             GI; AO only shades the ambient light, direct light is shadowed by shadow maps)
+// Missing inputs count as absent: no AO = 1, no L1 = 0.
+//
+// Tone mapping of exposure * L: None (clamp), Drago et al. 2003 (logarithmic, adapted to the
+// frame's largest luminance or a given one), or ACES (Narkowicz's fit of the ACES RRT+ODT).
+// Then the display encoding: the sRGB transfer function, or a plain gamma.
+#include "obscura/ambient_occlusion.hpp"
+#include "obscura/export.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/indirect_light.hpp"
+#include "obscura/texture.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <memory>
+
+namespace obscura {
+
+class Context;
+
+enum class CombineFormula { Thesis, Physical };
+enum class ToneMapper { None, Drago, Aces };
+
+// Setting keys for tools are the field names in snake case.
+struct ComposeSettings {
+    CombineFormula formula = CombineFormula::Physical;
+    glm::vec3 ambient{0.0f};     //!< L_amb, W/(sr m^2), [0, 65504] per channel
+    float indirectScale = 1.0f;  //!< k, [0, 1e6]
+    float exposure = 1.0f;       //!< multiplies the radiance before tone mapping, (0, 1e6]
+    ToneMapper toneMapper = ToneMapper::Aces;
+    //! Drago: the largest scene luminance L_wmax (after exposure), (0, inf); 0 = the frame's
+    //! own maximum (a reduction pass).
+    float dragoMaxLuminance = 0.0f;
+    float dragoBias = 0.85f;     //!< Drago's bias b, [0.5, 1]
+    float dragoDisplayMax = 100.0f; //!< Drago's L_dmax, cd/m^2 of the display, (0, 1e4]
+    //! Display encoding: the sRGB transfer function when true, else x^(1/gamma).
+    bool srgb = true;
+    float gamma = 2.2f;          //!< [1, 4], used when srgb is off
+};
+
+//! The inputs of the combine; ao and indirect may be empty.
+struct ComposeInputs {
+    GBufferView gbuffer;         //!< direct radiance and albedo are required
+    TextureView ao;              //!< AmbientOcclusionView::ao (the G-buffer's size) or empty
+    TextureView indirect;        //!< IndirectLightView::radiance (the G-buffer's size) or empty
+};
+
+enum class HostBlend {
+    Overwrite, //!< the host's colour becomes the source
+    Multiply,  //!< the host's colour is multiplied by the source (e.g. AO onto a lit image)
+};
+
+//! A host framebuffer to draw into: `framebuffer` (0 = the default framebuffer), the
+//! viewport rectangle in pixels, and how to blend. The source is stretched to the viewport;
+//! one-channel sources are replicated to RGB, alpha is left as it was.
+struct HostTarget {
+    unsigned framebuffer = 0;
+    int x = 0, y = 0, width = 0, height = 0; //!< pixels, width and height >= 1
+    HostBlend blend = HostBlend::Overwrite;
+};
+
+class OBSCURA_API Composer {
+public:
+    explicit Composer(Context& context);
+    ~Composer();
+    Composer(const Composer&) = delete;
+    Composer& operator=(const Composer&) = delete;
+
+    //! Combines and tone maps into a GL_RGBA8 texture of display values (sRGB-encoded when
+    //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.luminance" (Drago with
+    //! an automatic maximum) and "compose.tonemap". Throws Error{InvalidArgument} for
+    //! settings out of range or inputs of the wrong size or without radiance/albedo.
+    TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
+
+    //! The combined radiance before tone mapping (GL_RGBA16F, W/(sr m^2)) of the last
+    //! compose call.
+    TextureView radiance() const;
+
+    //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer
+    //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy).
+    void drawToHost(const TextureView& source, const HostTarget& target);
+
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

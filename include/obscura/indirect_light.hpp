@@ -1,0 +1,79 @@
+#pragma once
+// One-bounce diffuse indirect light from a G-buffer: screen-space gathering and the hybrid
+// of voxel visibility with screen radiance.
+//
+// Both estimate obscura::reference::IndirectLight at the G-buffer's samples:
+//   L1(x) = (rho(x) / pi) Integral L(y(x, w)) (n.w) dw ~ rho(x) * mean over cosine-weighted
+//   directions of L at the first hit y within the radius,
+// where L is the G-buffer's direct radiance (emission and unshadowed lights until the shadow
+// module lands, which the reference does shadow: an error the bench reports). The radiance
+// at a hit is read from the screen, so only hits the camera sees, on their visible side,
+// contribute; others (hidden, behind the image border, seen from behind) count as dark.
+//   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
+//   Hybrid: hits found in the voxel grid (as AoMethod::Voxel), then looked up on screen; a
+//           hit hidden from the camera by more than `thickness` contributes nothing.
+//
+// Output `radiance`: GL_RGBA16F, W/(sr m^2), the G-buffer's size; alpha 1 on geometry, and
+// (0, 0, 0, 0) on background pixels.
+#include "obscura/ambient_occlusion.hpp"
+#include "obscura/export.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/texture.hpp"
+#include "obscura/voxelizer.hpp"
+
+#include <cstddef>
+#include <memory>
+
+namespace obscura {
+
+class Context;
+
+enum class GiMethod {
+    Screen, //!< "gi.screen": rays x steps through the depth buffer, radiance from the screen
+    Hybrid, //!< "gi.hybrid": rays through `voxels`, radiance from the screen
+};
+
+// Setting keys for tools (`--set`) are the field names in snake case, as for AO.
+struct IndirectLightSettings {
+    GiMethod method = GiMethod::Screen;
+    float radius = 1.0f;      //!< world units, (0, inf): hits farther away are not gathered
+    int rays = 16;            //!< cosine-weighted directions per pixel, [1, 1024]
+    int steps = 8;            //!< Screen: depth samples per ray; Hybrid with March traversal: samples, [1, 256]
+    //! Screen: how far behind a depth sample a point still counts as inside (as AO); Hybrid:
+    //! how far a voxel hit may lie from the surface the camera sees there. World units,
+    //! [0, inf); 0 = the radius (Screen) or two voxel diagonals (Hybrid).
+    float thickness = 0.0f;
+    AoResolution resolution = AoResolution::Full;
+    int blurRadius = 0;          //!< geometry-aware separable blur taps each side, [0, 16]
+    float blurDepthSigma = 0.05f;  //!< as AmbientOcclusionSettings, (0, 1]
+    float blurNormalPower = 16.0f; //!< as AmbientOcclusionSettings, [0, 256]
+    const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
+    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Hybrid
+};
+
+struct IndirectLightView {
+    TextureView radiance; //!< GL_RGBA16F, W/(sr m^2)
+    int width = 0, height = 0;
+};
+
+class OBSCURA_API IndirectLight {
+public:
+    explicit IndirectLight(Context& context);
+    ~IndirectLight();
+    IndirectLight(const IndirectLight&) = delete;
+    IndirectLight& operator=(const IndirectLight&) = delete;
+
+    //! Passes "gi.screen" or "gi.hybrid", then "gi.blur" and "gi.upsample" when used. Throws
+    //! Error{InvalidArgument} for settings out of range, a G-buffer without depth, normal,
+    //! albedo or direct radiance (adopted host buffers have no radiance to gather), or the
+    //! hybrid method without a grid.
+    IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
+
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

@@ -1,0 +1,29 @@
+// The combined radiance per pixel (see CombineFormula), times the exposure, and the largest
+// luminance of the frame for Drago's tone mapping (positive floats order like their bits).
+#include "compose_common.glsl"
+
+layout(local_size_x = COMPOSE_WORKGROUP, local_size_y = COMPOSE_WORKGROUP) in;
+layout(binding = COMPOSE_DIRECT_UNIT) uniform sampler2D directRadiance;
+layout(binding = COMPOSE_ALBEDO_UNIT) uniform sampler2D albedo;
+layout(binding = COMPOSE_AO_UNIT) uniform sampler2D aoTexture;
+layout(binding = COMPOSE_INDIRECT_UNIT) uniform sampler2D indirect;
+layout(binding = COMPOSE_RADIANCE_IMAGE, rgba16f) writeonly uniform image2D radianceOut;
+layout(std430, binding = COMPOSE_LUMINANCE_SSBO) buffer Luminance {
+    uint maxLuminanceBits;
+};
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, compose.size.xy))) return;
+    const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
+    const vec3 rho = texelFetch(albedo, pixel, 0).rgb;
+    const float ao = (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
+    const vec3 l1 = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0 ? clampRadiance(texelFetch(indirect, pixel, 0).rgb)
+                                                                   : vec3(0.0);
+    const vec3 ambient = rho * ao * compose.ambient.rgb;
+    const vec3 l = compose.flags.x == COMPOSE_FORMULA_THESIS ? ambient + compose.ambient.w * l1 + ao * direct
+                                                             : direct + compose.ambient.w * l1 + ambient;
+    const vec3 exposed = clampRadiance(l * compose.tone.x);
+    imageStore(radianceOut, pixel, vec4(exposed, 1.0));
+    atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(exposed), 0.0)));
+}

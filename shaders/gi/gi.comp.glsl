@@ -1,0 +1,84 @@
+// One-bounce indirect light at the GI resolution: one invocation per pixel, at the top-left
+// G-buffer pixel of its block; also writes the guide for the filters.
+//! variant: METHOD=0
+//! variant: METHOD=1 TRAVERSAL=0
+//! variant: METHOD=1 TRAVERSAL=1
+//! variant: METHOD=1 TRAVERSAL=2
+#include "../common/sampling.glsl"
+#include "../visibility/screen_march.glsl"
+#include "gi_bindings.h"
+#if METHOD == GI_METHOD_HYBRID
+#include "../voxel/voxel_traversal.glsl"
+#endif
+
+layout(local_size_x = GI_WORKGROUP, local_size_y = GI_WORKGROUP) in;
+layout(std140, binding = GI_PARAMS_UBO_BINDING) uniform GiBlock {
+    GiParams gi;
+};
+layout(binding = GI_RADIANCE_UNIT) uniform sampler2D directRadiance;
+layout(binding = GI_ALBEDO_UNIT) uniform sampler2D albedoTexture;
+layout(binding = GI_OUT_IMAGE, rgba16f) writeonly uniform image2D giOut;
+layout(binding = GI_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
+
+// The radiance leaving the surface at view point `hit` toward p, read from the screen: the
+// pixel it projects to, if that pixel shows the hit (within `tolerance` along the view
+// direction) and its front side faces p. Otherwise nothing is known: 0.
+vec3 giScreenRadiance(vec3 p, vec3 hit, float tolerance) {
+    ivec2 q;
+    if (!screenPixelOf(hit, q)) return vec3(0.0);
+    const float depth = texelFetch(visDepth, q, 0).r;
+    if (isBackground(depth)) return vec3(0.0);
+    const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth);
+    if (abs(o.z - hit.z) > tolerance) return vec3(0.0);
+    if (!(dot(texelFetch(visNormal, q, 0).xyz, p - o) > 0.0)) return vec3(0.0);
+    return clampRadiance(texelFetch(directRadiance, q, 0).rgb);
+}
+
+vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+    const vec2 rotation = pixelRotation(pixel);
+    const float jitter = pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x;
+    const uint n = uint(gi.counts.x);
+    const float radius = gi.shape.x;
+    vec3 sum = vec3(0.0);
+#if METHOD == GI_METHOD_HYBRID
+    const vec3 start = p + normal * gi.shape.z;
+    const vec3 startVoxel = (gi.viewToVoxel * vec4(start, 1.0)).xyz;
+#endif
+    for (uint i = 0u; i < n; ++i) {
+        const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
+#if METHOD == GI_METHOD_SCREEN
+        const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y);
+        // The hidden sample lies behind the surface it projects to: read that surface.
+        if (t >= 0.0) sum += giScreenRadiance(p, p + w * t, gi.shape.y + radius);
+#else
+        const vec3 endVoxel = (gi.viewToVoxel * vec4(start + w * radius, 1.0)).xyz;
+#if TRAVERSAL == VOXEL_METHOD_MARCH
+        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, gi.counts.y, jitter);
+#elif TRAVERSAL == VOXEL_METHOD_EXACT
+        const VoxelHit hit = voxelTraceExact(startVoxel, endVoxel);
+#else
+        const VoxelHit hit = voxelTraceHierarchical(startVoxel, endVoxel);
+#endif
+        if (hit.hit) sum += giScreenRadiance(p, start + w * (hit.t * radius), gi.shape.y);
+#endif
+    }
+    return sum / float(n);
+}
+
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, gi.sizes.xy))) return;
+    const ivec2 full = min(pixel * gi.sizes.z, frameSize() - 1);
+    const float depth = texelFetch(visDepth, full, 0).r;
+    const vec4 normalTexel = texelFetch(visNormal, full, 0);
+    if (isBackground(depth) || normalTexel.a == 0.0) {
+        imageStore(giOut, pixel, vec4(0.0));
+        imageStore(guideOut, pixel, vec4(0.0));
+        return;
+    }
+    const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
+    const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+    const vec3 albedo = texelFetch(albedoTexture, full, 0).rgb;
+    imageStore(giOut, pixel, vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0));
+    imageStore(guideOut, pixel, vec4(normal, p.z));
+}

@@ -1,0 +1,115 @@
+// "compose": the whole frame, G-buffer + ray-marched AO + screen-space GI combined and tone
+// mapped (Composer). Outputs the display picture and the combined radiance.
+#include "obscura/ambient_occlusion.hpp"
+#include "obscura/compose.hpp"
+#include "obscura/error.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/indirect_light.hpp"
+#include "technique_registry.hpp"
+
+#include <optional>
+
+namespace obscura::cli {
+namespace {
+
+const std::vector<SettingInfo> kSettings = {
+    {"formula", "", "thesis|physical", "see CombineFormula"},
+    {"ambient", "W/(sr m^2)", "[0, 65504]", "grey ambient radiance L_amb"},
+    {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
+    {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
+    {"tone_mapper", "", "none|drago|aces", "tone mapping operator"},
+    {"srgb", "", "0|1", "sRGB transfer function (else gamma 2.2)"},
+    {"ao", "", "0|1", "ray-marched AO (medium quality)"},
+    {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
+    {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
+};
+
+class ComposeRun final : public TechniqueRun {
+public:
+    explicit ComposeRun(Context& ctx) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), gi_(ctx), composer_(ctx) {}
+
+    void set(const std::string& key, const std::string& value) override {
+        auto& s = settings_;
+        if (key == "formula") s.formula = parseChoice<CombineFormula>(key, value, {{"thesis", CombineFormula::Thesis},
+                                                                                   {"physical", CombineFormula::Physical}});
+        else if (key == "ambient") s.ambient = glm::vec3(static_cast<float>(parseNumber(key, value, 0, 65504, "W/(sr m^2)")));
+        else if (key == "indirect_scale") s.indirectScale = static_cast<float>(parseNumber(key, value, 0, 1e6, ""));
+        else if (key == "exposure") s.exposure = static_cast<float>(parseNumber(key, value, 1e-30, 1e6, ""));
+        else if (key == "tone_mapper") s.toneMapper = parseChoice<ToneMapper>(key, value, {{"none", ToneMapper::None},
+                                                                                          {"drago", ToneMapper::Drago},
+                                                                                          {"aces", ToneMapper::Aces}});
+        else if (key == "srgb") s.srgb = parseBool(key, value);
+        else if (key == "ao") withAo_ = parseBool(key, value);
+        else if (key == "gi") withGi_ = parseBool(key, value);
+        else if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
+        else throw Error(ErrorCode::Parse, "compose has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+    }
+
+    void run(const FrameSetup& frame) override {
+        const float radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, true, {}});
+        ComposeInputs inputs{view_, {}, {}};
+        if (withAo_) {
+            AmbientOcclusionSettings a;
+            a.radius = radius;
+            inputs.ao = ao_.run(view_, a).ao;
+        }
+        if (withGi_) {
+            IndirectLightSettings g;
+            g.radius = radius;
+            inputs.indirect = gi_.run(view_, g).radiance;
+        }
+        display_ = composer_.compose(inputs, settings_);
+    }
+
+    std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
+        std::vector<TechniqueOutput> out;
+        for (const std::string& name : names) {
+            TechniqueOutput o;
+            o.name = name;
+            if (name == "image") {
+                o.image = rgbOf(readTexture(ctx_, display_));
+                o.display = o.image;
+                o.encoding = assets::PngEncoding::Linear; // already display-encoded
+            } else if (name == "radiance") {
+                o.image = rgbOf(readTexture(ctx_, composer_.radiance()));
+                o.display = o.image;
+            } else {
+                throw Error(ErrorCode::InvalidArgument, "compose has no output \"" + name + "\" (outputs: image, radiance)");
+            }
+            out.push_back(o);
+        }
+        return out;
+    }
+
+    GBufferSamples samples() override {
+        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+    }
+
+    // No ground truth for the composite yet: its parts are measured by their own techniques.
+    std::vector<Measurement> measurements() override { return {}; }
+
+private:
+    Context& ctx_;
+    GBuffer gbuffer_;
+    AmbientOcclusion ao_;
+    IndirectLight gi_;
+    Composer composer_;
+    ComposeSettings settings_;
+    bool withAo_ = true, withGi_ = true;
+    std::optional<double> radius_;
+    GBufferView view_;
+    TextureView display_;
+};
+
+const TechniqueRegistrar registrar({
+    "compose",
+    "The frame: G-buffer direct light + ray-marched AO + screen-space GI, combined and tone mapped",
+    {"image", "radiance"},
+    kSettings,
+    {{"default", {}}},
+    [](Context& ctx) { return std::make_unique<ComposeRun>(ctx); },
+});
+
+} // namespace
+} // namespace obscura::cli

@@ -1,0 +1,112 @@
+// "gi.screen" and "gi.hybrid": the IndirectLight module on the scene's G-buffer (direct
+// lighting on) and, for gi.hybrid, its voxel grid.
+#include "obscura/error.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/indirect_light.hpp"
+#include "obscura/voxelizer.hpp"
+#include "technique_registry.hpp"
+
+#include <optional>
+
+namespace obscura::cli {
+namespace {
+
+const std::vector<SettingInfo> kSettings = {
+    {"radius", "world units", "(0, inf)", "hits farther away are not gathered (default: a tenth of the scene's diagonal)"},
+    {"rays", "", "[1, 1024]", "cosine-weighted directions per pixel"},
+    {"steps", "", "[1, 256]", "depth samples per ray (gi.hybrid: march samples with voxel_traversal=march)"},
+    {"thickness", "world units", "[0, inf)", "see IndirectLightSettings::thickness (0: the default)"},
+    {"resolution", "", "full|half|quarter", "GI resolution relative to the G-buffer"},
+    {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
+    {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
+    {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
+    {"voxel_resolution", "voxels", "8..2048, power of two", "gi.hybrid: grid columns per axis (128 slices)"},
+    {"voxel_traversal", "", "march|exact|hierarchical", "gi.hybrid: visibility query"},
+};
+
+class GiRun final : public TechniqueRun {
+public:
+    GiRun(Context& ctx, GiMethod method) : ctx_(ctx), gbuffer_(ctx), gi_(ctx), voxelizer_(ctx) { settings_.method = method; }
+
+    void set(const std::string& key, const std::string& value) override {
+        auto& s = settings_;
+        if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
+        else if (key == "rays") s.rays = static_cast<int>(parseNumber(key, value, 1, 1024, ""));
+        else if (key == "steps") s.steps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
+        else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
+        else if (key == "resolution") s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
+                                                                                          {"half", AoResolution::Half},
+                                                                                          {"quarter", AoResolution::Quarter}});
+        else if (key == "blur_radius") s.blurRadius = static_cast<int>(parseNumber(key, value, 0, 16, "taps"));
+        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
+        else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
+        else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
+        else if (key == "voxel_traversal")
+            s.voxelTraversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
+                                                                        {"exact", VoxelTraversal::Exact},
+                                                                        {"hierarchical", VoxelTraversal::Hierarchical}});
+        else throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+    }
+
+    void run(const FrameSetup& frame) override {
+        settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, true, {}});
+        if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
+        result_ = gi_.run(view_, settings_);
+    }
+
+    std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
+        std::vector<TechniqueOutput> out;
+        for (const std::string& name : names) {
+            if (name != "indirect") throw Error(ErrorCode::InvalidArgument, "gi has no output \"" + name + "\" (outputs: indirect)");
+            TechniqueOutput o;
+            o.name = name;
+            o.image = rgbOf(readTexture(ctx_, result_.radiance));
+            o.display = o.image;
+            out.push_back(o);
+        }
+        return out;
+    }
+
+    GBufferSamples samples() override {
+        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+    }
+
+    std::vector<Measurement> measurements() override {
+        return {{"indirect", rgbOf(readTexture(ctx_, result_.radiance)), reference::IndirectLight{settings_.radius}}};
+    }
+
+private:
+    Context& ctx_;
+    GBuffer gbuffer_;
+    IndirectLight gi_;
+    Voxelizer voxelizer_;
+    IndirectLightSettings settings_;
+    VoxelizerSettings voxelSettings_;
+    std::optional<double> radius_;
+    GBufferView view_;
+    IndirectLightView result_;
+};
+
+std::vector<Preset> presets() {
+    return {
+        {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
+        {"medium", {{"rays", "16"}, {"steps", "8"}}},
+        {"medium_half", {{"rays", "16"}, {"steps", "8"}, {"resolution", "half"}, {"blur_radius", "3"}}},
+        {"high", {{"rays", "64"}, {"steps", "16"}}},
+        {"ultra", {{"rays", "256"}, {"steps", "32"}}},
+    };
+}
+
+TechniqueInfo giTechnique(const std::string& name, const std::string& description, GiMethod method) {
+    return {name, description, {"indirect"}, kSettings, presets(),
+            [method](Context& ctx) { return std::make_unique<GiRun>(ctx, method); }};
+}
+
+const TechniqueRegistrar screen(giTechnique(
+    "gi.screen", "One-bounce diffuse GI: rays through the depth buffer, radiance from the screen", GiMethod::Screen));
+const TechniqueRegistrar hybrid(giTechnique(
+    "gi.hybrid", "One-bounce diffuse GI: rays through the voxel grid, radiance from the screen", GiMethod::Hybrid));
+
+} // namespace
+} // namespace obscura::cli

@@ -1,0 +1,170 @@
+#include "obscura/compose.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/texture_info.hpp"
+#include "core/validate.hpp"
+#include "obscura/context.hpp"
+#include "shaders/compose/compose_bindings.h"
+
+#include <cstdio>
+#include <string>
+
+namespace obscura {
+namespace {
+
+using namespace detail;
+
+void validateSettings(const ComposeSettings& s) {
+    requireFinite(s.ambient, "ComposeSettings::ambient");
+    for (int c = 0; c < 3; ++c) requireInRange(s.ambient[c], 0.0, 65504.0, "ComposeSettings::ambient", "W/(sr m^2)");
+    requireInRange(s.indirectScale, 0.0, 1e6, "ComposeSettings::indirectScale", "");
+    if (!(s.exposure > 0.0f && s.exposure <= 1e6f))
+        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::exposure must be in (0, 1e6], got " + std::to_string(s.exposure));
+    if (!(s.dragoMaxLuminance >= 0.0f) || std::isinf(s.dragoMaxLuminance))
+        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::dragoMaxLuminance must be finite and >= 0 (0: measured), got " +
+                                                    std::to_string(s.dragoMaxLuminance));
+    requireInRange(s.dragoBias, 0.5, 1.0, "ComposeSettings::dragoBias", "");
+    if (!(s.dragoDisplayMax > 0.0f && s.dragoDisplayMax <= 1e4f))
+        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::dragoDisplayMax must be in (0, 1e4] cd/m^2, got " +
+                                                    std::to_string(s.dragoDisplayMax));
+    requireInRange(s.gamma, 1.0, 4.0, "ComposeSettings::gamma", "");
+}
+
+// The size of an optional input: empty, or exactly the G-buffer's.
+bool checkOptional(ContextImpl& ctx, const TextureView& view, const char* what, int width, int height) {
+    if (!view) return false;
+    const TextureInfo info = queryTexture2D(ctx, view.name, what);
+    if (info.width != width || info.height != height)
+        throw Error(ErrorCode::InvalidArgument, std::string(what) + " is " + std::to_string(info.width) + "x" +
+                                                    std::to_string(info.height) + ", the G-buffer " + std::to_string(width) +
+                                                    "x" + std::to_string(height));
+    return true;
+}
+
+} // namespace
+
+struct Composer::Impl {
+    explicit Impl(ContextImpl& c) : ctx(c) {}
+    ContextImpl& ctx;
+    Buffer params, luminance;
+    SizedTexture radiance, display;
+    int width = 0, height = 0;
+
+    void bindRead(int unit, GLuint texture) {
+        ctx.state.bindTexture(ctx, unit, texture);
+        ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
+    }
+};
+
+Composer::Composer(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+Composer::~Composer() = default;
+
+TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s) {
+    validateSettings(s);
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    const GBufferView& g = in.gbuffer;
+    if (!g.directRadiance || !g.albedo)
+        throw Error(ErrorCode::InvalidArgument, "compose needs the G-buffer's direct radiance and albedo (GBuffer::render)");
+    const TextureInfo direct = queryTexture2D(ctx, g.directRadiance.name, "GBufferView::directRadiance");
+    const int w = direct.width, h = direct.height;
+    checkOptional(ctx, g.albedo, "GBufferView::albedo", w, h);
+    const bool hasAo = checkOptional(ctx, in.ao, "ComposeInputs::ao", w, h);
+    const bool hasIndirect = checkOptional(ctx, in.indirect, "ComposeInputs::indirect", w, h);
+
+    StateScope scope(ctx);
+    shader::ComposeParams p{};
+    p.ambient = glm::vec4(s.ambient, s.indirectScale);
+    p.tone = glm::vec4(s.exposure, s.dragoMaxLuminance, s.dragoBias, s.dragoDisplayMax);
+    p.display = glm::vec4(s.gamma, 0.0f, 0.0f, 0.0f);
+    p.flags = glm::ivec4(s.formula == CombineFormula::Thesis ? COMPOSE_FORMULA_THESIS : COMPOSE_FORMULA_PHYSICAL,
+                         s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
+                         : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES
+                                                            : COMPOSE_TONE_NONE,
+                         s.srgb ? 1 : 0, (hasAo ? COMPOSE_HAS_AO : 0) | (hasIndirect ? COMPOSE_HAS_INDIRECT : 0));
+    p.size = glm::ivec4(w, h, 0, 0);
+    if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "compose.params");
+    ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
+    ctx.state.bindUniformBuffer(ctx, COMPOSE_PARAMS_UBO_BINDING, d.params.get());
+    if (!d.luminance) d.luminance = createBuffer(ctx, 4, nullptr, GL_DYNAMIC_STORAGE_BIT, "compose.luminance");
+    const std::uint32_t zero = 0;
+    ctx.gl.NamedBufferSubData(d.luminance.get(), 0, 4, &zero);
+    ctx.state.bindStorageBuffer(ctx, COMPOSE_LUMINANCE_SSBO, d.luminance.get());
+    const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, w, h, "compose.radiance");
+    d.width = w;
+    d.height = h;
+    const GLuint display = d.display.ensure(ctx, GL_RGBA8, w, h, "compose.display");
+    {
+        PassScope pass(ctx, "compose.combine");
+        ctx.gl.UseProgram(ctx.shaders->program({"compose/combine.comp.glsl"}));
+        d.bindRead(COMPOSE_DIRECT_UNIT, g.directRadiance.name);
+        d.bindRead(COMPOSE_ALBEDO_UNIT, g.albedo.name);
+        // Unused inputs read the radiance itself: a valid texture, never sampled.
+        d.bindRead(COMPOSE_AO_UNIT, hasAo ? in.ao.name : g.directRadiance.name);
+        d.bindRead(COMPOSE_INDIRECT_UNIT, hasIndirect ? in.indirect.name : g.directRadiance.name);
+        ctx.state.bindImage(ctx, COMPOSE_RADIANCE_IMAGE, radiance, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchCompute2D(ctx, w, h, COMPOSE_WORKGROUP);
+        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+        PassScope pass(ctx, "compose.tonemap");
+        ctx.gl.UseProgram(ctx.shaders->program({"compose/tonemap.comp.glsl"}));
+        d.bindRead(COMPOSE_RADIANCE_UNIT, radiance);
+        ctx.state.bindImage(ctx, COMPOSE_DISPLAY_IMAGE, display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        dispatchCompute2D(ctx, w, h, COMPOSE_WORKGROUP);
+    }
+    barrierForReaders(ctx);
+    return {display, GL_RGBA8, w, h};
+}
+
+TextureView Composer::radiance() const {
+    const auto& d = *impl_;
+    return {d.radiance.get(), GL_RGBA16F, d.width, d.height};
+}
+
+void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    const TextureInfo info = queryTexture2D(ctx, source.name, "drawToHost source");
+    if (info.integer || info.depth)
+        throw Error(ErrorCode::InvalidArgument, "drawToHost: the source must be a float or normalized colour texture");
+    if (target.width < 1 || target.height < 1)
+        throw Error(ErrorCode::InvalidArgument, "HostTarget: width and height must be >= 1 pixel, got " +
+                                                    std::to_string(target.width) + "x" + std::to_string(target.height));
+    if (target.framebuffer != 0 && !ctx.gl.IsFramebuffer(target.framebuffer))
+        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
+                                                    " is not a framebuffer of this context");
+    const GLenum status = ctx.gl.CheckNamedFramebufferStatus(target.framebuffer, GL_DRAW_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
+                                                    " is not complete (status 0x" + [&] {
+                                                        char hex[16];
+                                                        std::snprintf(hex, sizeof hex, "%X", status);
+                                                        return std::string(hex);
+                                                    }() + "; a surfaceless context has no default framebuffer)");
+    StateScope scope(ctx);
+    PassScope pass(ctx, "compose.output");
+    ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
+    setViewport(ctx, target.x, target.y, target.width, target.height);
+    DrawState state;
+    state.multiplyBlend = target.blend == HostBlend::Multiply;
+    state.writeAlpha = false;
+    applyDrawState(ctx, state);
+    const GLuint program = ctx.shaders->program({"compose/host_output.vert.glsl", "compose/host_output.frag.glsl"});
+    ctx.gl.UseProgram(program);
+    ctx.gl.ProgramUniform1i(program, COMPOSE_LOC_SOURCE_CHANNELS, info.channels);
+    ctx.state.bindTexture(ctx, COMPOSE_SOURCE_UNIT, source.name);
+    ctx.state.bindSampler(ctx, COMPOSE_SOURCE_UNIT, ctx.linearClampSampler());
+    ctx.gl.BindVertexArray(ctx.emptyVertexArray());
+    ctx.gl.DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+std::size_t Composer::memoryBytes() const {
+    const auto& d = *impl_;
+    return d.radiance.bytes() + d.display.bytes() + (d.params ? sizeof(shader::ComposeParams) + 4 : 0);
+}
+
+} // namespace obscura

@@ -1,0 +1,93 @@
+#include "filters/guided_filters.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/validate.hpp"
+#include "shaders/filters/filter_bindings.h"
+
+#include <vector>
+
+namespace obscura::detail {
+namespace {
+
+GLenum valueFormat(const FilterImages& images) { return images.rgb ? GL_RGBA16F : GL_R16F; }
+
+std::vector<std::string> variant(const FilterImages& images) {
+    return images.rgb ? std::vector<std::string>{"RGB"} : std::vector<std::string>{};
+}
+
+void bindRead(ContextImpl& ctx, int unit, GLuint texture) {
+    ctx.state.bindTexture(ctx, unit, texture);
+    ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
+}
+
+void bindWrite(ContextImpl& ctx, int unit, GLuint texture, GLenum format) {
+    ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+}
+
+} // namespace
+
+void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner) {
+    requireInRange(taps, 0, 16, owner + "::blurRadius", "taps");
+    if (!(depthSigma > 0.0f && depthSigma <= 1.0f))
+        throw Error(ErrorCode::InvalidArgument, owner + "::blurDepthSigma must be in (0, 1], got " + std::to_string(depthSigma));
+    requireInRange(normalPower, 0.0, 256.0, owner + "::blurNormalPower", "");
+}
+
+void GuidedFilters::upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s) {
+    shader::FilterParams p{};
+    p.sizes = glm::ivec4(images.size, images.scale, s.taps);
+    p.weights = glm::vec4(s.depthSigma, s.normalPower, s.background, 0.0f);
+    p.flags = glm::ivec4((images.direction ? FILTER_FLAG_DIRECTION : 0) | (s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0), 0, 0, 0);
+    if (!params_) params_ = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.params");
+    ctx.gl.NamedBufferSubData(params_.get(), 0, sizeof p, &p);
+    ctx.state.bindUniformBuffer(ctx, FILTER_PARAMS_UBO_BINDING, params_.get());
+    bindRead(ctx, FILTER_GUIDE_UNIT, images.guide);
+}
+
+void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName) {
+    if (s.taps <= 0) return;
+    PassScope pass(ctx, passName);
+    upload(ctx, images, s);
+    const GLenum format = valueFormat(images);
+    const GLuint valueTemp = valueTemp_.ensure(ctx, format, images.size.x, images.size.y, "filters.blur_value");
+    const GLuint directionTemp =
+        images.direction ? directionTemp_.ensure(ctx, GL_RGBA16F, images.size.x, images.size.y, "filters.blur_direction") : 0;
+    const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images));
+    ctx.gl.UseProgram(program);
+    for (int d = 0; d < 2; ++d) { // horizontal into the temporaries, vertical back
+        const bool horizontal = d == 0;
+        bindRead(ctx, FILTER_VALUE_UNIT, horizontal ? images.value : valueTemp);
+        bindWrite(ctx, FILTER_VALUE_IMAGE, horizontal ? valueTemp : images.value, format);
+        if (images.direction) {
+            bindRead(ctx, FILTER_DIRECTION_UNIT, horizontal ? images.direction : directionTemp);
+            bindWrite(ctx, FILTER_DIRECTION_IMAGE, horizontal ? directionTemp : images.direction, GL_RGBA16F);
+        }
+        ctx.gl.ProgramUniform2i(program, FILTER_LOC_STEP, horizontal ? 1 : 0, horizontal ? 0 : 1);
+        dispatchCompute2D(ctx, images.size.x, images.size.y, FILTER_WORKGROUP);
+        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+}
+
+void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, GLuint fullValue,
+                             GLuint fullDirection, glm::ivec2 fullSize, const char* passName) {
+    PassScope pass(ctx, passName);
+    upload(ctx, images, s);
+    ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, variant(images)));
+    bindRead(ctx, FILTER_VALUE_UNIT, images.value);
+    bindWrite(ctx, FILTER_VALUE_IMAGE, fullValue, valueFormat(images));
+    if (images.direction) {
+        bindRead(ctx, FILTER_DIRECTION_UNIT, images.direction);
+        bindWrite(ctx, FILTER_DIRECTION_IMAGE, fullDirection, GL_RGBA16F);
+    }
+    dispatchCompute2D(ctx, fullSize.x, fullSize.y, FILTER_WORKGROUP);
+    ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+std::size_t GuidedFilters::memoryBytes() const {
+    return valueTemp_.bytes() + directionTemp_.bytes() + (params_ ? sizeof(shader::FilterParams) : 0);
+}
+
+} // namespace obscura::detail

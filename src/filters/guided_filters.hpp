@@ -1,0 +1,53 @@
+#pragma once
+// The geometry-aware filters integrators run on their reduced-resolution results
+// (shaders/filters/): a separable blur guided by (view normal, view z), and joint bilateral
+// upsampling to the G-buffer's resolution. Internal: modules own one each.
+#include "core/gl_objects.hpp"
+
+#include <glm/glm.hpp>
+
+#include <string>
+
+namespace obscura::detail {
+
+struct ContextImpl;
+
+struct GuidedFilterSettings {
+    int taps = 0;                //!< blur samples each side, [0, 16]; 0: no blur
+    float depthSigma = 0.05f;    //!< relative view-depth difference weighted e^-1/2, (0, 1]
+    float normalPower = 16.0f;   //!< normal weight exponent, [0, 256]
+    bool unitRange = false;      //!< clamp values to [0, 1]
+    float background = 0.0f;    //!< upsampling: the value of background pixels
+};
+
+//! The images one integrator filters: a value (GL_R16F, or GL_RGBA16F with `rgb`) and an
+//! optional direction (GL_RGBA16F unit vectors, renormalized), at the low resolution.
+struct FilterImages {
+    GLuint guide = 0;
+    GLuint value = 0;
+    GLuint direction = 0; //!< 0: none
+    bool rgb = false;
+    glm::ivec2 size{0};   //!< low resolution
+    int scale = 1;        //!< to the full resolution
+};
+
+//! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
+void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
+
+class GuidedFilters {
+public:
+    //! Blurs the images in place (through temporaries of the same size). Pass "<pass>.blur".
+    void blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName);
+    //! Writes the full-resolution images from the low-resolution ones; the caller has bound
+    //! the frame block and the G-buffer's depth and normal (VIS_DEPTH_UNIT, VIS_NORMAL_UNIT).
+    void upsample(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, GLuint fullValue,
+                  GLuint fullDirection, glm::ivec2 fullSize, const char* passName);
+    std::size_t memoryBytes() const;
+
+private:
+    void upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s);
+    Buffer params_;
+    SizedTexture valueTemp_, directionTemp_;
+};
+
+} // namespace obscura::detail

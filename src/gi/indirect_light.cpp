@@ -1,0 +1,146 @@
+#include "obscura/indirect_light.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/frame_uniforms.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/texture_info.hpp"
+#include "core/validate.hpp"
+#include "filters/guided_filters.hpp"
+#include "voxel/voxel_queries.hpp"
+#include "obscura/context.hpp"
+#include "shaders/gi/gi_bindings.h"
+#include "shaders/voxel/voxel_bindings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace obscura {
+namespace {
+
+using namespace detail;
+
+void validateSettings(const IndirectLightSettings& s) {
+    if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
+        throw Error(ErrorCode::InvalidArgument,
+                    "IndirectLightSettings::radius must be in (0, inf) world units, got " + std::to_string(s.radius));
+    requireInRange(s.rays, 1, 1024, "IndirectLightSettings::rays", "");
+    requireInRange(s.steps, 1, 256, "IndirectLightSettings::steps", "");
+    if (!(s.thickness >= 0.0f) || std::isinf(s.thickness))
+        throw Error(ErrorCode::InvalidArgument, "IndirectLightSettings::thickness must be in [0, inf) world units, got " +
+                                                    std::to_string(s.thickness));
+    validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "IndirectLightSettings");
+    if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
+}
+
+
+
+} // namespace
+
+struct IndirectLight::Impl {
+    explicit Impl(ContextImpl& c) : ctx(c) {}
+
+    ContextImpl& ctx;
+    FrameUniforms frame;
+    Buffer params;
+    SizedTexture radiance, guide, full;
+    GuidedFilters filters;
+
+    void bindRead(int unit, GLuint texture) {
+        ctx.state.bindTexture(ctx, unit, texture);
+        ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
+    }
+
+    void bindWrite(int unit, GLuint texture, GLenum format) {
+        ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+    }
+
+    void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
+        shader::GiParams p{};
+        p.shape = glm::vec4(s.radius, s.thickness > 0.0f ? s.thickness : s.radius, 0.0f, 0.0f);
+        p.counts = glm::ivec4(s.rays, s.steps, 0, 0);
+        p.sizes = glm::ivec4(size, scale, 0);
+        p.viewToVoxel = glm::mat4(1.0f);
+        if (s.method == GiMethod::Hybrid) {
+            p.viewToVoxel = viewToVoxel(*s.voxels, g.camera);
+            // As voxel AO: rays start a voxel diagonal off the surface; a voxel hit lies
+            // within a voxel diagonal of the surface it stands for, so two diagonals is the
+            // default tolerance for finding that surface on screen.
+            p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));
+            if (s.thickness <= 0.0f) p.shape.y = 2.0f * p.shape.z;
+        }
+        if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "gi.params");
+        ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
+        ctx.state.bindUniformBuffer(ctx, GI_PARAMS_UBO_BINDING, params.get());
+    }
+
+};
+
+IndirectLight::IndirectLight(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+IndirectLight::~IndirectLight() = default;
+
+IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSettings& s) {
+    validateSettings(s);
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    analyzeProjection(g.camera);
+    const TextureInfo depth = queryTexture2D(ctx, g.depth.name, "GBufferView::depth");
+    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
+    if (!g.albedo || !g.directRadiance)
+        throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo, which "
+                                                "adopted host buffers do not have: render the G-buffer with GBuffer::render");
+    for (const auto& [view, what] : {std::pair{g.normal, "normal"}, std::pair{g.albedo, "albedo"},
+                                     std::pair{g.directRadiance, "directRadiance"}}) {
+        const TextureInfo info = queryTexture2D(ctx, view.name, std::string("GBufferView::") + what);
+        if (info.width != depth.width || info.height != depth.height)
+            throw Error(ErrorCode::InvalidArgument, std::string("GBufferView::") + what + " must have the depth's size");
+    }
+    const int scale = static_cast<int>(s.resolution);
+    const glm::ivec2 fullSize(depth.width, depth.height);
+    const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);
+
+    StateScope scope(ctx);
+    d.uploadParams(g, s, size, scale);
+    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y);
+    d.bindRead(VIS_DEPTH_UNIT, g.depth.name);
+    d.bindRead(VIS_NORMAL_UNIT, g.normal.name);
+    d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
+    d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
+    ctx.bindNoiseTexture();
+    const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
+    const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide");
+    {
+        const bool hybrid = s.method == GiMethod::Hybrid;
+        PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
+        std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
+        if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+        ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
+        if (hybrid) bindVoxelGrid(ctx, *s.voxels);
+        d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
+        d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
+        dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP);
+        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    const FilterImages images{guide, radiance, 0, true, size, scale};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f};
+    d.filters.blur(ctx, images, filter, "gi.blur");
+    IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};
+    if (scale > 1) {
+        const GLuint full = d.full.ensure(ctx, GL_RGBA16F, fullSize.x, fullSize.y, "gi.output");
+        d.filters.upsample(ctx, images, filter, full, 0, fullSize, "gi.upsample");
+        out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
+    }
+    barrierForReaders(ctx);
+    return out;
+}
+
+std::size_t IndirectLight::memoryBytes() const {
+    const auto& d = *impl_;
+    return d.radiance.bytes() + d.guide.bytes() + d.full.bytes() + d.frame.memoryBytes() + d.filters.memoryBytes() +
+           (d.params ? sizeof(shader::GiParams) : 0);
+}
+
+} // namespace obscura

@@ -1,0 +1,176 @@
+// Combine, tone mapping and output into a host framebuffer, against the formulas of
+// compose.hpp evaluated on the CPU from the same inputs.
+#include "gl_fixture.hpp"
+#include "scene_builders.hpp"
+
+#include "obscura/assets.hpp"
+#include "obscura/obscura.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace obscura;
+
+namespace {
+
+// A host texture of one constant value (the host's own AO or indirect light).
+struct ConstantTexture {
+    GLuint name = 0;
+    ConstantTexture(GLenum format, int width, int height, glm::vec4 value) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &name);
+        glTextureStorage2D(name, 1, format, width, height);
+        glClearTexImage(name, 0, GL_RGBA, GL_FLOAT, &value);
+    }
+    ~ConstantTexture() { glDeleteTextures(1, &name); }
+    TextureView view(GLenum format, int width, int height) const { return {name, format, width, height}; }
+};
+
+double luminance(glm::dvec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+struct Frame {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Composer composer{ctx};
+    GBufferView view;
+    Image direct, albedo;
+    static constexpr int W = 32, H = 24;
+
+    Frame() {
+        const assets::LoadedScene cornell = assets::builtinScene("cornell");
+        view = gbuffer.render(cornell.scene, assets::makeCamera(cornell.camera, W, H), {W, H, true, {}});
+        direct = readTexture(ctx, view.directRadiance);
+        albedo = readTexture(ctx, view.albedo);
+    }
+};
+
+} // namespace
+
+TEST_CASE("The combine formulas match their definitions", "[compose]") {
+    Frame f;
+    const ConstantTexture ao(GL_R16F, Frame::W, Frame::H, glm::vec4(0.5f));
+    const ConstantTexture indirect(GL_RGBA16F, Frame::W, Frame::H, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
+    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical}) {
+        CAPTURE(formula == CombineFormula::Thesis);
+        ComposeSettings s;
+        s.formula = formula;
+        s.ambient = glm::vec3(0.4f, 0.3f, 0.2f);
+        s.indirectScale = 2.0f;
+        s.exposure = 0.01f; // the Cornell light is ~ 1e2 W/(sr m^2): keep the values in [0, 1]
+        s.toneMapper = ToneMapper::None;
+        s.srgb = false;
+        s.gamma = 1.0f;
+        const TextureView display =
+            f.composer.compose({f.view, ao.view(GL_R16F, Frame::W, Frame::H), indirect.view(GL_RGBA16F, Frame::W, Frame::H)}, s);
+        const Image shown = readTexture(f.ctx, display), radiance = readTexture(f.ctx, f.composer.radiance());
+        for (int y = 0; y < Frame::H; ++y)
+            for (int x = 0; x < Frame::W; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), l1 = 0.1 * (c + 1), a = 0.5;
+                    const double ambient = rho * a * s.ambient[c];
+                    const double expected = s.exposure * (formula == CombineFormula::Thesis
+                                                              ? ambient + s.indirectScale * l1 + a * l
+                                                              : l + s.indirectScale * l1 + ambient);
+                    CAPTURE(x, y, c, expected);
+                    // RGBA16F: 11-bit mantissa (and the inputs are 16-bit too: a few ulp).
+                    CHECK(radiance.at(x, y, c) == Approx(expected).epsilon(4e-3).margin(1e-6));
+                    // RGBA8: rounded to 1/255 after the clamp.
+                    CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 0.5 / 255.0 + 4e-3 * expected);
+                }
+    }
+}
+
+TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]") {
+    Frame f;
+    for (ToneMapper mapper : {ToneMapper::Aces, ToneMapper::Drago}) {
+        for (bool srgb : {true, false}) {
+            CAPTURE(static_cast<int>(mapper), srgb);
+            ComposeSettings s;
+            s.toneMapper = mapper;
+            s.srgb = srgb;
+            s.gamma = 2.2f;
+            s.exposure = 0.05f;
+            const Image shown = readTexture(f.ctx, f.composer.compose({f.view, {}, {}}, s));
+            const Image radiance = readTexture(f.ctx, f.composer.radiance());
+            double lmax = 0.0;
+            for (int y = 0; y < Frame::H; ++y)
+                for (int x = 0; x < Frame::W; ++x)
+                    lmax = std::max(lmax, luminance({radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)}));
+            REQUIRE(lmax > 0.0);
+            for (int y = 0; y < Frame::H; ++y)
+                for (int x = 0; x < Frame::W; ++x) {
+                    const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+                    glm::dvec3 mapped;
+                    if (mapper == ToneMapper::Aces) {
+                        for (int c = 0; c < 3; ++c)
+                            mapped[c] = std::clamp(l[c] * (2.51 * l[c] + 0.03) / (l[c] * (2.43 * l[c] + 0.59) + 0.14), 0.0, 1.0);
+                    } else {
+                        const double lw = luminance(l);
+                        const double ld = lw > 0.0 ? (100.0 * 0.01 / std::log10(lmax + 1.0)) * std::log(lw + 1.0) /
+                                                         std::log(2.0 + 8.0 * std::pow(lw / lmax, std::log(0.85) / std::log(0.5)))
+                                                   : 0.0;
+                        mapped = lw > 0.0 ? l * (ld / lw) : glm::dvec3(0.0);
+                    }
+                    for (int c = 0; c < 3; ++c) {
+                        const double v = std::clamp(mapped[c], 0.0, 1.0);
+                        const double encoded = srgb ? (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)
+                                                    : std::pow(v, 1.0 / 2.2);
+                        CAPTURE(x, y, c, v, encoded);
+                        // 8-bit rounding plus float evaluation on the GPU.
+                        CHECK(std::abs(shown.at(x, y, c) - encoded) <= 0.5 / 255.0 + 2e-3);
+                    }
+                }
+        }
+    }
+}
+
+TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour and keeps its alpha", "[compose]") {
+    Frame f;
+    GLuint color = 0, fbo = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &color);
+    glTextureStorage2D(color, 1, GL_RGBA8, 20, 10);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    const ConstantTexture ao(GL_R16F, 8, 8, glm::vec4(0.5f));
+    for (HostBlend blend : {HostBlend::Overwrite, HostBlend::Multiply}) {
+        const glm::vec4 grey(0.8f, 0.6f, 0.4f, 0.2f);
+        glClearTexImage(color, 0, GL_RGBA, GL_FLOAT, &grey);
+        // Into the right half only.
+        f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 10, 0, 10, 10, blend});
+        std::vector<std::uint8_t> texels(20 * 10 * 4);
+        glGetTextureImage(color, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(texels.size()), texels.data());
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 20; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    const double before = grey[c];
+                    double expected = before;
+                    if (x >= 10 && c < 3) expected = blend == HostBlend::Overwrite ? 0.5 : 0.5 * before;
+                    CAPTURE(x, y, c, expected);
+                    CHECK(std::abs(texels[(static_cast<std::size_t>(y) * 20 + x) * 4 + c] / 255.0 - expected) <= 1.0 / 255.0);
+                }
+    }
+    CHECK(test::drainGlErrors().empty());
+    CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 0, 10}), Error);
+    CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {12345, 0, 0, 10, 10}), Error);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &color);
+}
+
+TEST_CASE("Compose refuses bad settings and inputs of the wrong size", "[compose][bad-input]") {
+    Frame f;
+    const ConstantTexture small(GL_R16F, 8, 8, glm::vec4(1.0f));
+    for (auto change : std::vector<void (*)(ComposeSettings&)>{
+             [](ComposeSettings& s) { s.exposure = 0.0f; }, [](ComposeSettings& s) { s.gamma = 5.0f; },
+             [](ComposeSettings& s) { s.ambient.x = -1.0f; }, [](ComposeSettings& s) { s.dragoBias = 0.1f; },
+             [](ComposeSettings& s) { s.dragoMaxLuminance = NAN; }}) {
+        ComposeSettings s;
+        change(s);
+        CHECK_THROWS_AS(f.composer.compose({f.view, {}, {}}, s), Error);
+    }
+    CHECK_THROWS_AS(f.composer.compose({f.view, small.view(GL_R16F, 8, 8), {}}, {}), Error);
+    HostGBuffer host;
+    host.depth = f.view.depth;
+    CHECK_THROWS_AS(f.composer.compose({f.gbuffer.adopt(host, f.view.camera), {}, {}}, {}), Error);
+    CHECK(test::drainGlErrors().empty());
+}
