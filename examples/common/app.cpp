@@ -5,9 +5,16 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
 #include "obscura/error.hpp"
 #include "obscura/headless.hpp"
 #include "obscura/profiler.hpp"
+#include "obscura/scene.hpp"
+
+#include <glm/geometric.hpp>
 
 #include <EGL/egl.h>
 
@@ -23,6 +30,27 @@ GLADapiproc eglGladLoader(void*, const char* name) { return reinterpret_cast<GLA
 
 } // namespace
 
+int runGuarded(const std::function<void()>& body) {
+    try {
+        body();
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+}
+
+ExampleScene loadExampleScene(const AppOptions& options, int width, int height) {
+    ExampleScene s;
+    s.loaded = assets::loadScene(options.scene);
+    const assets::CameraSpec spec =
+        options.camera.empty() ? s.loaded.camera : assets::parseCameraSpec(options.camera, s.loaded.camera);
+    s.camera = assets::makeCamera(spec, width, height);
+    const Bounds bounds = sceneBounds(s.loaded.scene);
+    s.diagonal = glm::length(bounds.max - bounds.min);
+    return s;
+}
+
 void addAppOptions(CLI::App& cli, AppOptions& o) {
     cli.add_option("--scene", o.scene, "Built-in scene, JSON scene or mesh file")->capture_default_str();
     cli.add_option("--camera", o.camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg");
@@ -36,6 +64,28 @@ struct App::Impl {
     std::unique_ptr<headless::HeadlessContext> headless;
     GLFWwindow* window = nullptr;
     GLuint texture = 0, framebuffer = 0;
+    std::function<void()> panel;
+    bool imgui = false;
+
+    // The panel over what is on screen; ImGui's OpenGL 3 backend loads its own GL functions.
+    void drawPanel() {
+        if (!panel) return;
+        if (!imgui) {
+            ImGui::CreateContext();
+            ImGui::GetIO().IniFilename = nullptr; // no imgui.ini next to the binary
+            ImGui_ImplGlfw_InitForOpenGL(window, true);
+            ImGui_ImplOpenGL3_Init("#version 450 core");
+            imgui = true;
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        panel();
+        ImGui::Render();
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glViewport(0, 0, static_cast<GLsizei>(ImGui::GetIO().DisplaySize.x), static_cast<GLsizei>(ImGui::GetIO().DisplaySize.y));
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
 };
 
 App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frames) {
@@ -67,6 +117,11 @@ App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frame
 }
 
 App::~App() {
+    if (impl_->imgui) {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
     if (impl_->window) {
         glDeleteFramebuffers(1, &impl_->framebuffer);
         glDeleteTextures(1, &impl_->texture);
@@ -83,6 +138,22 @@ ContextDesc App::contextDesc() const {
 }
 
 bool App::windowed() const { return impl_->window != nullptr; }
+
+void App::setPanel(std::function<void()> widgets) { impl_->panel = std::move(widgets); }
+
+TextureImage App::presentUntilDone(bool& changed, const std::function<TextureImage()>& render) {
+    TextureImage picture, shown;
+    int presented = 0;
+    do {
+        if (changed) {
+            changed = false;
+            picture = render();
+        }
+        shown = present(picture);
+        ++presented;
+    } while (!done(presented));
+    return shown;
+}
 
 bool App::done(int presented) const {
     if (impl_->window && glfwWindowShouldClose(impl_->window)) return true;
@@ -118,6 +189,7 @@ TextureImage App::present(const TextureImage& picture) {
     for (int y = 0; y < height_; ++y)
         std::memcpy(&shown.rgba[static_cast<std::size_t>(y) * row],
                     &flipped[static_cast<std::size_t>(height_ - 1 - y) * row], row);
+    impl_->drawPanel();
     glfwSwapBuffers(impl_->window);
     glfwPollEvents();
     return shown;

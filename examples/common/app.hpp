@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -22,6 +23,9 @@ struct AppOptions {
 };
 
 void addAppOptions(CLI::App& cli, AppOptions& options);
+
+//! Runs an example's body; an exception is printed and gives exit status 1.
+int runGuarded(const std::function<void()>& body);
 
 //! Prints the context's per-pass statistics (median over the frames, and the clock).
 void printPassTimes(Context& ctx);
@@ -42,13 +46,27 @@ public:
     //! Headless: returns `picture`. In a window: draws it into the window's framebuffer, reads
     //! that framebuffer back (what is on screen), swaps and returns what was read.
     TextureImage present(const TextureImage& picture);
+    //! Presents frames until done(): calls `render` for a new picture first and whenever
+    //! `changed` was set (by the panel), clearing it. Returns the last presented picture.
+    TextureImage presentUntilDone(bool& changed, const std::function<TextureImage()>& render);
     //! True once `frames` frames were presented or the window was closed.
     bool done(int presented) const;
+    //! In a window: ImGui widgets drawn over each presented picture (after it was read back,
+    //! so the panel is not part of the returned picture). Ignored headless.
+    void setPanel(std::function<void()> widgets);
 
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     int width_ = 0, height_ = 0, frames_ = 1;
 };
+
+//! The scene of --scene seen through --camera (or the scene's own camera) at `width` x `height`.
+struct ExampleScene {
+    assets::LoadedScene loaded;
+    Camera camera;
+    float diagonal = 0.0f; //!< of the scene's bounding box, world units
+};
+ExampleScene loadExampleScene(const AppOptions& options, int width, int height);
 
 } // namespace obscura::examples

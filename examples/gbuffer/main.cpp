@@ -19,12 +19,11 @@ int main(int argc, char** argv) {
     std::string output = "direct";
     parser.add_option("--output", output, "direct, albedo, normal, depth, position or distance")->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
-    try {
+    return examples::runGuarded([&] {
         examples::App app(options);
-        const assets::LoadedScene scene = assets::loadScene(options.scene);
-        const assets::CameraSpec spec =
-            options.camera.empty() ? scene.camera : assets::parseCameraSpec(options.camera, scene.camera);
-        const Camera camera = assets::makeCamera(spec, app.width(), app.height());
+        const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
+        const assets::LoadedScene& scene = example.loaded;
+        const Camera& camera = example.camera;
         TextureImage shown;
         {
             Context ctx(app.contextDesc());
@@ -39,9 +38,5 @@ int main(int argc, char** argv) {
             examples::printPassTimes(ctx);
         }
         examples::writeShown(options, app.windowed(), shown);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
-    return 0;
+    });
 }

@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     parser.add_option("--levels", v.levels, "Mip levels to show side by side, e.g. 0,1,2")->capture_default_str();
     parser.add_option("--hierarchy", v.hierarchy, "octree (2^L cells) or quadtree (2^L x 2^L columns)")->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
-    try {
+    return examples::runGuarded([&] {
         if (v.mode != "surface" && v.mode != "solid") throw Error(ErrorCode::Parse, "--mode: expected surface or solid");
         if (v.hierarchy != "octree" && v.hierarchy != "quadtree")
             throw Error(ErrorCode::Parse, "--hierarchy: expected octree or quadtree");
@@ -132,9 +132,5 @@ int main(int argc, char** argv) {
             examples::printPassTimes(ctx);
         }
         examples::writeShown(options, app.windowed(), shown);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
-    return 0;
+    });
 }

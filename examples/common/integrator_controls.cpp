@@ -1,0 +1,61 @@
+#include "integrator_controls.hpp"
+
+#include "obscura/error.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace obscura::examples {
+namespace {
+
+const char* const kResolutions[] = {"full", "half", "quarter"};
+
+int indexOf(const std::vector<std::string>& names, const std::string& name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+} // namespace
+
+void IntegratorControls::addOptions(CLI::App& cli) {
+    std::string known;
+    for (const auto& m : methods) known += (known.empty() ? "" : "|") + m;
+    cli.add_option_function<std::string>("--method", [this](const std::string& v) {
+        method = indexOf(methods, v);
+        if (method < 0) throw CLI::ValidationError("--method", v + " is not one of the methods");
+    }, known + " (default " + methods.front() + ")");
+    cli.add_option("--rays", rays, "Directions per pixel [1, 1024]")->capture_default_str();
+    cli.add_option("--steps", steps, "Samples per ray [1, 256]")->capture_default_str();
+    cli.add_option("--radius", radius, "World units (0: a tenth of the scene's diagonal)")->capture_default_str();
+    cli.add_option_function<std::string>("--resolution", [this](const std::string& v) {
+        resolution = indexOf({"full", "half", "quarter"}, v);
+        if (resolution < 0) throw CLI::ValidationError("--resolution", v + ": expected full, half or quarter");
+    }, "full|half|quarter (default full)");
+    cli.add_option("--blur", blur, "Geometry-aware blur taps each side [0, 16]")->capture_default_str();
+}
+
+void IntegratorControls::check() const {
+    if (rays < 1 || rays > 1024 || steps < 1 || steps > 256 || blur < 0 || blur > 16 || !(radius >= 0.0f))
+        throw Error(ErrorCode::Parse, "--rays [1, 1024], --steps [1, 256], --blur [0, 16], --radius >= 0");
+}
+
+AoResolution IntegratorControls::aoResolution() const {
+    return resolution == 2 ? AoResolution::Quarter : resolution == 1 ? AoResolution::Half : AoResolution::Full;
+}
+
+void IntegratorControls::drawPanel(const char* title) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::Begin(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    std::vector<const char*> names;
+    for (const auto& m : methods) names.push_back(m.c_str());
+    changed |= ImGui::Combo("method", &method, names.data(), static_cast<int>(names.size()));
+    changed |= ImGui::SliderInt("rays", &rays, 1, 256);
+    changed |= ImGui::SliderInt("steps", &steps, 1, 64);
+    changed |= ImGui::DragFloat("radius", &radius, std::max(radius, 1.0f) * 0.01f, 0.0f, 1e6f);
+    changed |= ImGui::Combo("resolution", &resolution, kResolutions, 3);
+    changed |= ImGui::SliderInt("blur", &blur, 0, 16);
+    ImGui::End();
+}
+
+} // namespace obscura::examples

@@ -1,0 +1,93 @@
+// Global illumination example: one-bounce indirect light of a scene, screen-space or hybrid
+// (voxel visibility, screen radiance), alone or combined with the direct light and AO, on the
+// example's own context (headless EGL, or a GLFW window with an ImGui panel).
+//
+//   obscura_example_global_illumination --scene cornell --method hybrid --view composed --out gi.png
+//   obscura_example_global_illumination --window --frames 0
+#include "app.hpp"
+#include "integrator_controls.hpp"
+#include "obscura/obscura.hpp"
+
+#include <imgui.h>
+
+#include <cstdio>
+
+using namespace obscura;
+
+int main(int argc, char** argv) {
+    CLI::App parser{"Obscura global illumination example"};
+    examples::AppOptions options;
+    examples::addAppOptions(parser, options);
+    examples::IntegratorControls controls;
+    controls.methods = {"screen", "hybrid"};
+    controls.addOptions(parser);
+    std::string viewName = "composed";
+    float exposure = 0.0f;
+    parser.add_option("--view", viewName, "indirect (L1 alone) or composed (direct + L1, tone mapped)")
+        ->capture_default_str();
+    parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping (0: 1 / the scene's brightest light)")
+        ->capture_default_str();
+    CLI11_PARSE(parser, argc, argv);
+    return examples::runGuarded([&] {
+        controls.check();
+        if (viewName != "indirect" && viewName != "composed") throw Error(ErrorCode::Parse, "--view: expected indirect or composed");
+        examples::App app(options);
+        const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
+        const assets::LoadedScene& scene = example.loaded;
+        const Camera& camera = example.camera;
+        const float diagonal = example.diagonal;
+        if (controls.radius <= 0.0f) controls.radius = 0.1f * diagonal;
+        bool composed = viewName == "composed";
+        bool withAo = true;
+        app.setPanel([&] {
+            controls.drawPanel("global illumination");
+            ImGui::Begin("global illumination");
+            controls.changed |= ImGui::Checkbox("composed", &composed);
+            controls.changed |= ImGui::Checkbox("ambient occlusion", &withAo);
+            controls.changed |= ImGui::DragFloat("exposure", &exposure, 0.001f, 0.0f, 1e3f, "%.4f");
+            ImGui::End();
+        });
+        TextureImage shown;
+        {
+            Context ctx(app.contextDesc());
+            GBuffer gbuffer(ctx);
+            Voxelizer voxelizer(ctx);
+            IndirectLight gi(ctx);
+            AmbientOcclusion ao(ctx);
+            Composer composer(ctx);
+            const GBufferView view = gbuffer.render(scene.scene, camera, {app.width(), app.height(), true, {}});
+            shown = app.presentUntilDone(controls.changed, [&] {
+                TextureImage picture;
+                IndirectLightSettings s;
+                s.method = static_cast<GiMethod>(controls.method);
+                s.rays = controls.rays;
+                s.steps = controls.steps;
+                s.radius = std::max(controls.radius, 1e-6f * diagonal);
+                s.resolution = controls.aoResolution();
+                s.blurRadius = controls.blur;
+                if (s.method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(scene.scene, {});
+                const IndirectLightView result = gi.run(view, s);
+                ComposeSettings c;
+                c.exposure = exposure > 0.0f ? exposure : 1.0f;
+                if (composed) {
+                    ComposeInputs inputs{view, {}, result.radiance};
+                    if (withAo) {
+                        AmbientOcclusionSettings a;
+                        a.radius = s.radius;
+                        a.resolution = s.resolution;
+                        a.blurRadius = s.blurRadius;
+                        inputs.ao = ao.run(view, a).ao;
+                    }
+                    picture = assets::encodeDisplay(readTexture(ctx, composer.compose(inputs, c)), assets::PngEncoding::Linear);
+                } else {
+                    Image l1 = readTexture(ctx, result.radiance);
+                    for (float& v : l1.pixels) v *= c.exposure;
+                    picture = assets::encodeDisplay(l1, assets::PngEncoding::Srgb);
+                }
+                return picture;
+            });
+            examples::printPassTimes(ctx);
+        }
+        examples::writeShown(options, app.windowed(), shown);
+    });
+}
