@@ -8,6 +8,9 @@
 //   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
 //                   toward the camera; alpha = 1 on geometry, 0 on background
 //   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours only)
+//   backDepth       second depth layer (depthLayers = 2, ours only): per pixel the nearest
+//                   surface strictly behind `depth` (depth peeling), 32F, clear depth where
+//                   none; the back of closed objects, for screen-space thickness
 //   directRadiance  GL_RGBA16F, W/(sr·m²): emission + unshadowed Lambert from the scene's
 //                   lights with the interpolated shading normal (ours only). Saturates at
 //                   65504, the largest finite half float, instead of overflowing to Inf.
@@ -30,6 +33,7 @@ struct GBufferView {
     TextureView normal;
     TextureView albedo;         //!< empty for adopted host buffers
     TextureView directRadiance; //!< empty for adopted host buffers
+    TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
     Camera camera;
     int width = 0;  //!< pixels
     int height = 0; //!< pixels
@@ -40,6 +44,9 @@ struct GBufferSettings {
     int height = 0;              //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
     bool directLighting = true;  //!< add the lights to directRadiance; off: emission only
     glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²), [0, 65504] per channel
+    //! Depth layers, [1, 2]: 2 adds `backDepth` (a second, depth-only pass over the scene
+    //! that peels the first layer), for ScreenThickness::DepthPeeling.
+    int depthLayers = 1;
 };
 
 enum class NormalSpace { View, World };

@@ -11,6 +11,7 @@
 #include "obscura/metrics.hpp"
 #include "obscura/profiler.hpp"
 #include "obscura/scene.hpp"
+#include "obscura/screen_visibility.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/version.hpp"
 #include "obscura/voxelizer.hpp"

@@ -1,6 +1,11 @@
 //! variant: HAS_NORMALS
 //! variant: HAS_NORMALS HAS_TEXCOORDS ALBEDO_TEXTURE
 //! variant: NO_DIRECT_LIGHTING
+//! variant: PEEL
+//! variant: HAS_NORMALS PEEL
+#if defined(PEEL) && !defined(NO_DIRECT_LIGHTING)
+#define NO_DIRECT_LIGHTING // depth only
+#endif
 #include "../common/frame.glsl"
 #include "../common/math.glsl"
 #include "gbuffer_bindings.h"
@@ -22,6 +27,11 @@ layout(location = GBUFFER_LOC_LIGHT_COUNT) uniform int lightCount;
 
 #ifdef ALBEDO_TEXTURE
 layout(binding = GBUFFER_ALBEDO_TEXTURE_UNIT) uniform sampler2D albedoTexture;
+#endif
+
+#ifdef PEEL
+// The first depth layer: the peeling pass keeps only what lies strictly behind it.
+layout(binding = GBUFFER_DEPTH_TEXTURE_UNIT) uniform sampler2D firstLayer;
 #endif
 
 layout(std430, binding = GBUFFER_LIGHTS_SSBO_BINDING) readonly buffer Lights {
@@ -93,6 +103,13 @@ vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
 }
 
 void main() {
+#ifdef PEEL
+    // Same vertices, same invariant positions: the first layer's own fragments reproduce its
+    // depth exactly and are dropped; viewport.w = 1 marks reversed-Z (farther = smaller).
+    const float front = texelFetch(firstLayer, ivec2(gl_FragCoord.xy), 0).r;
+    const bool behind = frame.viewport.w == 1 ? gl_FragCoord.z < front : gl_FragCoord.z > front;
+    if (!behind) discard;
+#endif
     vec3 ng = fin.faceNormal;
     vec3 ns = ng;
 #ifdef HAS_NORMALS

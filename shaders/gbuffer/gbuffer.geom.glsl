@@ -13,6 +13,8 @@ in VertexData {
     vec2 texcoord;
 } gin[];
 
+invariant gl_Position;
+
 out FragmentData {
     vec3 viewPosition;
     vec3 shadingNormal;

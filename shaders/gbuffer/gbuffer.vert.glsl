@@ -14,6 +14,9 @@ layout(location = GBUFFER_ATTRIB_TEXCOORD) in vec2 inTexcoord;
 layout(location = GBUFFER_LOC_MODEL_VIEW) uniform mat4 modelView;
 layout(location = GBUFFER_LOC_NORMAL_MATRIX) uniform mat4 normalMatrix;
 
+// The peeling pass must reproduce the first pass's depths bit for bit.
+invariant gl_Position;
+
 out VertexData {
     vec3 viewPosition;
     vec3 viewNormal;

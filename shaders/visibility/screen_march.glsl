@@ -1,22 +1,34 @@
 // Visibility in screen space: whether a view-space point is hidden behind the depth buffer,
-// and the first such point along a ray. Needs frame.glsl's block (the G-buffer's camera) and
+// and the first such sample along a ray. Needs frame.glsl's block (the G-buffer's camera) and
 // the depth and normal textures at VIS_DEPTH_UNIT and VIS_NORMAL_UNIT.
 //
 // A depth pixel stands for a small piece of surface: its reconstructed point o with the
-// G-buffer's normal n_o, extending `thickness` behind the front depth. A point s is hidden
-// when it is behind that piece's tangent plane (dot(s - o, n_o) < 0, so a ray leaving a
-// plane never hits the same plane, whatever the pixel grid) and at most `thickness` behind
-// the front depth. Points outside the image or in front of the camera plane are visible:
-// the border policy (nothing is known there).
+// G-buffer's normal n_o, extending behind the front depth by a constant `thickness` or, with
+// SCREEN_PEELED, down to the second depth layer (the surface behind it; constant thickness
+// where there is none). A point s is hidden when it is behind that piece's tangent plane
+// (dot(s - o, n_o) < 0, so a ray leaving a plane never hits the same plane, whatever the
+// pixel grid) and not beyond the piece's back. Points outside the image or in front of the
+// camera plane are visible: the border policy (nothing is known there).
+//
+// Rays are sampled at t_j = (j + jitter) / steps, j = 0 .. steps - 1, of a segment p -> p + d,
+// either as 3D points p + d t_j projected to their pixels (screenMarch), or in texture space
+// (screenMarchTexture): homogeneous clip coordinates and view z interpolated linearly in t,
+// the view point reconstructed from the texture coordinate. Both classify each sample with
+// screenHiddenAt and so agree up to float rounding at pixel edges. With SCREEN_HIZ,
+// screenMarchHiZ returns the texture-space march's first hidden sample exactly, skipping
+// runs of samples whose view-z range misses a pyramid cell's bounds.
 #include "../common/depth.glsl"
+#include "../common/math.glsl"
 #include "visibility_bindings.h"
 
 layout(binding = VIS_DEPTH_UNIT) uniform sampler2D visDepth;
 layout(binding = VIS_NORMAL_UNIT) uniform sampler2D visNormal;
+#ifdef SCREEN_PEELED
+layout(binding = VIS_BACK_DEPTH_UNIT) uniform sampler2D visBackDepth;
+#endif
 
-// The pixel a view-space point projects to; false outside the image or behind the camera.
-bool screenPixelOf(vec3 s, out ivec2 pixel) {
-    const vec4 clip = frame.projection * vec4(s, 1.0);
+// The pixel of a clip-space point; false outside the image or not in front of the camera.
+bool screenPixelOfClip(vec4 clip, out ivec2 pixel) {
     pixel = ivec2(-1);
     if (!(clip.w > 0.0)) return false;
     const vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -25,28 +37,166 @@ bool screenPixelOf(vec3 s, out ivec2 pixel) {
     return true;
 }
 
+// The pixel a view-space point projects to; false outside the image or behind the camera.
+bool screenPixelOf(vec3 s, out ivec2 pixel) { return screenPixelOfClip(frame.projection * vec4(s, 1.0), pixel); }
+
 // Relative tolerance of the tangent-plane test: reconstructed positions carry float
 // rounding of a few ulp of their magnitude.
 const float kScreenPlaneTolerance = 4e-6;
 
-// Whether s is hidden behind the depth buffer (see above).
-bool screenHidden(vec3 s, float thickness) {
-    ivec2 pixel;
-    if (!screenPixelOf(s, pixel)) return false;
+// The farthest view z (most negative) at which a point at `pixel` is still inside the piece
+// of surface whose front is at view z `frontZ`.
+float screenBackZ(ivec2 pixel, float frontZ, float thickness) {
+#ifdef SCREEN_PEELED
+    const float back = texelFetch(visBackDepth, pixel, 0).r;
+    return isBackground(back) ? frontZ - thickness : min(viewZFromDepth(back), frontZ);
+#else
+    return frontZ - thickness;
+#endif
+}
+
+// Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface.
+bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
     if (isBackground(depth)) return false;
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
     const float scale = max(length(o), length(s));
-    return dot(s - o, n) < -kScreenPlaneTolerance * scale && s.z >= o.z - thickness;
+    return dot(s - o, n) < -kScreenPlaneTolerance * scale && s.z >= screenBackZ(pixel, o.z, thickness);
 }
 
-// The first of `steps` samples at distances radius (j + jitter) / steps, j = 0 .. steps - 1,
-// along the unit direction w from p that is hidden; its distance, or -1 when none is.
-float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
-    for (int j = 0; j < steps; ++j) {
-        const float t = radius * (float(j) + jitter) / float(steps);
-        if (screenHidden(p + w * t, thickness)) return t;
-    }
-    return -1.0;
+// Whether s is hidden behind the depth buffer (see above).
+bool screenHidden(vec3 s, float thickness) {
+    ivec2 pixel;
+    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, thickness);
 }
+
+float screenSampleT(int j, int steps, float jitter) { return (float(j) + jitter) / float(steps); }
+
+// 3D march of the segment p -> p + d: the parameter t_j of the first hidden sample, or -1.
+// The loop carries no early exit (see voxel_traversal.glsl on llvmpipe).
+float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness) {
+    float hitT = -1.0;
+    for (int j = 0; j < steps && hitT < 0.0; ++j) {
+        const float t = screenSampleT(j, steps, jitter);
+        if (screenHidden(p + d * t, thickness)) hitT = t;
+    }
+    return hitT;
+}
+
+// The distance along the unit direction w of the first hidden of `steps` samples out to
+// `radius`, or -1 when none is.
+float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
+    const float t = screenMarchView(p, w * radius, steps, jitter, thickness);
+    return t < 0.0 ? -1.0 : t * radius;
+}
+
+// A segment in texture space: clip coordinates and view z, both linear in t.
+struct ScreenRay {
+    vec4 clip0, clipDelta;
+    float z0, zDelta;
+};
+
+ScreenRay screenRayOf(vec3 p, vec3 d) {
+    return ScreenRay(frame.projection * vec4(p, 1.0), frame.projection * vec4(d, 0.0), p.z, d.z);
+}
+
+// The view point with texture coordinate uv at view z (the inverse of the projection).
+vec3 viewPositionFromUvZ(vec2 uv, float z) {
+    const vec2 xy = (uv * 2.0 - 1.0) * frame.depthXY.xy + frame.depthXY.zw;
+    return isPerspective() ? vec3(-z * xy, z) : vec3(xy, z);
+}
+
+// The texture-space sample at t: its pixel and its view point; false outside the image.
+bool screenSampleAt(ScreenRay r, float t, out ivec2 pixel, out vec3 s) {
+    const vec4 clip = r.clip0 + r.clipDelta * t;
+    const bool inside = screenPixelOfClip(clip, pixel);
+    s = inside ? viewPositionFromUvZ(clip.xy / clip.w * 0.5 + 0.5, r.z0 + r.zDelta * t) : vec3(0.0);
+    return inside;
+}
+
+// 2D march of the segment p -> p + d in texture space: t_j of the first hidden sample, or -1.
+float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thickness) {
+    const ScreenRay r = screenRayOf(p, d);
+    float hitT = -1.0;
+    for (int j = 0; j < steps && hitT < 0.0; ++j) {
+        const float t = screenSampleT(j, steps, jitter);
+        ivec2 pixel;
+        vec3 s;
+        if (screenSampleAt(r, t, pixel, s) && screenHiddenAt(pixel, s, thickness)) hitT = t;
+    }
+    return hitT;
+}
+
+#ifdef SCREEN_HIZ
+// Per cell of level L (2^L x 2^L pixels): x = the nearest view z at which any point of the
+// cell can be hidden, y = the farthest (hiz_build.comp.glsl). Built for one thickness.
+layout(binding = VIS_HIZ_UNIT) uniform sampler2D visHiZ;
+
+// The parameter t > t0 at which the projected segment crosses the screen line
+// clip.c / clip.w = b (one coordinate), or 2 (beyond the segment) when it does not.
+float screenLineCrossing(float c0, float dc, float w0, float dw, float b, float t0) {
+    const float t = (b * w0 - c0) / (dc - b * dw);
+    return t > t0 ? t : 2.0; // NaN (parallel) compares false
+}
+
+// Where the projected segment leaves the pixel box [lo, hi) after t0 (which is inside it).
+float screenCellExit(ScreenRay r, vec2 lo, vec2 hi, float t0) {
+    const vec2 ndcLo = lo / vec2(frameSize()) * 2.0 - 1.0, ndcHi = hi / vec2(frameSize()) * 2.0 - 1.0;
+    const vec4 c = r.clip0, dc = r.clipDelta;
+    float t = screenLineCrossing(c.x, dc.x, c.w, dc.w, ndcLo.x, t0);
+    t = min(t, screenLineCrossing(c.x, dc.x, c.w, dc.w, ndcHi.x, t0));
+    t = min(t, screenLineCrossing(c.y, dc.y, c.w, dc.w, ndcLo.y, t0));
+    return min(t, screenLineCrossing(c.y, dc.y, c.w, dc.w, ndcHi.y, t0));
+}
+
+// The texture-space march through the pyramid: from sample j, the run of samples j..k in
+// j's cell at the current level is skipped when its view-z range (exact: z is linear in t)
+// misses the cell's bounds, after which the level goes up; otherwise the level goes down,
+// and at level 0 sample j is classified as screenMarchTexture does. k comes from the
+// segment's exit from the cell and is kept only when sample k lands in the cell itself
+// (else the run is j alone), so no sample outside the cell's bounds is ever skipped.
+// Returns t of the first hidden sample or -1; `fetches` counts texel fetches.
+float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+    const ScreenRay r = screenRayOf(p, d);
+    const int top = textureQueryLevels(visHiZ) - 1;
+    float hitT = -1.0;
+    fetches = 0u;
+    int j = 0, level = 0;
+    // Each iteration skips samples, classifies one or descends a level: bounded.
+    const int guard = 4 * steps * (top + 2) + 8;
+    for (int iteration = 0; iteration < guard && j < steps && hitT < 0.0; ++iteration) {
+        const float t = screenSampleT(j, steps, jitter);
+        ivec2 pixel;
+        vec3 s;
+        const bool inside = screenSampleAt(r, t, pixel, s);
+        if (!inside) {
+            j += 1; // outside the image: visible, nothing to fetch
+            level = 0;
+        } else {
+            const ivec2 cell = pixel >> level;
+            const vec2 bounds = texelFetch(visHiZ, cell, level).xy;
+            fetches += 1u;
+            const float exitT = screenCellExit(r, vec2(cell << level), vec2((cell + 1) << level), t);
+            int k = clamp(int(ceil(exitT * float(steps) - jitter)) - 1, j, steps - 1);
+            ivec2 lastPixel;
+            vec3 lastS;
+            const bool lastInside = screenSampleAt(r, screenSampleT(k, steps, jitter), lastPixel, lastS);
+            if (!lastInside || any(notEqual(lastPixel >> level, cell))) k = j;
+            const float zj = r.z0 + r.zDelta * t, zk = r.z0 + r.zDelta * screenSampleT(k, steps, jitter);
+            const bool misses = min(zj, zk) > bounds.x || max(zj, zk) < bounds.y;
+            if (misses) {
+                j = k + 1;
+                level = min(level + 1, top);
+            } else if (level > 0) {
+                level -= 1;
+            } else {
+                fetches += 2u;
+                if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+                j += 1;
+            }
+        }
+    }
+    return hitT;
+}
+#endif

@@ -67,6 +67,8 @@ struct GBuffer::Impl {
     int width = 0, height = 0;
     Texture depth, normal, albedo, direct;
     Framebuffer fbo;
+    Texture backDepth;     //!< second depth layer, only while depthLayers = 2 is asked for
+    Framebuffer peelFbo;
     Buffer lights;
     std::size_t lightCapacity = 0;
     Sampler materialSampler;     //!< our uploaded images, mipmapped
@@ -77,6 +79,8 @@ struct GBuffer::Impl {
     void ensureTargets(int w, int h) {
         if (fbo && w == width && h == height) return;
         fbo.reset();
+        peelFbo.reset();
+        backDepth.reset();
         depth = createTexture2D(ctx, GL_DEPTH_COMPONENT32F, w, h, 1, "gbuffer.depth");
         normal = createTexture2D(ctx, GL_RGBA16F, w, h, 1, "gbuffer.normal");
         albedo = createTexture2D(ctx, GL_SRGB8_ALPHA8, w, h, 1, "gbuffer.albedo");
@@ -95,6 +99,17 @@ struct GBuffer::Impl {
         fbo = std::move(f);
         width = w;
         height = h;
+    }
+
+    void ensurePeelTarget() {
+        if (peelFbo) return;
+        backDepth = createTexture2D(ctx, GL_DEPTH_COMPONENT32F, width, height, 1, "gbuffer.back_depth");
+        Framebuffer f = createFramebuffer(ctx, "gbuffer.peel");
+        ctx.gl.NamedFramebufferTexture(f.get(), GL_DEPTH_ATTACHMENT, backDepth.get(), 0);
+        ctx.gl.NamedFramebufferDrawBuffer(f.get(), GL_NONE);
+        if (ctx.gl.CheckNamedFramebufferStatus(f.get(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(ErrorCode::UnsupportedFeature, "the depth-peeling framebuffer (32F depth only) is not complete");
+        peelFbo = std::move(f);
     }
 
     void uploadLights(const Scene& scene, const glm::dmat4& view) {
@@ -119,7 +134,7 @@ struct GBuffer::Impl {
     }
 
     void draw(const DrawableMesh& mesh, const glm::mat4& model, const Material& material, const glm::dmat4& view,
-              bool directLighting, int lightCount) {
+              bool directLighting, int lightCount, bool peel = false) {
         auto& gl = ctx.gl;
         const GLuint texture = mesh.hasTexcoords ? materialTexture(material) : 0;
         Defines defines;
@@ -127,6 +142,7 @@ struct GBuffer::Impl {
         if (mesh.hasTexcoords) defines.push_back("HAS_TEXCOORDS");
         if (texture) defines.push_back("ALBEDO_TEXTURE");
         if (!directLighting) defines.push_back("NO_DIRECT_LIGHTING");
+        if (peel) defines.push_back("PEEL");
         const GLuint program = ctx.shaders->program(
             {"gbuffer/gbuffer.vert.glsl", "gbuffer/gbuffer.geom.glsl", "gbuffer/gbuffer.frag.glsl"}, defines);
         gl.UseProgram(program);
@@ -172,6 +188,7 @@ GBuffer::~GBuffer() = default;
 GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
     auto& ctx = impl_->ctx;
     requireImageSize(settings.width, settings.height, ctx.info.maxTextureSize, "GBufferSettings");
+    requireInRange(settings.depthLayers, 1, 2, "GBufferSettings::depthLayers", "layers");
     for (int c = 0; c < 3; ++c)
         requireInRange(settings.background[c], 0.0, 65504.0, "GBufferSettings::background",
                        "W/(sr m^2) (RGBA16F storage)");
@@ -208,20 +225,35 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 2, background);
 
     const int lightCount = static_cast<int>(scene.lights.size());
-    for (const Mesh& mesh : scene.meshes) {
-        const DrawableMesh d = impl_->meshes.cpuMesh(mesh.data);
-        if (d.count > 0)
-            impl_->draw(d, mesh.model, scene.materials[mesh.material], view, settings.directLighting, lightCount);
+    const auto drawScene = [&](bool peel) {
+        for (const Mesh& mesh : scene.meshes) {
+            const DrawableMesh d = impl_->meshes.cpuMesh(mesh.data);
+            if (d.count > 0)
+                impl_->draw(d, mesh.model, scene.materials[mesh.material], view, settings.directLighting, lightCount, peel);
+        }
+        for (std::size_t i = 0; i < scene.meshRefs.size(); ++i)
+            impl_->draw(hostMeshes[i], scene.meshRefs[i].model, scene.materials[scene.meshRefs[i].material], view,
+                        settings.directLighting, lightCount, peel);
+    };
+    drawScene(false);
+    if (settings.depthLayers == 2) {
+        impl_->ensurePeelTarget();
+        gl.BindFramebuffer(GL_FRAMEBUFFER, impl_->peelFbo.get());
+        gl.ClearNamedFramebufferfv(impl_->peelFbo.get(), GL_DEPTH, 0, &projection.clearDepth);
+        ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, impl_->depth.get());
+        ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
+        drawScene(true);
+    } else {
+        impl_->peelFbo.reset(); // not asked for: not kept
+        impl_->backDepth.reset();
     }
-    for (std::size_t i = 0; i < scene.meshRefs.size(); ++i)
-        impl_->draw(hostMeshes[i], scene.meshRefs[i].model, scene.materials[scene.meshRefs[i].material], view,
-                    settings.directLighting, lightCount);
 
     GBufferView v;
     v.depth = {impl_->depth.get(), GL_DEPTH_COMPONENT32F, settings.width, settings.height};
     v.normal = {impl_->normal.get(), GL_RGBA16F, settings.width, settings.height};
     v.albedo = {impl_->albedo.get(), GL_SRGB8_ALPHA8, settings.width, settings.height};
     v.directRadiance = {impl_->direct.get(), GL_RGBA16F, settings.width, settings.height};
+    if (settings.depthLayers == 2) v.backDepth = {impl_->backDepth.get(), GL_DEPTH_COMPONENT32F, settings.width, settings.height};
     v.camera = camera;
     v.width = settings.width;
     v.height = settings.height;
@@ -320,6 +352,7 @@ std::size_t GBuffer::memoryBytes() const {
     if (i.fbo)
         total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) *
                  (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
+    if (i.backDepth) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * bytesPerTexel(GL_DEPTH_COMPONENT32F);
     total += i.lightCapacity * sizeof(shader::LightData);
     total += i.adoptedNormal.bytes() + i.positions.bytes();
     return total;

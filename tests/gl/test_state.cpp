@@ -287,6 +287,20 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         g.rays = 4;
         giView = gi->run(view, g);
     });
+    check("GBuffer::render (two depth layers)", [&] {
+        GBufferSettings two{40, 32, true, {}};
+        two.depthLayers = 2;
+        view = gbuffer->render(s.scene, s.camera, two);
+    });
+    auto visibility = std::make_unique<ScreenVisibility>(*ctx);
+    check("ScreenVisibility::trace (Hi-Z, depth peeling)", [&] {
+        ScreenTraceSettings t;
+        t.march = ScreenMarch::HiZ;
+        t.thicknessMode = ScreenThickness::DepthPeeling;
+        visibility->trace(view, {{glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f, 1.0f, -5.0f)}}, t);
+    });
+    check("ScreenVisibility::hidden", [&] { visibility->hidden(view, {glm::vec3(0.0f, 0.0f, -3.0f)}, {}); });
+    check("ScreenVisibility::~ScreenVisibility", [&] { visibility.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
     TextureView display;
     check("Composer::compose", [&] {
@@ -362,7 +376,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 26);
+    CHECK(checked == 30);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

@@ -1,0 +1,86 @@
+#pragma once
+// Visibility queries in screen space: the depth buffer of a G-buffer as an occluder, the
+// GLSL functions of shaders/visibility/screen_march.glsl in batches (like Voxelizer::trace).
+//
+// A depth pixel stands for a piece of surface: the point o reconstructed at the pixel
+// centre, the G-buffer's geometric normal n, and a back: `thickness` world units behind the
+// front depth, or the second depth layer of GBufferSettings::depthLayers = 2 (DepthPeeling;
+// the constant thickness where that layer is empty). A point is hidden when it projects
+// into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
+// plane never hits it again at any resolution) and is not beyond the back. Points outside
+// the image or behind the camera plane are visible (the border policy). The reach of a query
+// is its segment: the radius check of the integrators is the segment's length.
+//
+// A segment from -> to is sampled at t_j = (j + jitter) / steps, j = 0 .. steps - 1:
+//   View     the 3D points from + (to - from) t_j, projected to their pixels;
+//   Texture  the same samples in texture space: clip coordinates and view z interpolated
+//            linearly in t (perspective-correct), the view point reconstructed from the
+//            texture coordinate. Classifies like View up to float rounding at pixel edges;
+//   HiZ      the Texture samples, with runs of them skipped through a min/max view-z
+//            pyramid of the depth buffer (built per call for the thickness): the same first
+//            hidden sample as Texture, with fewer texel fetches where rays pass far from
+//            surfaces. To test every pixel a segment crosses, take steps >= its length in
+//            pixels.
+#include "obscura/export.hpp"
+#include "obscura/gbuffer.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace obscura {
+
+class Context;
+
+enum class ScreenMarch { View, Texture, HiZ };
+enum class ScreenThickness {
+    Constant,     //!< `thickness` world units behind every depth pixel
+    DepthPeeling, //!< down to GBufferView::backDepth (GBufferSettings::depthLayers = 2)
+};
+
+struct ScreenTraceSettings {
+    ScreenMarch march = ScreenMarch::View;
+    int steps = 32;             //!< samples per segment, [1, 4096]
+    float jitter = 0.5f;        //!< offset of the samples in units of the spacing, [0, 1)
+    ScreenThickness thicknessMode = ScreenThickness::Constant;
+    float thickness = 1.0f;     //!< world units, (0, inf); with DepthPeeling where no back layer exists
+};
+
+//! A segment in the G-buffer camera's view space (world units). NaN or Inf: a miss.
+struct ScreenSegment {
+    glm::vec3 from{0.0f}, to{0.0f};
+};
+
+struct ScreenHit {
+    bool hit = false;
+    int sample = -1;           //!< index j of the first hidden sample; -1 for a miss
+    float t = 1.0f;            //!< its parameter t_j on the segment; 1 for a miss
+    std::uint32_t fetches = 0; //!< texel fetches the query made (depth, normal, back, pyramid)
+};
+
+class OBSCURA_API ScreenVisibility {
+public:
+    explicit ScreenVisibility(Context& context);
+    ~ScreenVisibility();
+    ScreenVisibility(const ScreenVisibility&) = delete;
+    ScreenVisibility& operator=(const ScreenVisibility&) = delete;
+
+    //! Traces view-space segments against the G-buffer's depth (passes "visibility.hiz" for
+    //! the pyramid and "visibility.trace"). Throws Error{InvalidArgument} for settings out of
+    //! range, a G-buffer without depth or normals, or DepthPeeling without a back layer.
+    std::vector<ScreenHit> trace(const GBufferView& view, const std::vector<ScreenSegment>& segments,
+                                 const ScreenTraceSettings& settings);
+    //! Whether each view-space point is hidden (screenHidden, with the settings' thickness).
+    std::vector<std::uint8_t> hidden(const GBufferView& view, const std::vector<glm::vec3>& points,
+                                     const ScreenTraceSettings& settings);
+
+    //! GPU memory this module holds right now, bytes (segment buffers and the pyramid).
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

@@ -1,0 +1,71 @@
+// The pyramid of screenMarchHiZ. LEVEL 0: per pixel, x = the nearest view z at which a
+// point that projects into the pixel can be behind the pixel's tangent plane, y = the
+// farthest at which it is still inside the piece of surface (screenBackZ). Other levels:
+// the max of x and the min of y over the (up to) 2 x 2 cells below.
+//! variant: LEVEL0
+//! variant: LEVEL0 SCREEN_PEELED
+//! variant: REDUCE
+#include "screen_march.glsl"
+
+layout(local_size_x = VIS_WORKGROUP_2D, local_size_y = VIS_WORKGROUP_2D) in;
+layout(binding = VIS_HIZ_WRITE_IMAGE, rg32f) writeonly uniform image2D hizOut;
+#ifndef LEVEL0 // REDUCE
+layout(binding = VIS_HIZ_READ_IMAGE, rg32f) readonly uniform image2D hizIn;
+#endif
+layout(location = VIS_LOC_THICKNESS) uniform float thickness;
+
+const float kHuge = 3.0e38;
+// Relative slack on both bounds: they must hold for the marcher's float samples, whose
+// reconstruction and interpolation round differently from this pass.
+const float kBoundSlack = 1e-4;
+
+#ifdef LEVEL0
+// View z where the view ray through texture coordinate uv meets the plane through o with
+// normal n, when the ray reaches the plane from its front side; kHuge otherwise (no bound).
+float planeZAlongRay(vec2 uv, vec3 o, vec3 n) {
+    const vec2 xy = (uv * 2.0 - 1.0) * frame.depthXY.xy + frame.depthXY.zw;
+    if (isPerspective()) {
+        const vec3 d = vec3(xy, -1.0); // the ray's point at view z = -1
+        const float dn = dot(d, n);
+        return dn < -1e-6 * length(d) ? -dot(o, n) / dn : kHuge;
+    }
+    return n.z > 1e-6 ? (dot(o, n) - dot(xy, n.xy)) / n.z : kHuge;
+}
+
+vec2 pixelBounds(ivec2 pixel) {
+    const float depth = texelFetch(visDepth, pixel, 0).r;
+    if (isBackground(depth)) return vec2(-kHuge, kHuge); // nothing is hidden here
+    const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
+    const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
+    // Behind the plane means beyond it along the view ray; over the pixel's footprint the
+    // plane's z is extreme at a corner (1/z is linear in screen space for a plane).
+    float nearest = o.z;
+    for (int c = 0; c < 4; ++c) {
+        const vec2 corner = (vec2(pixel) + vec2(c & 1, c >> 1)) / vec2(frameSize());
+        nearest = max(nearest, planeZAlongRay(corner, o, n));
+    }
+    const float farthest = screenBackZ(pixel, o.z, thickness);
+    return vec2(nearest + kBoundSlack * abs(nearest), farthest - kBoundSlack * abs(farthest));
+}
+#endif
+
+void main() {
+    const ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(cell, imageSize(hizOut)))) return;
+#ifdef LEVEL0
+    // The pyramid is padded to powers of two; padding is background.
+    const bool inImage = all(lessThan(cell, frameSize()));
+    imageStore(hizOut, cell, vec4(inImage ? pixelBounds(cell) : vec2(-kHuge, kHuge), 0.0, 0.0));
+#else
+    const ivec2 below = imageSize(hizIn);
+    vec2 bounds = vec2(-kHuge, kHuge);
+    for (int c = 0; c < 4; ++c) {
+        const ivec2 child = cell * 2 + ivec2(c & 1, c >> 1);
+        if (all(lessThan(child, below))) {
+            const vec2 b = imageLoad(hizIn, child).xy;
+            bounds = vec2(max(bounds.x, b.x), min(bounds.y, b.y));
+        }
+    }
+    imageStore(hizOut, cell, vec4(bounds, 0.0, 0.0));
+#endif
+}

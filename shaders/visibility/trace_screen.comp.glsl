@@ -1,0 +1,71 @@
+// Batch screen-space visibility queries: one invocation per view-space segment, written as
+// (hit, first hidden sample index, texel fetches, t bits).
+//! variant: MARCH=0
+//! variant: MARCH=1
+//! variant: MARCH=2 SCREEN_HIZ
+//! variant: MARCH=0 SCREEN_PEELED
+//! variant: MARCH=1 SCREEN_PEELED
+//! variant: MARCH=2 SCREEN_HIZ SCREEN_PEELED
+#include "screen_march.glsl"
+
+layout(local_size_x = VIS_WORKGROUP_1D) in;
+layout(std430, binding = VIS_SEGMENTS_SSBO) readonly buffer Segments {
+    vec4 segments[]; // from.xyz, to.xyz in consecutive pairs (view space)
+};
+layout(std430, binding = VIS_RESULTS_SSBO) writeonly buffer Results {
+    uvec4 results[];
+};
+layout(location = VIS_LOC_STEPS) uniform int steps;
+layout(location = VIS_LOC_JITTER) uniform float jitter;
+layout(location = VIS_LOC_THICKNESS) uniform float thickness;
+layout(location = VIS_LOC_COUNT) uniform uint count;
+layout(location = VIS_LOC_FIRST) uniform uint first;
+
+// Fetches of a sampled march up to (and including) sample `last`: the ones inside the image
+// cost the depth and normal texels (and the back layer when peeled).
+uint marchFetches(vec3 from, vec3 d, int last) {
+    uint n = 0u;
+#if MARCH == VIS_MARCH_VIEW
+    for (int j = 0; j <= last; ++j) {
+        ivec2 pixel;
+        if (screenPixelOf(from + d * screenSampleT(j, steps, jitter), pixel)) n += 1u;
+    }
+#else
+    const ScreenRay r = screenRayOf(from, d);
+    for (int j = 0; j <= last; ++j) {
+        ivec2 pixel;
+        vec3 s;
+        if (screenSampleAt(r, screenSampleT(j, steps, jitter), pixel, s)) n += 1u;
+    }
+#endif
+#ifdef SCREEN_PEELED
+    return n * 3u;
+#else
+    return n * 2u;
+#endif
+}
+
+void main() {
+    const uint i = first + gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    const vec3 from = segments[2 * i].xyz, to = segments[2 * i + 1].xyz;
+    const vec3 d = to - from;
+    float t = -1.0;
+    uint fetches = 0u;
+    if (allFinite(from) && allFinite(to)) {
+#if MARCH == VIS_MARCH_VIEW
+        t = screenMarchView(from, d, steps, jitter, thickness);
+#elif MARCH == VIS_MARCH_TEXTURE
+        t = screenMarchTexture(from, d, steps, jitter, thickness);
+#else
+        t = screenMarchHiZ(from, d, steps, jitter, thickness, fetches);
+#endif
+    }
+    const bool hit = t >= 0.0;
+    // The sample index back from t (exact: t = (j + jitter) / steps was computed that way).
+    const int j = hit ? int(round(t * float(steps) - jitter)) : -1;
+#if MARCH != VIS_MARCH_HIZ
+    if (allFinite(from) && allFinite(to)) fetches = marchFetches(from, d, hit ? j : steps - 1);
+#endif
+    results[i] = uvec4(hit ? 1u : 0u, hit ? uint(j) : 0xFFFFFFFFu, fetches, floatBitsToUint(hit ? t : 1.0));
+}

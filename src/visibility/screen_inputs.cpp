@@ -1,0 +1,50 @@
+#include "visibility/screen_inputs.hpp"
+
+#include "core/context_impl.hpp"
+#include "core/texture_info.hpp"
+#include "obscura/error.hpp"
+#include "shaders/visibility/visibility_bindings.h"
+
+namespace obscura::detail {
+namespace {
+
+void requireSameSize(ContextImpl& ctx, const TextureView& t, const TextureInfo& depth, const std::string& what) {
+    const TextureInfo info = queryTexture2D(ctx, t.name, "GBufferView::" + what);
+    if (info.width != depth.width || info.height != depth.height)
+        throw Error(ErrorCode::InvalidArgument, "GBufferView::" + what + " (" + std::to_string(info.width) + "x" +
+                                                    std::to_string(info.height) + ") must have the depth's size (" +
+                                                    std::to_string(depth.width) + "x" + std::to_string(depth.height) + ")");
+}
+
+void bindNearest(ContextImpl& ctx, int unit, GLuint texture) {
+    ctx.state.bindTexture(ctx, unit, texture);
+    ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
+}
+
+} // namespace
+
+GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool needsBack, const std::string& owner) {
+    const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
+    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
+    requireSameSize(ctx, view.normal, depth, "normal");
+    if (needsBack) {
+        if (!view.backDepth)
+            throw Error(ErrorCode::InvalidArgument, owner + ": depth peeling needs GBufferView::backDepth, the second "
+                                                            "depth layer of GBufferSettings::depthLayers = 2");
+        const TextureInfo back = queryTexture2D(ctx, view.backDepth.name, "GBufferView::backDepth");
+        if (!back.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::backDepth is not a depth texture");
+        requireSameSize(ctx, view.backDepth, depth, "backDepth");
+    }
+    GBufferView checked = view;
+    checked.width = depth.width;
+    checked.height = depth.height;
+    return checked;
+}
+
+void bindScreenInputs(ContextImpl& ctx, const GBufferView& view) {
+    bindNearest(ctx, VIS_DEPTH_UNIT, view.depth.name);
+    bindNearest(ctx, VIS_NORMAL_UNIT, view.normal.name);
+    if (view.backDepth) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
+}
+
+} // namespace obscura::detail
