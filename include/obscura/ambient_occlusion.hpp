@@ -54,8 +54,8 @@ struct AmbientOcclusionSettings {
     int steps = 8;              //!< depth samples per ray (RayMarch) or per side (Horizon), [1, 256]
     bool cosineWeighted = true; //!< cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only
     ObscuranceFalloff falloff = ObscuranceFalloff::None;
-    //! Screen space: how far behind a depth sample, in world units, a point still counts as
-    //! inside the object, (0, inf); 0 = the radius. Larger closes gaps behind thin objects,
+    //! Screen space: how far behind a depth sample's tangent plane (along its normal), in
+    //! world units, a point still counts as inside the object, (0, inf); 0 = the radius. Larger closes gaps behind thin objects,
     //! smaller lets rays pass behind them.
     float thickness = 0.0f;
     AoResolution resolution = AoResolution::Full;

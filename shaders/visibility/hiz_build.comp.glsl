@@ -1,6 +1,6 @@
 // The pyramid of screenMarchHiZ. LEVEL 0: per pixel, x = the nearest view z at which a
 // point that projects into the pixel can be behind the pixel's tangent plane, y = the
-// farthest at which it is still inside the piece of surface (screenBackZ). Other levels:
+// farthest at which it is still inside the piece of surface (screenHiddenAt). Other levels:
 // the max of x and the min of y over the (up to) 2 x 2 cells below.
 //! variant: LEVEL0
 //! variant: LEVEL0 SCREEN_PEELED
@@ -32,19 +32,34 @@ float planeZAlongRay(vec2 uv, vec3 o, vec3 n) {
     return n.z > 1e-6 ? (dot(o, n) - dot(xy, n.xy)) / n.z : kHuge;
 }
 
+// The extreme view z over the pixel's footprint of the plane through q with normal n
+// (extreme at a corner: 1/z is linear in screen space for a plane); `nearest` picks the
+// max, else the min. `none` where some corner's ray does not reach the plane from its front.
+float footprintPlaneZ(ivec2 pixel, vec3 q, vec3 n, bool nearest, float none) {
+    float z = nearest ? -kHuge : kHuge;
+    bool bounded = true;
+    for (int c = 0; c < 4; ++c) {
+        const vec2 corner = (vec2(pixel) + vec2(c & 1, c >> 1)) / vec2(frameSize());
+        const float cornerZ = planeZAlongRay(corner, q, n);
+        bounded = bounded && cornerZ < kHuge;
+        z = nearest ? max(z, cornerZ) : min(z, cornerZ);
+    }
+    return bounded ? z : none;
+}
+
 vec2 pixelBounds(ivec2 pixel) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
     if (isBackground(depth)) return vec2(-kHuge, kHuge); // nothing is hidden here
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
-    // Behind the plane means beyond it along the view ray; over the pixel's footprint the
-    // plane's z is extreme at a corner (1/z is linear in screen space for a plane).
-    float nearest = o.z;
-    for (int c = 0; c < 4; ++c) {
-        const vec2 corner = (vec2(pixel) + vec2(c & 1, c >> 1)) / vec2(frameSize());
-        nearest = max(nearest, planeZAlongRay(corner, o, n));
-    }
-    const float farthest = screenBackZ(pixel, o.z, thickness);
+    // Hidden means beyond the tangent plane along the view ray, and not beyond the plane
+    // `thickness` further back (or the back layer).
+    const float nearest = max(o.z, footprintPlaneZ(pixel, o, n, true, kHuge));
+    float farthest = footprintPlaneZ(pixel, o - n * thickness, n, false, -kHuge);
+#ifdef SCREEN_PEELED
+    const float back = texelFetch(visBackDepth, pixel, 0).r;
+    farthest = isBackground(back) ? farthest : min(viewZFromDepth(back), o.z);
+#endif
     return vec2(nearest + kBoundSlack * abs(nearest), farthest - kBoundSlack * abs(farthest));
 }
 #endif

@@ -3,9 +3,9 @@
 // the depth and normal textures at VIS_DEPTH_UNIT and VIS_NORMAL_UNIT.
 //
 // A depth pixel stands for a small piece of surface: its reconstructed point o with the
-// G-buffer's normal n_o, extending behind the front depth by a constant `thickness` or, with
-// SCREEN_PEELED, down to the second depth layer (the surface behind it; constant thickness
-// where there is none). A point s is hidden when it is behind that piece's tangent plane
+// G-buffer's normal n_o, `thickness` deep behind its tangent plane (along n_o) or, with
+// SCREEN_PEELED, down to the second depth layer (the surface behind it; the constant
+// thickness where there is none). A point s is hidden when it is behind that piece's tangent plane
 // (dot(s - o, n_o) < 0, so a ray leaving a plane never hits the same plane, whatever the
 // pixel grid) and not beyond the piece's back. Points outside the image or in front of the
 // camera plane are visible: the border policy (nothing is known there).
@@ -44,25 +44,21 @@ bool screenPixelOf(vec3 s, out ivec2 pixel) { return screenPixelOfClip(frame.pro
 // rounding of a few ulp of their magnitude.
 const float kScreenPlaneTolerance = 4e-6;
 
-// The farthest view z (most negative) at which a point at `pixel` is still inside the piece
-// of surface whose front is at view z `frontZ`.
-float screenBackZ(ivec2 pixel, float frontZ, float thickness) {
-#ifdef SCREEN_PEELED
-    const float back = texelFetch(visBackDepth, pixel, 0).r;
-    return isBackground(back) ? frontZ - thickness : min(viewZFromDepth(back), frontZ);
-#else
-    return frontZ - thickness;
-#endif
-}
-
-// Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface.
+// Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
+// behind its tangent plane, and at most `thickness` behind it (measured along the normal,
+// so the test does not depend on how much depth one pixel's footprint spans) or, peeled,
+// not beyond the back layer.
 bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
-    if (isBackground(depth)) return false;
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
-    const float scale = max(length(o), length(s));
-    return dot(s - o, n) < -kScreenPlaneTolerance * scale && s.z >= screenBackZ(pixel, o.z, thickness);
+    const float behind = -dot(s - o, n);
+    bool inside = behind <= thickness;
+#ifdef SCREEN_PEELED
+    const float back = texelFetch(visBackDepth, pixel, 0).r;
+    inside = isBackground(back) ? inside : s.z >= min(viewZFromDepth(back), o.z);
+#endif
+    return !isBackground(depth) && behind > kScreenPlaneTolerance * max(length(o), length(s)) && inside;
 }
 
 // Whether s is hidden behind the depth buffer (see above).

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace obscura::detail {
@@ -33,12 +34,18 @@ inline void requireFinite(float value, const std::string& what) {
     if (!std::isfinite(value)) throw Error(ErrorCode::InvalidArgument, what + " is NaN or Inf");
 }
 
+//! A number as people write it: 256, 0.5, 1e-06 (not 256.000000).
+inline std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.7g", value);
+    return text;
+}
+
 //! lo <= value <= hi, reported with the unit.
 inline void requireInRange(double value, double lo, double hi, const std::string& what, const std::string& unit = {}) {
     if (!(value >= lo && value <= hi))
-        throw Error(ErrorCode::InvalidArgument, what + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                                                    "]" + (unit.empty() ? "" : " " + unit) + ", got " +
-                                                    std::to_string(value));
+        throw Error(ErrorCode::InvalidArgument, what + " must be in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]" +
+                                                    (unit.empty() ? "" : " " + unit) + ", got " + shortNumber(value));
 }
 
 //! A render-target size: [1, maxSize] on each axis.
