@@ -3,7 +3,7 @@
 //! variant: NO_DIRECT_LIGHTING
 //! variant: PEEL
 //! variant: HAS_NORMALS PEEL
-#if defined(PEEL) && !defined(NO_DIRECT_LIGHTING)
+#ifdef PEEL
 #define NO_DIRECT_LIGHTING // depth only
 #endif
 #include "../common/frame.glsl"

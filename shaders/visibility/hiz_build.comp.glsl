@@ -15,7 +15,8 @@ layout(binding = VIS_HIZ_READ_IMAGE, rg32f) readonly uniform image2D hizIn;
 layout(location = VIS_LOC_THICKNESS) uniform float thickness;
 
 const float kHuge = 3.0e38;
-// Relative slack on both bounds: they must hold for the marcher's float samples, whose
+// Slack on both bounds, relative to the magnitudes the bounds are computed from (not to the
+// bound itself, which may be near 0): they must hold for the marcher's float samples, whose
 // reconstruction and interpolation round differently from this pass.
 const float kBoundSlack = 1e-4;
 
@@ -60,7 +61,8 @@ vec2 pixelBounds(ivec2 pixel) {
     const float back = texelFetch(visBackDepth, pixel, 0).r;
     farthest = isBackground(back) ? farthest : min(viewZFromDepth(back), o.z);
 #endif
-    return vec2(nearest + kBoundSlack * abs(nearest), farthest - kBoundSlack * abs(farthest));
+    const float scale = length(o) + thickness;
+    return vec2(nearest + kBoundSlack * (abs(nearest) + scale), farthest - kBoundSlack * (abs(farthest) + scale));
 }
 #endif
 

@@ -69,13 +69,27 @@ bool screenHidden(vec3 s, float thickness) {
 
 float screenSampleT(int j, int steps, float jitter) { return (float(j) + jitter) / float(steps); }
 
-// 3D march of the segment p -> p + d: the parameter t_j of the first hidden sample, or -1.
-// The loop carries no early exit (see voxel_traversal.glsl on llvmpipe).
-float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness) {
+// Texel fetches of classifying one sample inside the image (depth, normal, back layer).
+#ifdef SCREEN_PEELED
+const uint kScreenSampleFetches = 3u;
+#else
+const uint kScreenSampleFetches = 2u;
+#endif
+
+// 3D march of the segment p -> p + d: the parameter t_j of the first hidden sample, or -1;
+// `fetches` counts texel fetches. The loop carries no early exit (see voxel_traversal.glsl
+// on llvmpipe).
+float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     float hitT = -1.0;
+    fetches = 0u;
     for (int j = 0; j < steps && hitT < 0.0; ++j) {
         const float t = screenSampleT(j, steps, jitter);
-        if (screenHidden(p + d * t, thickness)) hitT = t;
+        const vec3 s = p + d * t;
+        ivec2 pixel;
+        if (screenPixelOf(s, pixel)) {
+            fetches += kScreenSampleFetches;
+            if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+        }
     }
     return hitT;
 }
@@ -83,7 +97,8 @@ float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness) 
 // The distance along the unit direction w of the first hidden of `steps` samples out to
 // `radius`, or -1 when none is.
 float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
-    const float t = screenMarchView(p, w * radius, steps, jitter, thickness);
+    uint fetches;
+    const float t = screenMarchView(p, w * radius, steps, jitter, thickness, fetches);
     return t < 0.0 ? -1.0 : t * radius;
 }
 
@@ -112,14 +127,18 @@ bool screenSampleAt(ScreenRay r, float t, out ivec2 pixel, out vec3 s) {
 }
 
 // 2D march of the segment p -> p + d in texture space: t_j of the first hidden sample, or -1.
-float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thickness) {
+float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     const ScreenRay r = screenRayOf(p, d);
     float hitT = -1.0;
+    fetches = 0u;
     for (int j = 0; j < steps && hitT < 0.0; ++j) {
         const float t = screenSampleT(j, steps, jitter);
         ivec2 pixel;
         vec3 s;
-        if (screenSampleAt(r, t, pixel, s) && screenHiddenAt(pixel, s, thickness)) hitT = t;
+        if (screenSampleAt(r, t, pixel, s)) {
+            fetches += kScreenSampleFetches;
+            if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+        }
     }
     return hitT;
 }
@@ -187,7 +206,7 @@ float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, o
             } else if (level > 0) {
                 level -= 1;
             } else {
-                fetches += 2u;
+                fetches += kScreenSampleFetches;
                 if (screenHiddenAt(pixel, s, thickness)) hitT = t;
                 j += 1;
             }

@@ -21,30 +21,6 @@ layout(location = VIS_LOC_THICKNESS) uniform float thickness;
 layout(location = VIS_LOC_COUNT) uniform uint count;
 layout(location = VIS_LOC_FIRST) uniform uint first;
 
-// Fetches of a sampled march up to (and including) sample `last`: the ones inside the image
-// cost the depth and normal texels (and the back layer when peeled).
-uint marchFetches(vec3 from, vec3 d, int last) {
-    uint n = 0u;
-#if MARCH == VIS_MARCH_VIEW
-    for (int j = 0; j <= last; ++j) {
-        ivec2 pixel;
-        if (screenPixelOf(from + d * screenSampleT(j, steps, jitter), pixel)) n += 1u;
-    }
-#else
-    const ScreenRay r = screenRayOf(from, d);
-    for (int j = 0; j <= last; ++j) {
-        ivec2 pixel;
-        vec3 s;
-        if (screenSampleAt(r, screenSampleT(j, steps, jitter), pixel, s)) n += 1u;
-    }
-#endif
-#ifdef SCREEN_PEELED
-    return n * 3u;
-#else
-    return n * 2u;
-#endif
-}
-
 void main() {
     const uint i = first + gl_GlobalInvocationID.x;
     if (i >= count) return;
@@ -54,9 +30,9 @@ void main() {
     uint fetches = 0u;
     if (allFinite(from) && allFinite(to)) {
 #if MARCH == VIS_MARCH_VIEW
-        t = screenMarchView(from, d, steps, jitter, thickness);
+        t = screenMarchView(from, d, steps, jitter, thickness, fetches);
 #elif MARCH == VIS_MARCH_TEXTURE
-        t = screenMarchTexture(from, d, steps, jitter, thickness);
+        t = screenMarchTexture(from, d, steps, jitter, thickness, fetches);
 #else
         t = screenMarchHiZ(from, d, steps, jitter, thickness, fetches);
 #endif
@@ -64,8 +40,5 @@ void main() {
     const bool hit = t >= 0.0;
     // The sample index back from t (exact: t = (j + jitter) / steps was computed that way).
     const int j = hit ? int(round(t * float(steps) - jitter)) : -1;
-#if MARCH != VIS_MARCH_HIZ
-    if (allFinite(from) && allFinite(to)) fetches = marchFetches(from, d, hit ? j : steps - 1);
-#endif
     results[i] = uvec4(hit ? 1u : 0u, hit ? uint(j) : 0xFFFFFFFFu, fetches, floatBitsToUint(hit ? t : 1.0));
 }

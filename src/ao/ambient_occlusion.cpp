@@ -8,6 +8,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
 #include "obscura/context.hpp"
 #include "shaders/ao/ao_bindings.h"
@@ -90,15 +91,6 @@ struct AmbientOcclusion::Impl {
         return p;
     }
 
-    void bindInputs(const GBufferView& g) {
-        ctx.state.bindTexture(ctx, VIS_DEPTH_UNIT, g.depth.name);
-        ctx.state.bindSampler(ctx, VIS_DEPTH_UNIT, ctx.nearestClampSampler());
-        ctx.state.bindTexture(ctx, VIS_NORMAL_UNIT, g.normal.name);
-        ctx.state.bindSampler(ctx, VIS_NORMAL_UNIT, ctx.nearestClampSampler());
-        ctx.bindNoiseTexture();
-    }
-
-
     void bindWrite(int unit, GLuint texture, GLenum format) {
         ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
     }
@@ -112,16 +104,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    const TextureInfo depth = queryTexture2D(ctx, g.depth.name, "GBufferView::depth");
-    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
-    const TextureInfo normal = queryTexture2D(ctx, g.normal.name, "GBufferView::normal");
-    if (normal.width != depth.width || normal.height != depth.height)
-        throw Error(ErrorCode::InvalidArgument, "GBufferView::normal (" + std::to_string(normal.width) + "x" +
-                                                    std::to_string(normal.height) + ") must have the depth's size (" +
-                                                    std::to_string(depth.width) + "x" + std::to_string(depth.height) + ")");
-    GBufferView view = g;
-    view.width = depth.width;
-    view.height = depth.height;
+    const GBufferView view = checkScreenInputs(ctx, g, false, "AmbientOcclusionSettings");
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
 
@@ -131,7 +114,8 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
     d.frame.bind(ctx, view.camera, view.width, view.height);
-    d.bindInputs(view);
+    bindScreenInputs(ctx, view, false);
+    ctx.bindNoiseTexture();
     const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
     const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide");
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;

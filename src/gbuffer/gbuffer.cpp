@@ -136,13 +136,14 @@ struct GBuffer::Impl {
     void draw(const DrawableMesh& mesh, const glm::mat4& model, const Material& material, const glm::dmat4& view,
               bool directLighting, int lightCount, bool peel = false) {
         auto& gl = ctx.gl;
-        const GLuint texture = mesh.hasTexcoords ? materialTexture(material) : 0;
+        // The peeling pass writes depth only: no texture, no lighting (PEEL implies it).
+        const GLuint texture = mesh.hasTexcoords && !peel ? materialTexture(material) : 0;
         Defines defines;
         if (mesh.hasNormals) defines.push_back("HAS_NORMALS");
         if (mesh.hasTexcoords) defines.push_back("HAS_TEXCOORDS");
         if (texture) defines.push_back("ALBEDO_TEXTURE");
-        if (!directLighting) defines.push_back("NO_DIRECT_LIGHTING");
         if (peel) defines.push_back("PEEL");
+        else if (!directLighting) defines.push_back("NO_DIRECT_LIGHTING");
         const GLuint program = ctx.shaders->program(
             {"gbuffer/gbuffer.vert.glsl", "gbuffer/gbuffer.geom.glsl", "gbuffer/gbuffer.frag.glsl"}, defines);
         gl.UseProgram(program);

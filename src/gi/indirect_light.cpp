@@ -8,6 +8,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
 #include "obscura/context.hpp"
 #include "shaders/gi/gi_bindings.h"
@@ -87,26 +88,20 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    const TextureInfo depth = queryTexture2D(ctx, g.depth.name, "GBufferView::depth");
-    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
     if (!g.albedo || !g.directRadiance)
         throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo, which "
                                                 "adopted host buffers do not have: render the G-buffer with GBuffer::render");
-    for (const auto& [view, what] : {std::pair{g.normal, "normal"}, std::pair{g.albedo, "albedo"},
-                                     std::pair{g.directRadiance, "directRadiance"}}) {
-        const TextureInfo info = queryTexture2D(ctx, view.name, std::string("GBufferView::") + what);
-        if (info.width != depth.width || info.height != depth.height)
-            throw Error(ErrorCode::InvalidArgument, std::string("GBufferView::") + what + " must have the depth's size");
-    }
+    const GBufferView view = checkScreenInputs(ctx, g, false, "IndirectLightSettings");
+    requireViewSized(ctx, g.albedo, view, "albedo");
+    requireViewSized(ctx, g.directRadiance, view, "directRadiance");
     const int scale = static_cast<int>(s.resolution);
-    const glm::ivec2 fullSize(depth.width, depth.height);
+    const glm::ivec2 fullSize(view.width, view.height);
     const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);
 
     StateScope scope(ctx);
     d.uploadParams(g, s, size, scale);
     d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y);
-    d.bindRead(VIS_DEPTH_UNIT, g.depth.name);
-    d.bindRead(VIS_NORMAL_UNIT, g.normal.name);
+    bindScreenInputs(ctx, view, false);
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
     d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
     ctx.bindNoiseTexture();

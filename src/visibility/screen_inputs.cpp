@@ -8,14 +8,6 @@
 namespace obscura::detail {
 namespace {
 
-void requireSameSize(ContextImpl& ctx, const TextureView& t, const TextureInfo& depth, const std::string& what) {
-    const TextureInfo info = queryTexture2D(ctx, t.name, "GBufferView::" + what);
-    if (info.width != depth.width || info.height != depth.height)
-        throw Error(ErrorCode::InvalidArgument, "GBufferView::" + what + " (" + std::to_string(info.width) + "x" +
-                                                    std::to_string(info.height) + ") must have the depth's size (" +
-                                                    std::to_string(depth.width) + "x" + std::to_string(depth.height) + ")");
-}
-
 void bindNearest(ContextImpl& ctx, int unit, GLuint texture) {
     ctx.state.bindTexture(ctx, unit, texture);
     ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
@@ -23,28 +15,36 @@ void bindNearest(ContextImpl& ctx, int unit, GLuint texture) {
 
 } // namespace
 
+void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what) {
+    const TextureInfo info = queryTexture2D(ctx, texture.name, "GBufferView::" + what);
+    if (info.width != checked.width || info.height != checked.height)
+        throw Error(ErrorCode::InvalidArgument, "GBufferView::" + what + " (" + std::to_string(info.width) + "x" +
+                                                    std::to_string(info.height) + ") must have the depth's size (" +
+                                                    std::to_string(checked.width) + "x" + std::to_string(checked.height) + ")");
+}
+
 GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool needsBack, const std::string& owner) {
     const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
     if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
-    requireSameSize(ctx, view.normal, depth, "normal");
+    GBufferView checked = view;
+    checked.width = depth.width;
+    checked.height = depth.height;
+    requireViewSized(ctx, view.normal, checked, "normal");
     if (needsBack) {
         if (!view.backDepth)
             throw Error(ErrorCode::InvalidArgument, owner + ": depth peeling needs GBufferView::backDepth, the second "
                                                             "depth layer of GBufferSettings::depthLayers = 2");
         const TextureInfo back = queryTexture2D(ctx, view.backDepth.name, "GBufferView::backDepth");
         if (!back.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::backDepth is not a depth texture");
-        requireSameSize(ctx, view.backDepth, depth, "backDepth");
+        requireViewSized(ctx, view.backDepth, checked, "backDepth");
     }
-    GBufferView checked = view;
-    checked.width = depth.width;
-    checked.height = depth.height;
     return checked;
 }
 
-void bindScreenInputs(ContextImpl& ctx, const GBufferView& view) {
+void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled) {
     bindNearest(ctx, VIS_DEPTH_UNIT, view.depth.name);
     bindNearest(ctx, VIS_NORMAL_UNIT, view.normal.name);
-    if (view.backDepth) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
+    if (peeled) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
 }
 
 } // namespace obscura::detail

@@ -13,7 +13,10 @@ struct ContextImpl;
 //! back layer of that size when `needsBack`); returns the view with width and height taken
 //! from the depth texture. Throws Error{InvalidArgument} naming `owner` otherwise.
 GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool needsBack, const std::string& owner);
-//! Binds depth, normal (and the back layer, when the view has one) with nearest sampling.
-void bindScreenInputs(ContextImpl& ctx, const GBufferView& view);
+//! Throws Error{InvalidArgument} unless GBufferView::<what> `texture` has the size of the
+//! checked view (from checkScreenInputs).
+void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what);
+//! Binds depth, normal (and the back layer for SCREEN_PEELED shaders) with nearest sampling.
+void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
 
 } // namespace obscura::detail

@@ -4,6 +4,7 @@
 #include "core/context_impl.hpp"
 #include "core/frame_uniforms.hpp"
 #include "core/pass_scope.hpp"
+#include "core/segment_batch.hpp"
 #include "core/shader_library.hpp"
 #include "core/validate.hpp"
 #include "obscura/camera.hpp"
@@ -44,20 +45,10 @@ struct ScreenVisibility::Impl {
 
     ContextImpl& ctx;
     FrameUniforms frame;
-    Buffer segments, results;
-    std::size_t capacity = 0;
+    SegmentBatch batch{{VIS_SEGMENTS_SSBO, VIS_RESULTS_SSBO, VIS_LOC_COUNT, VIS_LOC_FIRST, VIS_WORKGROUP_1D, "visibility"}};
     Texture hiz;
     glm::ivec2 hizSize{0};
     int hizLevels = 0;
-
-    void ensureBuffers(std::size_t count) {
-        if (capacity >= count) return;
-        segments = createBuffer(ctx, static_cast<GLsizeiptr>(count * 2 * sizeof(glm::vec4)), nullptr,
-                                GL_DYNAMIC_STORAGE_BIT, "visibility.segments");
-        results = createBuffer(ctx, static_cast<GLsizeiptr>(count * sizeof(glm::uvec4)), nullptr, GL_DYNAMIC_STORAGE_BIT,
-                               "visibility.results");
-        capacity = count;
-    }
 
     // The pyramid over the view padded to powers of two, so that level L's cell i covers the
     // pixels [i 2^L, (i + 1) 2^L) with GL's halving mip sizes.
@@ -92,32 +83,19 @@ struct ScreenVisibility::Impl {
 
     // Runs the batch shader over the segments; one uvec4 per segment.
     std::vector<glm::uvec4> run(const GBufferView& g, const std::vector<ScreenSegment>& queries, const ScreenTraceSettings& s) {
-        constexpr std::size_t kMaxQueries = std::size_t{1} << 26; // 2 GiB of segments and results
-        if (queries.size() > kMaxQueries)
-            throw Error(ErrorCode::InvalidArgument, "screen visibility queries: " + std::to_string(queries.size()) +
-                                                        " in one call; at most " + std::to_string(kMaxQueries) + " are accepted");
         const bool peeled = s.thicknessMode == ScreenThickness::DepthPeeling;
         const GBufferView view = checkScreenInputs(ctx, g, peeled, "ScreenTraceSettings");
         analyzeProjection(view.camera);
         StateScope scope(ctx);
         auto& gl = ctx.gl;
         frame.bind(ctx, view.camera, view.width, view.height);
-        bindScreenInputs(ctx, view);
+        bindScreenInputs(ctx, view, peeled);
+        batch.upload(ctx, queries); // first: it refuses oversized batches before any work
         if (s.march == ScreenMarch::HiZ) {
             buildHiZ(view, s);
             ctx.state.bindTexture(ctx, VIS_HIZ_UNIT, hiz.get());
             ctx.state.bindSampler(ctx, VIS_HIZ_UNIT, ctx.nearestClampSampler());
         }
-        ensureBuffers(queries.size());
-        std::vector<glm::vec4> packed;
-        packed.reserve(queries.size() * 2);
-        for (const ScreenSegment& q : queries) {
-            packed.emplace_back(q.from, 0.0f);
-            packed.emplace_back(q.to, 0.0f);
-        }
-        gl.NamedBufferSubData(segments.get(), 0, static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data());
-        ctx.state.bindStorageBuffer(ctx, VIS_SEGMENTS_SSBO, segments.get());
-        ctx.state.bindStorageBuffer(ctx, VIS_RESULTS_SSBO, results.get());
         Defines defines{"MARCH=" + std::to_string(marchCode(s.march))};
         if (s.march == ScreenMarch::HiZ) defines.push_back("SCREEN_HIZ");
         if (peeled) defines.push_back("SCREEN_PEELED");
@@ -126,20 +104,7 @@ struct ScreenVisibility::Impl {
         gl.ProgramUniform1i(program, VIS_LOC_STEPS, s.steps);
         gl.ProgramUniform1f(program, VIS_LOC_JITTER, s.jitter);
         gl.ProgramUniform1f(program, VIS_LOC_THICKNESS, s.thickness);
-        gl.ProgramUniform1ui(program, VIS_LOC_COUNT, static_cast<GLuint>(queries.size()));
-        {
-            // Only the traversal is timed; GL guarantees 65535 work groups per dispatch.
-            PassScope pass(ctx, "visibility.trace");
-            const std::size_t perDispatch = std::size_t{65535} * VIS_WORKGROUP_1D;
-            for (std::size_t first = 0; first < queries.size(); first += perDispatch) {
-                gl.ProgramUniform1ui(program, VIS_LOC_FIRST, static_cast<GLuint>(first));
-                dispatchCompute1D(ctx, std::min(perDispatch, queries.size() - first), VIS_WORKGROUP_1D);
-            }
-        }
-        gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        std::vector<glm::uvec4> raw(queries.size());
-        gl.GetNamedBufferSubData(results.get(), 0, static_cast<GLsizeiptr>(raw.size() * sizeof(glm::uvec4)), raw.data());
-        return raw;
+        return batch.run(ctx, program, "visibility.trace");
     }
 };
 
@@ -183,7 +148,7 @@ std::size_t ScreenVisibility::memoryBytes() const {
     std::size_t hizBytes = 0;
     for (int level = 0; d.hiz && level < d.hizLevels; ++level)
         hizBytes += 8u * std::size_t(std::max(1, d.hizSize.x >> level)) * std::size_t(std::max(1, d.hizSize.y >> level));
-    return d.capacity * (2 * sizeof(glm::vec4) + sizeof(glm::uvec4)) + hizBytes + d.frame.memoryBytes();
+    return d.batch.memoryBytes() + hizBytes + d.frame.memoryBytes();
 }
 
 } // namespace obscura

@@ -4,6 +4,7 @@
 #include "core/context_impl.hpp"
 #include "core/mesh_cache.hpp"
 #include "core/pass_scope.hpp"
+#include "core/segment_batch.hpp"
 #include "core/shader_library.hpp"
 #include "core/validate.hpp"
 #include "obscura/context.hpp"
@@ -92,8 +93,8 @@ struct Voxelizer::Impl {
     std::vector<std::string> warnings;
     Texture texture, octree, scratch;
     Framebuffer solidFbo, surfaceFbo;
-    Buffer params, counter, segments, results;
-    std::size_t segmentCapacity = 0;
+    Buffer params, counter;
+    SegmentBatch batch{{VOXEL_SEGMENTS_SSBO, VOXEL_RESULTS_SSBO, VOXEL_LOC_COUNT, VOXEL_LOC_FIRST, VOXEL_WORKGROUP_1D, "voxel"}};
     // What the current grid was built from (static scenes are not voxelized again); weak, so
     // a new MeshData at a freed one's address is not mistaken for it.
     std::vector<std::pair<std::weak_ptr<const MeshData>, glm::mat4>> builtFrom;
@@ -339,29 +340,10 @@ const VoxelGrid& Voxelizer::voxelize(const Scene& scene, const VoxelizerSettings
 // Runs the batch query shader with METHOD = `method` on the segments; one uvec4 per segment.
 std::vector<glm::uvec4> Voxelizer::Impl::runQueries(const std::vector<VoxelSegment>& queries, int method,
                                                     const TraversalSettings& query) {
-    constexpr std::size_t kMaxQueries = std::size_t{1} << 26; // 2 GiB of segments and results
-    if (queries.size() > kMaxQueries)
-        throw Error(ErrorCode::InvalidArgument, "voxel queries: " + std::to_string(queries.size()) +
-                                                    " in one call; at most " + std::to_string(kMaxQueries) + " are accepted");
     StateScope scope(ctx);
     auto& gl = ctx.gl;
-    if (segmentCapacity < queries.size()) {
-        segments = createBuffer(ctx, static_cast<GLsizeiptr>(queries.size() * 2 * sizeof(glm::vec4)), nullptr,
-                                      GL_DYNAMIC_STORAGE_BIT, "voxel.segments");
-        results = createBuffer(ctx, static_cast<GLsizeiptr>(queries.size() * sizeof(glm::uvec4)), nullptr,
-                               GL_DYNAMIC_STORAGE_BIT, "voxel.results");
-        segmentCapacity = queries.size();
-    }
-    std::vector<glm::vec4> packed;
-    packed.reserve(queries.size() * 2);
-    for (const VoxelSegment& s : queries) {
-        packed.emplace_back(s.from, 0.0f);
-        packed.emplace_back(s.to, 0.0f);
-    }
-    gl.NamedBufferSubData(segments.get(), 0, static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)), packed.data());
+    batch.upload(ctx, queries);
     uploadParams(0);
-    ctx.state.bindStorageBuffer(ctx, VOXEL_SEGMENTS_SSBO, segments.get());
-    ctx.state.bindStorageBuffer(ctx, VOXEL_RESULTS_SSBO, results.get());
     ctx.state.bindTexture(ctx, VOXEL_GRID_UNIT, texture.get());
     ctx.state.bindSampler(ctx, VOXEL_GRID_UNIT, ctx.nearestClampSampler());
     if (octree) {
@@ -372,21 +354,7 @@ std::vector<glm::uvec4> Voxelizer::Impl::runQueries(const std::vector<VoxelSegme
     gl.UseProgram(program);
     gl.ProgramUniform1i(program, VOXEL_LOC_STEPS, query.marchSteps);
     gl.ProgramUniform1ui(program, VOXEL_LOC_SEED, query.seed);
-    gl.ProgramUniform1ui(program, VOXEL_LOC_COUNT, static_cast<GLuint>(queries.size()));
-    {
-        // Only the traversal is timed, not the transfers. GL guarantees 65535 work groups
-        // per dispatch: larger batches take several.
-        PassScope pass(ctx, "voxel.trace");
-        const std::size_t perDispatch = std::size_t{65535} * VOXEL_WORKGROUP_1D;
-        for (std::size_t first = 0; first < queries.size(); first += perDispatch) {
-            gl.ProgramUniform1ui(program, VOXEL_LOC_FIRST, static_cast<GLuint>(first));
-            dispatchCompute1D(ctx, std::min(perDispatch, queries.size() - first), VOXEL_WORKGROUP_1D);
-        }
-    }
-    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::uvec4> raw(queries.size());
-    gl.GetNamedBufferSubData(results.get(), 0, static_cast<GLsizeiptr>(raw.size() * sizeof(glm::uvec4)), raw.data());
-    return raw;
+    return batch.run(ctx, program, "voxel.trace");
 }
 
 std::vector<VoxelHit> Voxelizer::trace(const std::vector<VoxelSegment>& segments, const TraversalSettings& settings) {
@@ -479,7 +447,7 @@ std::size_t Voxelizer::memoryBytes() const {
     std::size_t mips = 0;
     for (int l = 1; (d.grid.dims.x >> l) > 0; ++l) mips += base >> (2 * l);
     return d.meshes.memoryBytes() + base + mips + (d.octree ? mips : 0) + base /*scratch*/ +
-           d.segmentCapacity * (2 * sizeof(glm::vec4) + sizeof(glm::uvec4));
+           d.batch.memoryBytes();
 }
 
 } // namespace obscura
