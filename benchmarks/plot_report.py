@@ -132,11 +132,12 @@ def own_ms(row):
 
 
 def resolution_section(rows):
-    """medium (full resolution) against medium_half (half resolution + blur), per technique."""
+    """medium (full resolution) against medium_half (half resolution + blur), per technique and size."""
     pairs = defaultdict(dict)
     for r in rows:
         if r["preset"] in ("medium", "medium_half"):
-            pairs[(r["scene"], r["technique"], r["quantity"])][r["preset"]] = r
+            size = f'{r["width"]}x{r["height"]}'
+            pairs[(r["scene"], size, r["technique"], r["quantity"])][r["preset"]] = r
     lines = []
     for key, p in sorted(pairs.items()):
         if len(p) != 2:
@@ -146,17 +147,18 @@ def resolution_section(rows):
         speedup = full_ms / half_ms if half_ms > 0 else float("nan")
         ratio = half["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
         ok = speedup >= 2.0 and ratio < 2.0
-        lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {fmt(full_ms)} | {fmt(half_ms)} | {fmt(speedup, 3)} | '
+        lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {fmt(full_ms)} | {fmt(half_ms)} | {fmt(speedup, 3)} | '
                      f'{fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | {"yes" if ok else "**no**"} |')
     if not lines:
         return []
     return ["## Half resolution", "",
             "Preset `medium` (full resolution, no blur) against `medium_half` (the same rays and steps at half "
-            "resolution, a 3-tap geometry-aware blur and joint bilateral upsampling). Times are the technique's own "
-            "passes (the G-buffer they share excluded); on llvmpipe each pass also pays a glFinish. The goal: at "
-            "least 2x faster at less than 2x the RMSE.", "",
-            "| scene | technique | quantity | full ms | half ms | speed-up | full RMSE | half RMSE | RMSE ratio | goal met |",
-            "|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+            "resolution, a 3-tap geometry-aware blur and joint bilateral upsampling), at the size of the tables above "
+            "and, where a resolution study was run (`scripts/report.sh`: 512x512), at that size. Times are the "
+            "technique's own passes (the G-buffer they share excluded); on llvmpipe each pass also pays a glFinish, "
+            "which weighs most at small sizes. The goal: at least 2x faster at less than 2x the RMSE.", "",
+            "| scene | size | technique | quantity | full ms | half ms | speed-up | full RMSE | half RMSE | RMSE ratio | goal met |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
 
 
 def voxel_section(voxel, out_dir):
@@ -206,7 +208,7 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
-def write_report(rows, perf, out_dir, sources, voxel):
+def write_report(rows, perf, out_dir, sources, voxel, study_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -261,7 +263,7 @@ def write_report(rows, perf, out_dir, sources, voxel):
             lines.append(f"![{scene}: {quantity}](results/{name})")
         lines.append("")
 
-    lines += resolution_section(rows)
+    lines += resolution_section(list(rows) + list(study_rows))
     lines += voxel_section(voxel, out_dir)
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
@@ -271,11 +273,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("inputs", nargs="+", help="bench.json files")
     parser.add_argument("--out", default="docs", help="directory for results.md and results/*.png")
+    parser.add_argument("--resolution-study", action="append", default=[],
+                        help="bench.json of presets medium and medium_half at another size (half-resolution table only)")
     args = parser.parse_args()
     rows, perf, voxel = load(args.inputs)
     if not rows:
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
-    write_report(rows, perf, args.out, [os.path.basename(p) for p in args.inputs], voxel)
+    study_rows = load(args.resolution_study)[0] if args.resolution_study else []
+    sources = [os.path.basename(p) for p in args.inputs] + [f"{p} (resolution study)" for p in args.resolution_study]
+    write_report(rows, perf, args.out, sources, voxel, study_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

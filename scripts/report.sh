@@ -2,7 +2,8 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, then draws the plots. References are cached in the build directory.
+# its traversals, and the half-resolution trade-off at 512x512, then draws the plots.
+# References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
 obscura_build -DOBSCURA_BUILD_CLI=ON -- obscura_cli
@@ -17,4 +18,12 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --size 128x128 --frames 20 --spp 1024 --reference-performance \
   --voxels --voxel-scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
-/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" --out "$OBSCURA_ROOT/docs"
+# The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
+# pass, dominates: presets medium and medium_half on the Cornell box and the finest model.
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" \
+  --resolution-study "$out/resolution/bench.json" --out "$OBSCURA_ROOT/docs"

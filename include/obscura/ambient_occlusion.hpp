@@ -20,6 +20,7 @@
 // geometry.
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
+#include "obscura/screen_visibility.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/voxelizer.hpp"
 
@@ -54,10 +55,19 @@ struct AmbientOcclusionSettings {
     int steps = 8;              //!< depth samples per ray (RayMarch) or per side (Horizon), [1, 256]
     bool cosineWeighted = true; //!< cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only
     ObscuranceFalloff falloff = ObscuranceFalloff::None;
-    //! Screen space: how far behind a depth sample's tangent plane (along its normal), in
-    //! world units, a point still counts as inside the object, (0, inf); 0 = the radius. Larger closes gaps behind thin objects,
-    //! smaller lets rays pass behind them.
+    //! RayMarch, Points: how far behind a depth sample's tangent plane (along its normal), in
+    //! world units, a point still counts as inside the object, [0, inf); 0 = the radius.
+    //! Larger closes gaps behind thin objects, smaller lets rays pass behind them. With
+    //! DepthPeeling it applies only where the second layer is empty.
     float thickness = 0.0f;
+    //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
+    //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2): objects are as
+    //! thick as they are, so rays pass behind them and are not cut off inside them.
+    ScreenThickness thicknessMode = ScreenThickness::Constant;
+    //! RayMarch: View (3D samples), Texture (2D samples, classified like View) or HiZ (the
+    //! Texture samples, with runs skipped through a min/max depth pyramid: the same result
+    //! with fewer fetches; pass "ao.hiz" builds it). See ScreenVisibility.
+    ScreenMarch march = ScreenMarch::View;
     AoResolution resolution = AoResolution::Full;
     //! Geometry-aware separable blur at the AO resolution: taps each side, [0, 16] (0 = off).
     int blurRadius = 0;
@@ -85,9 +95,10 @@ public:
     AmbientOcclusion(const AmbientOcclusion&) = delete;
     AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
 
-    //! Passes "ao.<method>", then "ao.blur" and "ao.upsample" when used. Throws
-    //! Error{InvalidArgument} for settings out of range, a G-buffer without depth or normal,
-    //! or the Voxel method without a grid. The view stays valid until the next run.
+    //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur" and "ao.upsample"
+    //! when used. Throws Error{InvalidArgument} for settings out of range, a G-buffer without
+    //! depth or normal (or without backDepth for DepthPeeling), or the Voxel method without a
+    //! grid. The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     std::size_t memoryBytes() const;

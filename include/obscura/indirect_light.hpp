@@ -6,7 +6,9 @@
 //   L1(x) = (rho(x) / pi) Integral L(y(x, w)) (n.w) dw ~ rho(x) * mean over cosine-weighted
 //   directions of L at the first hit y within the radius,
 // where L is the G-buffer's direct radiance (emission and unshadowed lights until the shadow
-// module lands, which the reference does shadow: an error the bench reports). The radiance
+// module lands, which the reference does shadow: an error the bench reports as "indirect";
+// "indirect_unshadowed" compares with the gathering of unshadowed light, the method's own
+// error). The radiance
 // at a hit is read from the screen, so only hits the camera sees, on their visible side,
 // contribute; others (hidden, behind the image border, seen from behind) count as dark.
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
@@ -18,6 +20,7 @@
 #include "obscura/ambient_occlusion.hpp"
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
+#include "obscura/screen_visibility.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/voxelizer.hpp"
 
@@ -43,6 +46,10 @@ struct IndirectLightSettings {
     //! how far a voxel hit may lie from the surface the camera sees there. World units,
     //! [0, inf); 0 = the radius (Screen) or two voxel diagonals (Hybrid).
     float thickness = 0.0f;
+    //! Screen: Constant or DepthPeeling (as AmbientOcclusionSettings::thicknessMode).
+    ScreenThickness thicknessMode = ScreenThickness::Constant;
+    //! Screen: View, Texture or HiZ (as AmbientOcclusionSettings::march; pass "gi.hiz").
+    ScreenMarch march = ScreenMarch::View;
     AoResolution resolution = AoResolution::Full;
     int blurRadius = 0;          //!< geometry-aware separable blur taps each side, [0, 16]
     float blurDepthSigma = 0.05f;  //!< as AmbientOcclusionSettings, (0, 1]
@@ -63,10 +70,11 @@ public:
     IndirectLight(const IndirectLight&) = delete;
     IndirectLight& operator=(const IndirectLight&) = delete;
 
-    //! Passes "gi.screen" or "gi.hybrid", then "gi.blur" and "gi.upsample" when used. Throws
-    //! Error{InvalidArgument} for settings out of range, a G-buffer without depth, normal,
-    //! albedo or direct radiance (adopted host buffers have no radiance to gather), or the
-    //! hybrid method without a grid.
+    //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur" and
+    //! "gi.upsample" when used. Throws Error{InvalidArgument} for settings out of range, a
+    //! G-buffer without depth, normal, albedo or direct radiance (adopted host buffers have
+    //! no radiance to gather), without backDepth for DepthPeeling, or the hybrid method
+    //! without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     std::size_t memoryBytes() const;

@@ -132,6 +132,10 @@ struct DirectLight {
 //! field that screen-space methods see) when finite.
 struct IndirectLight {
     double radius = kInfinity; //!< world units, (0, inf]
+    //! Whether L at the hits includes the lights' visibility (shadows). Off: the unshadowed
+    //! direct radiance that a G-buffer without shadow maps provides, so that a gatherer's
+    //! own error can be told from the error of its input.
+    bool directVisibility = true;
 };
 
 //! Shadow of Scene::lights[light], 2 channels. Channel 0 in [0, 1], 1 = lit: for point,

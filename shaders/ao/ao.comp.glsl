@@ -1,8 +1,13 @@
 // Ambient occlusion / obscurance at the AO resolution: one invocation per AO pixel, at the
 // top-left G-buffer pixel of its block. Also writes the guide (view normal, view z) that
 // the blur and the upsampling weigh with.
-//! variant: METHOD=0
-//! variant: METHOD=1
+//! variant: METHOD=0 SCREEN_MARCH=0
+//! variant: METHOD=0 SCREEN_MARCH=1
+//! variant: METHOD=0 SCREEN_MARCH=2
+//! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED
+//! variant: METHOD=1 SCREEN_MARCH=0
+//! variant: METHOD=1 SCREEN_MARCH=0 SCREEN_PEELED
 //! variant: METHOD=2
 //! variant: METHOD=3 TRAVERSAL=0
 //! variant: METHOD=3 TRAVERSAL=1

@@ -1,6 +1,10 @@
 // One-bounce indirect light at the GI resolution: one invocation per pixel, at the top-left
 // G-buffer pixel of its block; also writes the guide for the filters.
-//! variant: METHOD=0
+//! variant: METHOD=0 SCREEN_MARCH=0
+//! variant: METHOD=0 SCREEN_MARCH=1
+//! variant: METHOD=0 SCREEN_MARCH=2
+//! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED
 //! variant: METHOD=1 TRAVERSAL=0
 //! variant: METHOD=1 TRAVERSAL=1
 //! variant: METHOD=1 TRAVERSAL=2

@@ -14,12 +14,18 @@
 // either as 3D points p + d t_j projected to their pixels (screenMarch), or in texture space
 // (screenMarchTexture): homogeneous clip coordinates and view z interpolated linearly in t,
 // the view point reconstructed from the texture coordinate. Both classify each sample with
-// screenHiddenAt and so agree up to float rounding at pixel edges. With SCREEN_HIZ,
-// screenMarchHiZ returns the texture-space march's first hidden sample exactly, skipping
-// runs of samples whose view-z range misses a pyramid cell's bounds.
+// screenHiddenAt and so agree up to float rounding at pixel edges. With SCREEN_MARCH =
+// VIS_MARCH_HIZ, screenMarchHiZ returns the texture-space march's first hidden sample
+// exactly, skipping runs of samples whose view-z range misses a pyramid cell's bounds.
+// SCREEN_MARCH (VIS_MARCH_*, View when not defined) picks what screenMarchSegment and
+// screenMarch use.
 #include "../common/depth.glsl"
 #include "../common/math.glsl"
 #include "visibility_bindings.h"
+
+#ifndef SCREEN_MARCH
+#define SCREEN_MARCH VIS_MARCH_VIEW
+#endif
 
 layout(binding = VIS_DEPTH_UNIT) uniform sampler2D visDepth;
 layout(binding = VIS_NORMAL_UNIT) uniform sampler2D visNormal;
@@ -94,14 +100,6 @@ float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness, 
     return hitT;
 }
 
-// The distance along the unit direction w of the first hidden of `steps` samples out to
-// `radius`, or -1 when none is.
-float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
-    uint fetches;
-    const float t = screenMarchView(p, w * radius, steps, jitter, thickness, fetches);
-    return t < 0.0 ? -1.0 : t * radius;
-}
-
 // A segment in texture space: clip coordinates and view z, both linear in t.
 struct ScreenRay {
     vec4 clip0, clipDelta;
@@ -143,7 +141,7 @@ float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thicknes
     return hitT;
 }
 
-#ifdef SCREEN_HIZ
+#if SCREEN_MARCH == VIS_MARCH_HIZ
 // Per cell of level L (2^L x 2^L pixels): x = the nearest view z at which any point of the
 // cell can be hidden, y = the farthest (hiz_build.comp.glsl). Built for one thickness.
 layout(binding = VIS_HIZ_UNIT) uniform sampler2D visHiZ;
@@ -215,3 +213,22 @@ float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, o
     return hitT;
 }
 #endif
+
+// The march SCREEN_MARCH selects over the segment p -> p + d: t of the first hidden sample or -1.
+float screenMarchSegment(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+#if SCREEN_MARCH == VIS_MARCH_TEXTURE
+    return screenMarchTexture(p, d, steps, jitter, thickness, fetches);
+#elif SCREEN_MARCH == VIS_MARCH_HIZ
+    return screenMarchHiZ(p, d, steps, jitter, thickness, fetches);
+#else
+    return screenMarchView(p, d, steps, jitter, thickness, fetches);
+#endif
+}
+
+// The distance along the unit direction w of the first hidden of `steps` samples out to
+// `radius`, or -1 when none is.
+float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
+    uint fetches;
+    const float t = screenMarchSegment(p, w * radius, steps, jitter, thickness, fetches);
+    return t < 0.0 ? -1.0 : t * radius;
+}

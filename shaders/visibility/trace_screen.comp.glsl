@@ -1,11 +1,11 @@
 // Batch screen-space visibility queries: one invocation per view-space segment, written as
 // (hit, first hidden sample index, texel fetches, t bits).
-//! variant: MARCH=0
-//! variant: MARCH=1
-//! variant: MARCH=2 SCREEN_HIZ
-//! variant: MARCH=0 SCREEN_PEELED
-//! variant: MARCH=1 SCREEN_PEELED
-//! variant: MARCH=2 SCREEN_HIZ SCREEN_PEELED
+//! variant: SCREEN_MARCH=0
+//! variant: SCREEN_MARCH=1
+//! variant: SCREEN_MARCH=2
+//! variant: SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: SCREEN_MARCH=1 SCREEN_PEELED
+//! variant: SCREEN_MARCH=2 SCREEN_PEELED
 #include "screen_march.glsl"
 
 layout(local_size_x = VIS_WORKGROUP_1D) in;
@@ -29,13 +29,7 @@ void main() {
     float t = -1.0;
     uint fetches = 0u;
     if (allFinite(from) && allFinite(to)) {
-#if MARCH == VIS_MARCH_VIEW
-        t = screenMarchView(from, d, steps, jitter, thickness, fetches);
-#elif MARCH == VIS_MARCH_TEXTURE
-        t = screenMarchTexture(from, d, steps, jitter, thickness, fetches);
-#else
-        t = screenMarchHiZ(from, d, steps, jitter, thickness, fetches);
-#endif
+        t = screenMarchSegment(from, d, steps, jitter, thickness, fetches);
     }
     const bool hit = t >= 0.0;
     // The sample index back from t (exact: t = (j + jitter) / steps was computed that way).

@@ -7,9 +7,9 @@
 #define VIS_DEPTH_UNIT 5      // the G-buffer's hardware depth (sampler2D, texelFetch)
 #define VIS_NORMAL_UNIT 6     // the G-buffer's view-space geometric normal (alpha 1 on geometry)
 #define VIS_BACK_DEPTH_UNIT 7 // the second depth layer (SCREEN_PEELED)
-#define VIS_HIZ_UNIT 8        // the min/max view-z pyramid (SCREEN_HIZ), RG32F with mips
+#define VIS_HIZ_UNIT 8        // the min/max view-z pyramid (SCREEN_MARCH = VIS_MARCH_HIZ), RG32F with mips
 
-// Marching permutations (MARCH define of the batch shader).
+// Marching permutations (the SCREEN_MARCH define of screen_march.glsl).
 #define VIS_MARCH_VIEW 0    // 3D samples in view space
 #define VIS_MARCH_TEXTURE 1 // 2D samples in texture space, perspective-correct view z
 #define VIS_MARCH_HIZ 2     // the texture-space samples, skipped in bulk through the pyramid

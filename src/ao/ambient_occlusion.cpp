@@ -8,6 +8,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
 #include "obscura/context.hpp"
@@ -72,6 +73,7 @@ struct AmbientOcclusion::Impl {
 
     ContextImpl& ctx;
     FrameUniforms frame;
+    HiZPyramid hiz;
     Buffer params;
     SizedTexture ao, bent, guide, fullAo, fullBent;
     GuidedFilters filters;
@@ -104,7 +106,9 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    const GBufferView view = checkScreenInputs(ctx, g, false, "AmbientOcclusionSettings");
+    const bool marches = s.method == AoMethod::RayMarch || s.method == AoMethod::Points;
+    const bool peeled = marches && s.thicknessMode == ScreenThickness::DepthPeeling;
+    const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
 
@@ -114,14 +118,20 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
     d.frame.bind(ctx, view.camera, view.width, view.height);
-    bindScreenInputs(ctx, view, false);
+    bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
+    const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;
+    if (march == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, peeled, "ao.hiz");
     const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
     const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide");
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
     {
         PassScope pass(ctx, passName(s.method));
         std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
+        if (marches) {
+            const auto screen = screenMarchDefines(march, peeled ? ScreenThickness::DepthPeeling : ScreenThickness::Constant);
+            defines.insert(defines.end(), screen.begin(), screen.end());
+        }
         if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
         ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
@@ -154,7 +164,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
 std::size_t AmbientOcclusion::memoryBytes() const {
     const auto& d = *impl_;
     return d.ao.bytes() + d.bent.bytes() + d.guide.bytes() + d.fullAo.bytes() + d.fullBent.bytes() + d.frame.memoryBytes() +
-           d.filters.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
+           d.filters.memoryBytes() + d.hiz.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
 }
 
 } // namespace obscura

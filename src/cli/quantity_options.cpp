@@ -60,7 +60,10 @@ const std::map<std::string, IntegratorSpec>& specs() {
             [](Quantity& q, const std::string& k, const std::string& v) { as<DirectLight>(q).visibility = parseBool(k, v); }}}}},
         {"indirect",
          {IndirectLight{},
-          {{"radius", [](Quantity& q, const std::string& k, const std::string& v) { as<IndirectLight>(q).radius = distance(k, v); }}}}},
+          {{"radius", [](Quantity& q, const std::string& k, const std::string& v) { as<IndirectLight>(q).radius = distance(k, v); }},
+           {"direct_visibility", [](Quantity& q, const std::string& k, const std::string& v) {
+                as<IndirectLight>(q).directVisibility = parseBool(k, v);
+            }}}}},
         {"shadow",
          {Shadow{},
           {{"light", [](Quantity& q, const std::string& k, const std::string& v) {

@@ -44,6 +44,15 @@ std::string settingKeys(const std::vector<SettingInfo>& settings) {
     return keys;
 }
 
+ScreenMarch parseScreenMarch(const std::string& key, const std::string& value) {
+    return parseChoice<ScreenMarch>(key, value, {{"view", ScreenMarch::View}, {"texture", ScreenMarch::Texture}, {"hiz", ScreenMarch::HiZ}});
+}
+
+ScreenThickness parseScreenThickness(const std::string& key, const std::string& value) {
+    return parseChoice<ScreenThickness>(key, value, {{"constant", ScreenThickness::Constant},
+                                                     {"depth_peeling", ScreenThickness::DepthPeeling}});
+}
+
 double defaultRadius(const Scene& scene) {
     const Bounds b = sceneBounds(scene);
     return 0.1 * glm::length(glm::dvec3(b.max - b.min));

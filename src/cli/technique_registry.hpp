@@ -5,6 +5,7 @@
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"
 #include "obscura/reference.hpp"
+#include "obscura/screen_visibility.hpp"
 
 #include <functional>
 #include <map>
@@ -100,6 +101,10 @@ E parseChoice(const std::string& key, const std::string& value, const std::map<s
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
     throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
 }
+//! The screen-space marching settings AO and GI share: "view|texture|hiz" and
+//! "constant|depth_peeling".
+ScreenMarch parseScreenMarch(const std::string& key, const std::string& value);
+ScreenThickness parseScreenThickness(const std::string& key, const std::string& value);
 //! "a, b, c": the keys of the settings, for error messages.
 std::string settingKeys(const std::vector<SettingInfo>& settings);
 //! The radius techniques use when none is set: a tenth of the scene's bounding-box

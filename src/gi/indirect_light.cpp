@@ -8,6 +8,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
 #include "obscura/context.hpp"
@@ -37,8 +38,6 @@ void validateSettings(const IndirectLightSettings& s) {
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
 }
 
-
-
 } // namespace
 
 struct IndirectLight::Impl {
@@ -46,6 +45,7 @@ struct IndirectLight::Impl {
 
     ContextImpl& ctx;
     FrameUniforms frame;
+    HiZPyramid hiz;
     Buffer params;
     SizedTexture radiance, guide, full;
     GuidedFilters filters;
@@ -58,6 +58,8 @@ struct IndirectLight::Impl {
     void bindWrite(int unit, GLuint texture, GLenum format) {
         ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
     }
+
+    float thickness = 0.0f; // of the last run, world units (params.shape.y)
 
     void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
         shader::GiParams p{};
@@ -73,6 +75,7 @@ struct IndirectLight::Impl {
             p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));
             if (s.thickness <= 0.0f) p.shape.y = 2.0f * p.shape.z;
         }
+        thickness = p.shape.y;
         if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "gi.params");
         ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
         ctx.state.bindUniformBuffer(ctx, GI_PARAMS_UBO_BINDING, params.get());
@@ -91,7 +94,9 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     if (!g.albedo || !g.directRadiance)
         throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo, which "
                                                 "adopted host buffers do not have: render the G-buffer with GBuffer::render");
-    const GBufferView view = checkScreenInputs(ctx, g, false, "IndirectLightSettings");
+    const bool hybrid = s.method == GiMethod::Hybrid;
+    const bool peeled = !hybrid && s.thicknessMode == ScreenThickness::DepthPeeling;
+    const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
     requireViewSized(ctx, g.albedo, view, "albedo");
     requireViewSized(ctx, g.directRadiance, view, "directRadiance");
     const int scale = static_cast<int>(s.resolution);
@@ -101,17 +106,21 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     StateScope scope(ctx);
     d.uploadParams(g, s, size, scale);
     d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y);
-    bindScreenInputs(ctx, view, false);
+    bindScreenInputs(ctx, view, peeled);
+    if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, peeled, "gi.hiz");
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
     d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
     ctx.bindNoiseTexture();
     const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
     const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide");
     {
-        const bool hybrid = s.method == GiMethod::Hybrid;
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
         std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
         if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+        else {
+            const auto screen = screenMarchDefines(s.march, s.thicknessMode);
+            defines.insert(defines.end(), screen.begin(), screen.end());
+        }
         ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
@@ -135,7 +144,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
 std::size_t IndirectLight::memoryBytes() const {
     const auto& d = *impl_;
     return d.radiance.bytes() + d.guide.bytes() + d.full.bytes() + d.frame.memoryBytes() + d.filters.memoryBytes() +
-           (d.params ? sizeof(shader::GiParams) : 0);
+           d.hiz.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
 }
 
 } // namespace obscura

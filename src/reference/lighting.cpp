@@ -148,7 +148,7 @@ Estimator direct(const RayScene::Impl& scene, const DirectLight& q) {
 Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
     if (!(q.radius > 0.0)) throw Error(ErrorCode::InvalidArgument, "IndirectLight::radius must be > 0 world units");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
-        const LightSampler lights(scene, true);
+        const LightSampler lights(scene, q.directVisibility);
         const glm::vec3 origin = surfaceOrigin(scene, p);
         glm::dvec3 sum(0.0);
         for (int i = 0; i < n; ++i) {

@@ -121,7 +121,11 @@ std::string describe(const Quantity& q) {
                    },
                    [&](const BentNormal& v) { s << "bent_normal radius=" << v.radius; },
                    [&](const DirectLight& v) { s << "direct visibility=" << v.visibility; },
-                   [&](const IndirectLight& v) { s << "indirect radius=" << v.radius; },
+                   [&](const IndirectLight& v) {
+                       s << "indirect radius=" << v.radius;
+                       // Only when off: cache keys of the default stay as they were.
+                       if (!v.directVisibility) s << " direct_visibility=0";
+                   },
                    [&](const Shadow& v) { s << "shadow light=" << v.light; },
                    [&](const SingleScattering& v) { s << "media medium=" << v.medium << " shadows=" << v.shadows; },
                    [&](const ImageBasedLight& v) {

@@ -47,4 +47,11 @@ void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled) {
     if (peeled) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
 }
 
+std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness) {
+    const int code = march == ScreenMarch::View ? VIS_MARCH_VIEW : march == ScreenMarch::Texture ? VIS_MARCH_TEXTURE : VIS_MARCH_HIZ;
+    std::vector<std::string> defines{"SCREEN_MARCH=" + std::to_string(code)};
+    if (thickness == ScreenThickness::DepthPeeling) defines.push_back("SCREEN_PEELED");
+    return defines;
+}
+
 } // namespace obscura::detail

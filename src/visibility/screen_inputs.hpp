@@ -2,8 +2,10 @@
 // What the modules reading a G-buffer through shaders/visibility/screen_march.glsl share:
 // the checks of the view's textures and their bindings at the VIS_* units.
 #include "obscura/gbuffer.hpp"
+#include "obscura/screen_visibility.hpp"
 
 #include <string>
+#include <vector>
 
 namespace obscura::detail {
 
@@ -18,5 +20,7 @@ GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool ne
 void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what);
 //! Binds depth, normal (and the back layer for SCREEN_PEELED shaders) with nearest sampling.
 void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
+//! The defines that make screen_march.glsl march with `march` and `thickness`.
+std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness);
 
 } // namespace obscura::detail

@@ -11,10 +11,10 @@
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"
 #include "shaders/visibility/visibility_bindings.h"
+#include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -34,10 +34,6 @@ void validateSettings(const ScreenTraceSettings& s) {
                     "ScreenTraceSettings::thickness must be in (0, inf) world units, got " + std::to_string(s.thickness));
 }
 
-int marchCode(ScreenMarch m) {
-    return m == ScreenMarch::View ? VIS_MARCH_VIEW : m == ScreenMarch::Texture ? VIS_MARCH_TEXTURE : VIS_MARCH_HIZ;
-}
-
 } // namespace
 
 struct ScreenVisibility::Impl {
@@ -46,40 +42,7 @@ struct ScreenVisibility::Impl {
     ContextImpl& ctx;
     FrameUniforms frame;
     SegmentBatch batch{{VIS_SEGMENTS_SSBO, VIS_RESULTS_SSBO, VIS_LOC_COUNT, VIS_LOC_FIRST, VIS_WORKGROUP_1D, "visibility"}};
-    Texture hiz;
-    glm::ivec2 hizSize{0};
-    int hizLevels = 0;
-
-    // The pyramid over the view padded to powers of two, so that level L's cell i covers the
-    // pixels [i 2^L, (i + 1) 2^L) with GL's halving mip sizes.
-    void buildHiZ(const GBufferView& view, const ScreenTraceSettings& s) {
-        const glm::ivec2 size(std::bit_ceil(static_cast<unsigned>(view.width)),
-                              std::bit_ceil(static_cast<unsigned>(view.height)));
-        const int levels = std::bit_width(static_cast<unsigned>(std::max(size.x, size.y)));
-        if (!hiz || size != hizSize) {
-            hiz = createTexture2D(ctx, GL_RG32F, size.x, size.y, levels, "visibility.hiz");
-            hizSize = size;
-            hizLevels = levels;
-        }
-        PassScope pass(ctx, "visibility.hiz");
-        auto& gl = ctx.gl;
-        const bool peeled = s.thicknessMode == ScreenThickness::DepthPeeling;
-        GLuint program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"},
-                                              peeled ? Defines{"LEVEL0", "SCREEN_PEELED"} : Defines{"LEVEL0"});
-        gl.UseProgram(program);
-        gl.ProgramUniform1f(program, VIS_LOC_THICKNESS, s.thickness);
-        ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, hiz.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-        dispatchCompute2D(ctx, size.x, size.y, VIS_WORKGROUP_2D);
-        program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, {"REDUCE"});
-        gl.UseProgram(program);
-        for (int level = 1; level < levels; ++level) {
-            gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            ctx.state.bindImage(ctx, VIS_HIZ_READ_IMAGE, hiz.get(), level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
-            ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, hiz.get(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-            dispatchCompute2D(ctx, std::max(1, size.x >> level), std::max(1, size.y >> level), VIS_WORKGROUP_2D);
-        }
-        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    }
+    HiZPyramid hiz;
 
     // Runs the batch shader over the segments; one uvec4 per segment.
     std::vector<glm::uvec4> run(const GBufferView& g, const std::vector<ScreenSegment>& queries, const ScreenTraceSettings& s) {
@@ -91,15 +54,9 @@ struct ScreenVisibility::Impl {
         frame.bind(ctx, view.camera, view.width, view.height);
         bindScreenInputs(ctx, view, peeled);
         batch.upload(ctx, queries); // first: it refuses oversized batches before any work
-        if (s.march == ScreenMarch::HiZ) {
-            buildHiZ(view, s);
-            ctx.state.bindTexture(ctx, VIS_HIZ_UNIT, hiz.get());
-            ctx.state.bindSampler(ctx, VIS_HIZ_UNIT, ctx.nearestClampSampler());
-        }
-        Defines defines{"MARCH=" + std::to_string(marchCode(s.march))};
-        if (s.march == ScreenMarch::HiZ) defines.push_back("SCREEN_HIZ");
-        if (peeled) defines.push_back("SCREEN_PEELED");
-        const GLuint program = ctx.shaders->program({"visibility/trace_screen.comp.glsl"}, defines);
+        if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, peeled, "visibility.hiz");
+        const GLuint program =
+            ctx.shaders->program({"visibility/trace_screen.comp.glsl"}, screenMarchDefines(s.march, s.thicknessMode));
         gl.UseProgram(program);
         gl.ProgramUniform1i(program, VIS_LOC_STEPS, s.steps);
         gl.ProgramUniform1f(program, VIS_LOC_JITTER, s.jitter);
@@ -145,10 +102,7 @@ std::vector<std::uint8_t> ScreenVisibility::hidden(const GBufferView& view, cons
 
 std::size_t ScreenVisibility::memoryBytes() const {
     const auto& d = *impl_;
-    std::size_t hizBytes = 0;
-    for (int level = 0; d.hiz && level < d.hizLevels; ++level)
-        hizBytes += 8u * std::size_t(std::max(1, d.hizSize.x >> level)) * std::size_t(std::max(1, d.hizSize.y >> level));
-    return d.batch.memoryBytes() + hizBytes + d.frame.memoryBytes();
+    return d.batch.memoryBytes() + d.hiz.memoryBytes() + d.frame.memoryBytes();
 }
 
 } // namespace obscura

@@ -26,7 +26,7 @@ struct ScreenFixture {
     ScreenFixture(const std::string& sceneName, int width, int height, int depthLayers = 1) {
         const assets::LoadedScene s = assets::builtinScene(sceneName);
         const Camera camera = assets::makeCamera(s.camera, width, height);
-        GBufferSettings settings{width, height, false, {}};
+        GBufferSettings settings{width, height, true, {}}; // lit: indirect light gathers it
         settings.depthLayers = depthLayers;
         view = gbuffer.render(s.scene, camera, settings);
         positions = readTexture(ctx, gbuffer.positions(view));
@@ -60,6 +60,17 @@ std::size_t differingSamples(const std::vector<ScreenHit>& a, const std::vector<
     return n;
 }
 
+// How many of `samples` view-space and texture-space samples may be classified differently:
+// the two differ only in rounding (projection vs interpolation, a few ulp). A sample can flip
+// only when it lies within that of a pixel edge (8 ulp of NDC, times half the image width
+// in pixels, on either side of an edge, on two axes) or of its tangent-plane threshold
+// (8 ulp of the scene's extent, out of the spacing of the samples). A systematic error (a
+// wrong pixel or depth) would differ on tens of percent of the rays.
+double roundingFlips(double halfWidthPixels, double sceneExtent, double sampleSpacing, double samples) {
+    const double ulp = std::ldexp(1.0, -23);
+    return (2.0 * 2.0 * 8.0 * ulp * halfWidthPixels + 8.0 * ulp * sceneExtent / sampleSpacing) * samples;
+}
+
 std::size_t hitCount(const std::vector<ScreenHit>& hits) {
     std::size_t n = 0;
     for (const ScreenHit& h : hits) n += h.hit ? 1 : 0;
@@ -84,16 +95,8 @@ TEST_CASE("Texture-space and view-space marching classify the same samples alike
             const std::size_t hits = hitCount(view), differing = differingSamples(view, texture);
             INFO(sceneName << ", thickness " << thickness << ": " << hits << " of " << segments.size()
                            << " rays hit; first hidden sample differs on " << differing);
-            // The two differ only in rounding (projection vs interpolation, a few ulp). A
-            // sample can flip only when it lies within that of a pixel edge (8 ulp of NDC,
-            // times half the width in pixels, on either side of an edge, on two axes) or of
-            // its tangent-plane threshold (8 ulp of the scene's extent, out of the spacing of
-            // the samples of a mean-length segment). Expected flips over all samples, plus
-            // five Poisson standard deviations; a systematic error (a wrong pixel or depth)
-            // would differ on tens of percent of the rays.
-            const double ulp = std::ldexp(1.0, -23), extent = std::string(sceneName) == "cornell" ? 1500.0 : 8.0;
-            const double perSample = 2.0 * 2.0 * 8.0 * ulp * 48.0 + 8.0 * ulp * extent / (0.5 * reach / s.steps);
-            const double expected = perSample * s.steps * double(segments.size());
+            const double extent = std::string(sceneName) == "cornell" ? 1500.0 : 8.0;
+            const double expected = roundingFlips(48.0, extent, 0.5 * reach / s.steps, s.steps * double(segments.size()));
             INFO("rounding allows about " << expected << " differing rays");
             CHECK(hits > segments.size() / 10);
             CHECK(double(differing) <= expected + 5.0 * std::sqrt(expected));
@@ -129,6 +132,53 @@ TEST_CASE("Hi-Z finds exactly the first hidden sample of the texture-space march
         // Where rays run far past surfaces the pyramid skips runs of samples; with a few
         // samples per pixel the saving must show (with 8 steps it need not).
         if (steps >= 64) CHECK(hizFetches < textureFetches);
+    }
+}
+
+TEST_CASE("AO and GI march alike with view and texture samples and exactly alike with Hi-Z", "[visibility][ao][gi]") {
+    constexpr int W = 96, H = 72;
+    ScreenFixture f("box_room", W, H, 2);
+    AmbientOcclusion ao(f.ctx);
+    IndirectLight gi(f.ctx);
+    // Few samples, so that the rounding bound below stays a small share of the pixels.
+    constexpr float radius = 0.6f;
+    constexpr int rays = 4, steps = 8;
+    for (const ScreenThickness mode : {ScreenThickness::Constant, ScreenThickness::DepthPeeling}) {
+        std::vector<Image> aoImages, giImages;
+        for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}) {
+            AmbientOcclusionSettings a;
+            a.radius = radius;
+            a.rays = rays;
+            a.steps = steps;
+            a.thicknessMode = mode;
+            a.march = march;
+            aoImages.push_back(readTexture(f.ctx, ao.run(f.view, a).ao));
+            IndirectLightSettings g;
+            g.radius = radius;
+            g.rays = rays;
+            g.steps = steps;
+            g.thicknessMode = mode;
+            g.march = march;
+            giImages.push_back(readTexture(f.ctx, gi.run(f.view, g).radiance));
+        }
+        // A pixel differs only if one of its rays flipped: at most the expected flips of its
+        // rays x steps samples, plus five Poisson standard deviations.
+        const double expected = roundingFlips(W / 2.0, 8.0, radius / steps, double(W) * H * rays * steps);
+        CAPTURE(static_cast<int>(mode), expected);
+        const auto differing = [](const Image& x, const Image& y) {
+            std::size_t n = 0;
+            for (std::size_t i = 0; i < x.pixels.size(); ++i) n += x.pixels[i] != y.pixels[i] ? 1 : 0;
+            return n;
+        };
+        std::size_t occluded = 0, gathered = 0;
+        for (const float v : aoImages[0].pixels) occluded += v < 1.0f ? 1 : 0;
+        for (std::size_t i = 0; i < giImages[0].pixels.size(); i += 4) gathered += giImages[0].pixels[i] > 0.0f ? 1 : 0;
+        CHECK(occluded > std::size_t(W * H / 10));
+        CHECK(gathered > std::size_t(W * H / 10));
+        CHECK(double(differing(aoImages[0], aoImages[1])) <= expected + 5.0 * std::sqrt(expected));
+        CHECK(double(differing(giImages[0], giImages[1])) <= 4.0 * (expected + 5.0 * std::sqrt(expected))); // 4 channels
+        CHECK(differing(aoImages[1], aoImages[2]) == 0);
+        CHECK(differing(giImages[1], giImages[2]) == 0);
     }
 }
 

@@ -141,6 +141,41 @@ TEST_CASE("Indirect light under an emissive disc is albedo times emission times 
     for (float v : near.value.pixels) CHECK(v == 0.0f);
 }
 
+TEST_CASE("Indirect light gathers shadowed or unshadowed direct light at its hits", "[reference][indirect]") {
+    // The sun straight down, a roof at height 3 over the whole floor: the floor is in shadow.
+    // A point facing +x just above the floor sees the floor in the lower half of its
+    // cosine-weighted hemisphere, less the band within atan(h / 50) under the horizon that
+    // passes the floor's edge (a share of at most (2 / pi) atan(h / 50), about 1e-4), and
+    // the roof's underside, which faces away from the sun, in the upper half.
+    constexpr double h = 0.01, floorAlbedo = 0.5, albedo = 0.6, irradiance = 2.0;
+    Scene s = test::meshScene({test::quadMesh(kFloor),
+                               test::quadMesh({{{-50, 3, -50}, {50, 3, -50}, {50, 3, 50}, {-50, 3, 50}}})},
+                              glm::vec3(static_cast<float>(floorAlbedo)));
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0, -1, 0};
+    sun.intensity = static_cast<float>(irradiance);
+    s.lights.push_back(sun);
+    const RayScene scene(s);
+    const std::vector<glm::dvec3> at(32, glm::dvec3(0.0, h, 0.0));
+    const ShadingPoints points = test::pointsAt(at, {1, 0, 0}, glm::dvec3(albedo));
+    RenderSettings settings;
+    settings.samplesPerPixel = 1024;
+    const Reference shadowed = render(scene, points, IndirectLight{}, settings);
+    for (float v : shadowed.value.pixels) CHECK(v == 0.0f);
+    IndirectLight unshadowed;
+    unshadowed.directVisibility = false;
+    const Reference r = render(scene, points, unshadowed, settings);
+    const double floorRadiance = albedo * floorAlbedo / kPi * irradiance, missing = 2.0 / kPi * std::atan(h / 50.0);
+    const double hi = floorRadiance * 0.5, lo = floorRadiance * (0.5 - missing);
+    const test::Stats st = test::stats(r.value, 0);
+    INFO(st.mean << " vs [" << lo << ", " << hi << "]");
+    const double tolerance = 4 * st.stddev / std::sqrt(double(st.n));
+    CHECK(st.mean >= lo - tolerance);
+    CHECK(st.mean <= hi + tolerance);
+    CHECK(describe(unshadowed) != describe(IndirectLight{}));
+}
+
 TEST_CASE("A hard shadow mask follows the occluder's projection", "[reference][shadow]") {
     // A point light at height 2 above the origin, a disc of radius 0.5 at height 1: the umbra
     // on the floor is the disc's projection, radius 1.

@@ -22,6 +22,8 @@ const std::vector<SettingInfo> kSettings = {
     {"cosine_weighted", "", "0|1", "cosine (AO_r) or uniform hemisphere weighting"},
     {"falloff", "", "none|linear|quadratic|smooth", "obscurance distance weighting (none: AO)"},
     {"thickness", "world units", "[0, inf)", "assumed thickness behind depth samples (0: the radius)"},
+    {"thickness_mode", "", "constant|depth_peeling", "raymarch, points: constant thickness or the second depth layer"},
+    {"march", "", "view|texture|hiz", "raymarch: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
     {"resolution", "", "full|half|quarter", "AO resolution relative to the G-buffer"},
     {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
     {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
@@ -53,6 +55,8 @@ public:
                                                                   {"quadratic", ObscuranceFalloff::Quadratic},
                                                                   {"smooth", ObscuranceFalloff::Smooth}});
         else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
+        else if (key == "thickness_mode") s.thicknessMode = parseScreenThickness(key, value);
+        else if (key == "march") s.march = parseScreenMarch(key, value);
         else if (key == "resolution")
             s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
                                                                 {"half", AoResolution::Half},
@@ -71,7 +75,9 @@ public:
 
     void run(const FrameSetup& frame) override {
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
-        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, false, {}});
+        GBufferSettings g{frame.width, frame.height, false, {}};
+        g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
         if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
         result_ = ao_.run(view_, settings_);
     }

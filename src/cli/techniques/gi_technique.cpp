@@ -16,6 +16,8 @@ const std::vector<SettingInfo> kSettings = {
     {"rays", "", "[1, 1024]", "cosine-weighted directions per pixel"},
     {"steps", "", "[1, 256]", "depth samples per ray (gi.hybrid: march samples with voxel_traversal=march)"},
     {"thickness", "world units", "[0, inf)", "see IndirectLightSettings::thickness (0: the default)"},
+    {"thickness_mode", "", "constant|depth_peeling", "gi.screen: constant thickness or the second depth layer"},
+    {"march", "", "view|texture|hiz", "gi.screen: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
     {"resolution", "", "full|half|quarter", "GI resolution relative to the G-buffer"},
     {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
     {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
@@ -34,6 +36,8 @@ public:
         else if (key == "rays") s.rays = static_cast<int>(parseNumber(key, value, 1, 1024, ""));
         else if (key == "steps") s.steps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
         else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
+        else if (key == "thickness_mode") s.thicknessMode = parseScreenThickness(key, value);
+        else if (key == "march") s.march = parseScreenMarch(key, value);
         else if (key == "resolution") s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
                                                                                           {"half", AoResolution::Half},
                                                                                           {"quarter", AoResolution::Quarter}});
@@ -50,7 +54,9 @@ public:
 
     void run(const FrameSetup& frame) override {
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
-        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, true, {}});
+        GBufferSettings g{frame.width, frame.height, true, {}};
+        g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
+        view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
         if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
         result_ = gi_.run(view_, settings_);
     }
@@ -73,7 +79,13 @@ public:
     }
 
     std::vector<Measurement> measurements() override {
-        return {{"indirect", rgbOf(readTexture(ctx_, result_.radiance)), reference::IndirectLight{settings_.radius}}};
+        // The G-buffer's direct light has no shadows yet: "indirect" is the error against the
+        // true one-bounce light, "indirect_unshadowed" against the same gathering of the
+        // unshadowed direct light the technique is given (its own error).
+        const Image radiance = rgbOf(readTexture(ctx_, result_.radiance));
+        reference::IndirectLight unshadowed{settings_.radius};
+        unshadowed.directVisibility = false;
+        return {{"indirect", radiance, reference::IndirectLight{settings_.radius}}, {"indirect_unshadowed", radiance, unshadowed}};
     }
 
 private:

@@ -1,0 +1,52 @@
+#include "visibility/hiz_pyramid.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "shaders/visibility/visibility_bindings.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace obscura::detail {
+
+// The pyramid is padded to powers of two, so that level L's cell i covers the pixels
+// [i 2^L, (i + 1) 2^L) with GL's halving mip sizes.
+void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thickness, bool peeled, const char* pass) {
+    const glm::ivec2 size(std::bit_ceil(static_cast<unsigned>(view.width)), std::bit_ceil(static_cast<unsigned>(view.height)));
+    const int levels = std::bit_width(static_cast<unsigned>(std::max(size.x, size.y)));
+    if (!texture_ || size != size_) {
+        texture_ = createTexture2D(ctx, GL_RG32F, size.x, size.y, levels, "visibility.hiz");
+        size_ = size;
+        levels_ = levels;
+    }
+    PassScope scope(ctx, pass);
+    auto& gl = ctx.gl;
+    GLuint program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"},
+                                          peeled ? Defines{"LEVEL0", "SCREEN_PEELED"} : Defines{"LEVEL0"});
+    gl.UseProgram(program);
+    gl.ProgramUniform1f(program, VIS_LOC_THICKNESS, thickness);
+    ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, texture_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    dispatchCompute2D(ctx, size.x, size.y, VIS_WORKGROUP_2D);
+    program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, {"REDUCE"});
+    gl.UseProgram(program);
+    for (int level = 1; level < levels; ++level) {
+        gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        ctx.state.bindImage(ctx, VIS_HIZ_READ_IMAGE, texture_.get(), level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
+        ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, texture_.get(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        dispatchCompute2D(ctx, std::max(1, size.x >> level), std::max(1, size.y >> level), VIS_WORKGROUP_2D);
+    }
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    ctx.state.bindTexture(ctx, VIS_HIZ_UNIT, texture_.get());
+    ctx.state.bindSampler(ctx, VIS_HIZ_UNIT, ctx.nearestClampSampler());
+}
+
+std::size_t HiZPyramid::memoryBytes() const {
+    std::size_t bytes = 0;
+    for (int level = 0; texture_ && level < levels_; ++level)
+        bytes += 8u * std::size_t(std::max(1, size_.x >> level)) * std::size_t(std::max(1, size_.y >> level));
+    return bytes;
+}
+
+} // namespace obscura::detail

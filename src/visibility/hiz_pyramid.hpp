@@ -1,0 +1,28 @@
+#pragma once
+// The min/max view-z pyramid that screenMarchHiZ (shaders/visibility/screen_march.glsl)
+// skips samples with: built per G-buffer view and thickness, bound at VIS_HIZ_UNIT. Shared
+// by ScreenVisibility and the integrators that march with ScreenMarch::HiZ.
+#include "core/gl_objects.hpp"
+#include "obscura/gbuffer.hpp"
+
+#include <cstddef>
+
+namespace obscura::detail {
+
+struct ContextImpl;
+
+class HiZPyramid {
+public:
+    //! Builds the pyramid of `view` (checked by checkScreenInputs, inputs bound by
+    //! bindScreenInputs) in pass "<pass>": `thickness` world units behind each depth pixel
+    //! or, `peeled`, down to its back layer. Leaves it bound at VIS_HIZ_UNIT.
+    void build(ContextImpl& ctx, const GBufferView& view, float thickness, bool peeled, const char* pass);
+    std::size_t memoryBytes() const;
+
+private:
+    Texture texture_;
+    glm::ivec2 size_{0};
+    int levels_ = 0;
+};
+
+} // namespace obscura::detail
