@@ -1,4 +1,5 @@
 //! variant: HAS_NORMALS
+//! variant: HAS_NORMALS RECT_LIGHTS
 //! variant: HAS_NORMALS HAS_TEXCOORDS ALBEDO_TEXTURE
 //! variant: NO_DIRECT_LIGHTING
 //! variant: PEEL
@@ -47,40 +48,58 @@ float spotCone(float c, float cosInner, float cosOuter) {
     return t * t * (3.0 - 2.0 * t);
 }
 
+#ifdef RECT_LIGHTS
+// Compiled in only for scenes with rect lights (llvmpipe runs both sides of a branch under
+// a mask). No local arrays: indexed ones cost llvmpipe about 15x the whole pass.
+
+// Lambert's term of the polygon edge a -> b seen from the origin, against normal n.
+float rectEdgeTerm(vec3 a, vec3 b, vec3 n) {
+    const vec3 ua = safeNormalize(a, vec3(0.0)), ub = safeNormalize(b, vec3(0.0));
+    const vec3 c = cross(ua, ub);
+    const float s = length(c);
+    // atan(|a x b|, a.b) keeps the edge angle accurate for tiny, distant rectangles.
+    return s > 0.0 ? atan(s, dot(ua, ub)) * dot(c / s, n) : 0.0;
+}
+
+// Adds the part of edge a -> b above the plane dot(x, n) = 0 (Sutherland-Hodgman in one
+// step); notes where the outline leaves the hemisphere and where it comes back, between
+// which the clipped polygon runs along the plane. Zero vectors add nothing.
+void rectClippedEdge(vec3 a, vec3 b, vec3 n, inout float sum, inout vec3 leaves, inout vec3 returns) {
+    const float da = dot(a, n), db = dot(b, n);
+    const bool aAbove = da >= 0.0, bAbove = db >= 0.0;
+    const vec3 x = aAbove == bAbove ? a : a + (b - a) * (da / (da - db));
+    if (aAbove || bAbove) sum += rectEdgeTerm(aAbove ? a : x, bAbove ? b : x, n);
+    if (aAbove && !bAbove) leaves = x;
+    if (!aAbove && bAbove) returns = x;
+}
+
 // Projected solid angle of a one-sided rectangle seen from p (normal n): Lambert's formula
 // for polygons, after clipping the rectangle to the hemisphere above p. Exact; per unit
 // radiance it is the irradiance.
 float rectProjectedSolidAngle(vec3 p, vec3 n, LightData light) {
-    vec3 centre = light.positionType.xyz - p;
+    const vec3 centre = light.positionType.xyz - p;
     if (dot(-centre, light.directionRadius.xyz) <= 0.0) return 0.0; // p is behind the emitting side
-    vec3 u = light.extent.xyz;
-    vec3 v = normalize(cross(light.directionRadius.xyz, u)) * light.extent.w;
-    vec3 corners[4] = vec3[4](centre - u - v, centre + u - v, centre + u + v, centre - u + v);
-    // Sutherland-Hodgman against the plane dot(x, n) = 0: at most 5 vertices remain.
-    vec3 poly[5];
-    int count = 0;
-    for (int i = 0; i < 4; ++i) {
-        vec3 a = corners[i], b = corners[(i + 1) % 4];
-        float da = dot(a, n), db = dot(b, n);
-        if (da >= 0.0) poly[count++] = a;
-        if ((da >= 0.0) != (db >= 0.0)) poly[count++] = a + (b - a) * (da / (da - db));
-    }
+    const vec3 u = light.extent.xyz;
+    const vec3 v = normalize(cross(light.directionRadius.xyz, u)) * light.extent.w;
+    const vec3 c0 = centre - u - v, c1 = centre + u - v, c2 = centre + u + v, c3 = centre - u + v;
     float sum = 0.0;
-    for (int i = 0; i < count; ++i) {
-        vec3 a = safeNormalize(poly[i], vec3(0.0)), b = safeNormalize(poly[(i + 1) % count], vec3(0.0));
-        vec3 c = cross(a, b);
-        float s = length(c);
-        // atan(|a x b|, a.b) keeps the edge angle accurate for tiny, distant rectangles.
-        if (s > 0.0) sum += atan(s, dot(a, b)) * dot(c / s, n);
-    }
+    vec3 leaves = vec3(0.0), returns = vec3(0.0);
+    rectClippedEdge(c0, c1, n, sum, leaves, returns);
+    rectClippedEdge(c1, c2, n, sum, leaves, returns);
+    rectClippedEdge(c2, c3, n, sum, leaves, returns);
+    rectClippedEdge(c3, c0, n, sum, leaves, returns);
+    sum += rectEdgeTerm(leaves, returns, n); // along the plane; 0 when the outline never crosses it
     return 0.5 * abs(sum);
 }
+#endif
 
 // Irradiance from one light at view-space point p with shading normal ns; lights behind
 // the geometric surface (ng) contribute nothing.
 vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
     int type = int(light.positionType.w);
+#ifdef RECT_LIGHTS
     if (type == GBUFFER_LIGHT_RECT) return light.radiance.rgb * rectProjectedSolidAngle(p, ns, light);
+#endif
     vec3 l;
     float falloff = 1.0;
     if (type == GBUFFER_LIGHT_DIRECTIONAL) {

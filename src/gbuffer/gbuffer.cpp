@@ -133,8 +133,15 @@ struct GBuffer::Impl {
         return 0;
     }
 
+    // What the fragment shader lights with: its permutation and light count.
+    struct Lighting {
+        bool direct = false;
+        bool rects = false; // any rect light: the polygon clipping is compiled in only then
+        int count = 0;
+    };
+
     void draw(const DrawableMesh& mesh, const glm::mat4& model, const Material& material, const glm::dmat4& view,
-              bool directLighting, int lightCount, bool peel = false) {
+              const Lighting& lighting, bool peel = false) {
         auto& gl = ctx.gl;
         // The peeling pass writes depth only: no texture, no lighting (PEEL implies it).
         const GLuint texture = mesh.hasTexcoords && !peel ? materialTexture(material) : 0;
@@ -143,7 +150,8 @@ struct GBuffer::Impl {
         if (mesh.hasTexcoords) defines.push_back("HAS_TEXCOORDS");
         if (texture) defines.push_back("ALBEDO_TEXTURE");
         if (peel) defines.push_back("PEEL");
-        else if (!directLighting) defines.push_back("NO_DIRECT_LIGHTING");
+        else if (!lighting.direct) defines.push_back("NO_DIRECT_LIGHTING");
+        else if (lighting.rects) defines.push_back("RECT_LIGHTS");
         const GLuint program = ctx.shaders->program(
             {"gbuffer/gbuffer.vert.glsl", "gbuffer/gbuffer.geom.glsl", "gbuffer/gbuffer.frag.glsl"}, defines);
         gl.UseProgram(program);
@@ -155,7 +163,7 @@ struct GBuffer::Impl {
         gl.ProgramUniformMatrix4fv(program, GBUFFER_LOC_NORMAL_MATRIX, 1, GL_FALSE, glm::value_ptr(normalMatrix));
         gl.ProgramUniform3fv(program, GBUFFER_LOC_ALBEDO, 1, glm::value_ptr(material.albedo));
         gl.ProgramUniform3fv(program, GBUFFER_LOC_EMISSION, 1, glm::value_ptr(material.emission));
-        gl.ProgramUniform1i(program, GBUFFER_LOC_LIGHT_COUNT, lightCount);
+        gl.ProgramUniform1i(program, GBUFFER_LOC_LIGHT_COUNT, lighting.count);
         if (texture) {
             ctx.state.bindTexture(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, texture);
             ctx.state.bindSampler(ctx, GBUFFER_ALBEDO_TEXTURE_UNIT, materialSamplerFor(material));
@@ -225,16 +233,18 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
     gl.ClearNamedFramebufferfv(fbo, GL_COLOR, 2, background);
 
-    const int lightCount = static_cast<int>(scene.lights.size());
+    const Impl::Lighting lighting{settings.directLighting,
+                                  std::any_of(scene.lights.begin(), scene.lights.end(),
+                                              [](const Light& l) { return l.type == LightType::Rect; }),
+                                  static_cast<int>(scene.lights.size())};
     const auto drawScene = [&](bool peel) {
         for (const Mesh& mesh : scene.meshes) {
             const DrawableMesh d = impl_->meshes.cpuMesh(mesh.data);
-            if (d.count > 0)
-                impl_->draw(d, mesh.model, scene.materials[mesh.material], view, settings.directLighting, lightCount, peel);
+            if (d.count > 0) impl_->draw(d, mesh.model, scene.materials[mesh.material], view, lighting, peel);
         }
         for (std::size_t i = 0; i < scene.meshRefs.size(); ++i)
             impl_->draw(hostMeshes[i], scene.meshRefs[i].model, scene.materials[scene.meshRefs[i].material], view,
-                        settings.directLighting, lightCount, peel);
+                        lighting, peel);
     };
     drawScene(false);
     if (settings.depthLayers == 2) {

@@ -560,3 +560,39 @@ TEST_CASE("Area lights - a rectangle matches the view-factor closed form and a s
             CHECK(std::abs(direct.at(x, y, 0) - expected) <= 2 * kHalfRelative * expected + formula);
         }
 }
+
+TEST_CASE("A rectangle light cut by the receiver's horizon lights like its part above it", "[gbuffer]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    constexpr int W = 40, H = 40;
+    const Camera camera = Camera::perspective({{0, 8, 0.01f}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 100.0f);
+    Scene scene = test::quadScene({{{{{-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}}}}, glm::vec3(0.5f));
+    // Upright at z = 2, emitting toward -z: the floor's points in front of it see only its
+    // upper half (y in [0, 1]); the lower half is below their horizon and must be clipped
+    // away, leaving the polygon of the half rectangle, which needs no clipping.
+    Light light;
+    light.type = LightType::Rect;
+    light.intensity = 3.0f;
+    light.direction = {0, 0, -1};
+    light.tangent = {1, 0, 0};
+    light.position = {0.2f, 0.0f, 2.0f};
+    light.size = {2.0f, 2.0f};
+    scene.lights = {light};
+    const Image cut = readTexture(ctx, gbuffer.render(scene, camera, {W, H, true, {}}).directRadiance);
+    light.position.y = 0.5f;
+    light.size.y = 1.0f;
+    scene.lights = {light};
+    const Image half = readTexture(ctx, gbuffer.render(scene, camera, {W, H, true, {}}).directRadiance);
+    int lit = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const double a = cut.at(x, y, 0), b = half.at(x, y, 0);
+            lit += b > 0.0 ? 1 : 0;
+            INFO("pixel " << x << "," << y << ": cut " << a << ", upper half " << b);
+            // Two half-float roundings and the float error of up to 5 edge terms (as above).
+            const double formula = 0.5 / kPi * light.intensity * 5 * std::ldexp(1.0, -22) * kPi;
+            CHECK(std::abs(a - b) <= 2 * kHalfRelative * b + 2 * formula);
+        }
+    CHECK(lit > W * H / 4);
+}
