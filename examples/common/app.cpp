@@ -58,6 +58,24 @@ void addAppOptions(CLI::App& cli, AppOptions& o) {
     cli.add_flag("--window", o.window, "Open a GLFW window (default: headless EGL)");
     cli.add_option("--frames", o.frames, "Frames to render; 0 = until the window is closed")->capture_default_str();
     cli.add_option("--out", o.out, "Write the last picture as PNG");
+    cli.add_option("--screenshot", o.screenshot, "With --window: write the last frame as shown (panel included) as PNG");
+}
+
+// The window's back buffer, top row first.
+TextureImage readWindow(int width, int height) {
+    TextureImage image;
+    image.width = width;
+    image.height = height;
+    const std::size_t row = static_cast<std::size_t>(width) * 4;
+    std::vector<std::uint8_t> bottomUp(row * static_cast<std::size_t>(height));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    image.rgba.resize(bottomUp.size());
+    for (int y = 0; y < height; ++y)
+        std::memcpy(&image.rgba[static_cast<std::size_t>(y) * row], &bottomUp[static_cast<std::size_t>(height - 1 - y) * row], row);
+    return image;
 }
 
 struct App::Impl {
@@ -66,6 +84,7 @@ struct App::Impl {
     GLuint texture = 0, framebuffer = 0;
     std::function<void()> panel;
     bool imgui = false;
+    TextureImage screen; // the last frame with the panel, for --screenshot
 
     // The panel over what is on screen; ImGui's OpenGL 3 backend loads its own GL functions.
     void drawPanel() {
@@ -88,8 +107,9 @@ struct App::Impl {
     }
 };
 
-App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frames) {
+App::App(const AppOptions& o) : impl_(std::make_unique<Impl>()), frames_(o.frames), screenshot_(o.screenshot) {
     std::tie(width_, height_) = assets::parseImageSize(o.size);
+    if (!o.window && !screenshot_.empty()) throw Error(ErrorCode::InvalidArgument, "--screenshot needs --window");
     if (!o.window) {
         if (frames_ < 1) throw Error(ErrorCode::InvalidArgument, "--frames 0 needs --window");
         impl_->headless = std::make_unique<headless::HeadlessContext>();
@@ -152,6 +172,10 @@ TextureImage App::presentUntilDone(bool& changed, const std::function<TextureIma
         shown = present(picture);
         ++presented;
     } while (!done(presented));
+    if (!screenshot_.empty()) {
+        assets::writePng(screenshot_, impl_->screen);
+        std::printf("wrote %s (the window with its panel)\n", screenshot_.c_str());
+    }
     return shown;
 }
 
@@ -181,15 +205,9 @@ TextureImage App::present(const TextureImage& picture) {
     glBlitNamedFramebuffer(impl_->framebuffer, 0, 0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
                            GL_NEAREST);
     // Read back what the window shows.
-    TextureImage shown = picture;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
-    for (int y = 0; y < height_; ++y)
-        std::memcpy(&shown.rgba[static_cast<std::size_t>(y) * row],
-                    &flipped[static_cast<std::size_t>(height_ - 1 - y) * row], row);
+    TextureImage shown = readWindow(width_, height_);
     impl_->drawPanel();
+    if (!screenshot_.empty()) impl_->screen = readWindow(width_, height_);
     glfwSwapBuffers(impl_->window);
     glfwPollEvents();
     return shown;

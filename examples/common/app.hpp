@@ -20,6 +20,7 @@ struct AppOptions {
     bool window = false;           //!< open a GLFW window instead of a headless context
     int frames = 1;                //!< frames to render; 0 = until the window is closed
     std::string out;               //!< write the last presented picture as PNG
+    std::string screenshot;        //!< window: write the last frame as shown, panel included, as PNG
 };
 
 void addAppOptions(CLI::App& cli, AppOptions& options);
@@ -47,7 +48,8 @@ public:
     //! that framebuffer back (what is on screen), swaps and returns what was read.
     TextureImage present(const TextureImage& picture);
     //! Presents frames until done(): calls `render` for a new picture first and whenever
-    //! `changed` was set (by the panel), clearing it. Returns the last presented picture.
+    //! `changed` was set (by the panel), clearing it. Returns the last presented picture;
+    //! with --screenshot, writes the last frame as the window shows it (panel included).
     TextureImage presentUntilDone(bool& changed, const std::function<TextureImage()>& render);
     //! True once `frames` frames were presented or the window was closed.
     bool done(int presented) const;
@@ -59,6 +61,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     int width_ = 0, height_ = 0, frames_ = 1;
+    std::string screenshot_;
 };
 
 //! The scene of --scene seen through --camera (or the scene's own camera) at `width` x `height`.
