@@ -12,6 +12,7 @@
 #include "obscura/profiler.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/screen_visibility.hpp"
+#include "obscura/shadow_maps.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/version.hpp"
 #include "obscura/voxelizer.hpp"

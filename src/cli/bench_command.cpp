@@ -42,7 +42,39 @@ struct BenchOptions {
 const char* const kColumns[] = {"scene",    "technique", "preset",   "width",    "height",         "quantity",
                                 "clock",    "gpu_ms",    "cpu_ms",   "rmse",     "relmse",         "ssim",
                                 "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
-                                "inf_count", "ref_spp",  "frames",   "renderer"};
+                                "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light"};
+
+// A reference::Shadow's channel 0, with `mask` narrowed to the pixels its channel 1 marks
+// (the light reaches the surface there: lit or shadowed).
+Image shadowReference(const Image& shadow, Image& mask) {
+    Image lit;
+    lit.width = shadow.width;
+    lit.height = shadow.height;
+    lit.channels = 1;
+    lit.pixels.resize(std::size_t(shadow.width) * std::size_t(shadow.height));
+    for (std::size_t i = 0; i < lit.pixels.size(); ++i) {
+        lit.pixels[i] = shadow.pixels[2 * i];
+        if (shadow.pixels[2 * i + 1] == 0.0f) mask.pixels[i] = 0.0f;
+    }
+    return lit;
+}
+
+// Fractions of the masked pixels that a hard mask gets wrong.
+struct Misclassified {
+    double falseShadow = 0.0, falseLight = 0.0;
+};
+Misclassified misclassified(const Image& value, const Image& expected, const Image& mask) {
+    std::size_t pixels = 0, falseShadow = 0, falseLight = 0;
+    for (std::size_t i = 0; i < mask.pixels.size(); ++i) {
+        if (!(mask.pixels[i] > 0.0f)) continue;
+        ++pixels;
+        const bool lit = value.pixels[i] >= 0.5f, truth = expected.pixels[i] >= 0.5f;
+        falseShadow += truth && !lit ? 1 : 0;
+        falseLight += !truth && lit ? 1 : 0;
+    }
+    if (pixels == 0) return {};
+    return {double(falseShadow) / double(pixels), double(falseLight) / double(pixels)};
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -110,6 +142,10 @@ public:
         std::printf("scene %s: %zu triangles, %dx%d\n", r.scene.name.c_str(), rays.triangleCount(), r.width, r.height);
         for (const auto& [name, info] : techniques()) {
             if (fnmatch(o_.techniques.c_str(), name.c_str(), 0) != 0) continue;
+            if (const std::string why = info.create(ctx)->unsupported(r.scene.scene); !why.empty()) {
+                std::printf("  %-10s skipped: %s\n", name.c_str(), why.c_str());
+                continue;
+            }
             for (const Preset& preset : info.presets) {
                 const auto wanted = split(o_.presets);
                 if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), preset.name) == wanted.end()) continue;
@@ -233,6 +269,7 @@ private:
                 expected = ref.value;
                 noise = ref.noiseMse;
                 spp = ref.samplesPerPixel;
+                if (m.shadowMask) expected = shadowReference(ref.value, mask);
             }
             metrics::Options mo;
             mo.mask = &mask;
@@ -245,7 +282,13 @@ private:
                           {"ssim", e.ssim},          {"max_abs", e.maxAbs},     {"nan_count", e.nanCount},
                           {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
-                          {"frames", o_.frames},     {"renderer", ctx.info().renderer}};
+                          {"frames", o_.frames},     {"renderer", ctx.info().renderer},
+                          {"false_shadow", ""},      {"false_light", ""}};
+            if (m.classify) {
+                const Misclassified wrong = misclassified(m.value, expected, mask);
+                row.fields["false_shadow"] = wrong.falseShadow;
+                row.fields["false_light"] = wrong.falseLight;
+            }
             row.passes = passes;
             std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g\n",
                         info.name.c_str(), preset.name.c_str(), m.quantity.c_str(), gpu, toString(ctx.profiler().clock()),

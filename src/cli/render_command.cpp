@@ -67,6 +67,11 @@ void runRender(const RenderOptions& o) {
                 "clock");
     for (const TechniqueInfo* t : selected) {
         auto run = t->create(ctx);
+        // "all" leaves out what the scene cannot have; a technique asked for by name says why.
+        if (const std::string why = run->unsupported(scene.scene); !why.empty() && selected.size() > 1) {
+            std::printf("%-12s skipped: %s\n", t->name.c_str(), why.c_str());
+            continue;
+        }
         for (const auto& kv : o.sets) {
             const auto eq = kv.find('=');
             if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected key=value");

@@ -53,6 +53,10 @@ ScreenThickness parseScreenThickness(const std::string& key, const std::string& 
                                                      {"depth_peeling", ScreenThickness::DepthPeeling}});
 }
 
+GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view) {
+    return {readTexture(ctx, gbuffer.positions(view)), readTexture(ctx, view.normal)};
+}
+
 double defaultRadius(const Scene& scene) {
     const Bounds b = sceneBounds(scene);
     return 0.1 * glm::length(glm::dvec3(b.max - b.min));

@@ -4,6 +4,7 @@
 #include "obscura/assets.hpp"
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"
+#include "obscura/gbuffer.hpp"
 #include "obscura/reference.hpp"
 #include "obscura/screen_visibility.hpp"
 
@@ -45,6 +46,12 @@ struct Measurement {
     std::optional<reference::Quantity> reference;
     //! Instead of a reference quantity: compare with primary-ray hits (exact, no noise).
     enum class Geometry { None, Position, Normal } geometry = Geometry::None;
+    //! The reference is a reference::Shadow: compare `value` (1 channel) with its channel 0
+    //! where its channel 1 says the light reaches the surface.
+    bool shadowMask = false;
+    //! With shadowMask: also count the pixels the technique classifies wrongly (value < 0.5
+    //! against a lit reference: false shadow; >= 0.5 against a shadowed one: false light).
+    bool classify = false;
 };
 
 //! The G-buffer samples a technique worked on (view-space positions with alpha = geometry,
@@ -53,6 +60,9 @@ struct GBufferSamples {
     Image viewPositions;
     Image viewNormals;
 };
+
+//! The samples of a G-buffer view that `gbuffer` rendered, read back.
+GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view);
 
 //! A technique instance bound to a Context. run() renders one frame; outputs() reads back.
 class TechniqueRun {
@@ -64,6 +74,8 @@ public:
     //! After run(): the technique's measurable outputs and the samples they were computed at.
     virtual std::vector<Measurement> measurements() = 0;
     virtual GBufferSamples samples() = 0;
+    //! Why the technique cannot run on `scene` (the tools skip it and say so), or empty.
+    virtual std::string unsupported(const Scene&) const { return {}; }
 };
 
 //! A named set of `--set` values ("low", "medium", "high", "ultra", or "default").

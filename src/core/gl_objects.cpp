@@ -87,6 +87,18 @@ Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int 
     return tex;
 }
 
+Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
+                             std::string_view name) {
+    drainGlErrors(ctx);
+    GLuint t = 0;
+    ctx.gl.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+    Texture tex = track<ObjectKind::Texture>(ctx, t, name);
+    ctx.gl.TextureStorage3D(t, 1, internalFormat, width, height, layers);
+    checkAllocation(ctx, std::string(name) + " (" + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                             std::to_string(layers) + ")");
+    return tex;
+}
+
 Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view name) {
     drainGlErrors(ctx);
     GLuint b = 0;

@@ -56,6 +56,9 @@ using Program = Handle<ObjectKind::Program>;
 // Allocations check GL_OUT_OF_MEMORY and throw Error{OutOfMemory} without leaking.
 Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
                         std::string_view label);
+//! A GL_TEXTURE_2D_ARRAY with one level.
+Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
+                             std::string_view label);
 Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view label);
 Framebuffer createFramebuffer(ContextImpl& ctx, std::string_view label);
 VertexArray createVertexArray(ContextImpl& ctx, std::string_view label);

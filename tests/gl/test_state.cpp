@@ -301,6 +301,11 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     });
     check("ScreenVisibility::hidden", [&] { visibility->hidden(view, {glm::vec3(0.0f, 0.0f, -3.0f)}, {}); });
     check("ScreenVisibility::~ScreenVisibility", [&] { visibility.reset(); });
+    auto shadows = std::make_unique<ShadowMaps>(*ctx);
+    const ShadowMapSet* maps = nullptr;
+    check("ShadowMaps::render (spot, two cascades)", [&] { maps = &shadows->render(s.scene, s.camera, {64, 2, 0.5f}); });
+    check("ShadowMaps::mask (PCF, directional)", [&] { shadows->mask(view, *maps, 2, {}); });
+    check("ShadowMaps::~ShadowMaps", [&] { shadows.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
     TextureView display;
     check("Composer::compose", [&] {
@@ -376,7 +381,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 30);
+    CHECK(checked == 33);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

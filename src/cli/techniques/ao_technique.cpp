@@ -105,7 +105,7 @@ public:
     }
 
     GBufferSamples samples() override {
-        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+        return readSamples(ctx_, gbuffer_, view_);
     }
 
     std::vector<Measurement> measurements() override {

@@ -83,7 +83,7 @@ public:
     }
 
     GBufferSamples samples() override {
-        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+        return readSamples(ctx_, gbuffer_, view_);
     }
 
     // No ground truth for the composite yet: its parts are measured by their own techniques.

@@ -47,7 +47,7 @@ public:
     }
 
     GBufferSamples samples() override {
-        return {readTexture(ctx_, gbuffer_.positions(view_)), readTexture(ctx_, view_.normal)};
+        return readSamples(ctx_, gbuffer_, view_);
     }
 
     // Positions and face normals against primary-ray hits (the reconstruction and

@@ -1,0 +1,124 @@
+#pragma once
+// Shadow maps of the scene's spot and directional lights, and the shadow mask they give at
+// a G-buffer's samples (obscura::reference::Shadow is the ground truth).
+//
+// Maps are GL_DEPTH_COMPONENT32F layers of one 2D array texture, rendered with reversed-Z
+// (near -> 1) through clip control and with depth clamp, so that casters in front of a
+// map's near plane still occlude (clamped onto it):
+//   Spot         one perspective map over the outer cone (field of view 2 outerAngle); far
+//                plane at the scene's farthest point, near plane far / 10^4.
+//   Directional  `cascades` orthographic maps over slices of the camera's view distance
+//                range inside the scene's bounds, split by the PSSM rule
+//                d_i = lambda d_log + (1 - lambda) d_uniform. Each covers its slice's bounding
+//                sphere (whose size does not change when the camera moves or turns), with its
+//                centre snapped to whole texels in light space, so that the maps do not
+//                shimmer with camera motion; along the light each spans the whole scene, so
+//                every caster is in every cascade.
+// Lights of other types, and lights with castsShadows off, get no map: mask() refuses them
+// (point lights as cube and dual-paraboloid maps are still to come).
+//
+// Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
+// receiver lit, in [0, 1] (1 = lit), GL_R16F (values rounded by at most 2^-12). The
+// receiver is the pixel's reconstructed point moved, in world units, toward the light by
+// constantBias + slopeBias * texel * tan(theta) and along its geometric normal by
+// normalOffset * texel, where texel is the side of one map texel at the receiver and theta
+// the angle between the normal and the light. Pixels the light does not reach (facing away,
+// outside a spot's outer cone) are 0; background pixels are 1.
+//   Hard  one comparison: the texel the receiver falls in;
+//   Pcf   (2 pcfRadius + 1)^2 comparisons one texel apart, each bilinearly weighted over
+//         its four texels (hardware comparison with linear filtering).
+// Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
+#include "obscura/camera.hpp"
+#include "obscura/export.hpp"
+#include "obscura/gbuffer.hpp"
+#include "obscura/scene.hpp"
+#include "obscura/texture.hpp"
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace obscura {
+
+class Context;
+
+constexpr int kMaxShadowCascades = 4;
+
+struct ShadowMapSettings {
+    int resolution = 1024;     //!< texels per side of every map, [16, min(8192, GL_MAX_TEXTURE_SIZE)]
+    int cascades = 3;          //!< maps per directional light, [1, kMaxShadowCascades]
+    float splitLambda = 0.75f; //!< PSSM weight of the logarithmic split (0: uniform), [0, 1]
+};
+
+//! The maps of one light.
+struct ShadowMapInfo {
+    std::size_t light = 0;          //!< index in Scene::lights
+    Light source;                   //!< that light, as the maps were rendered for it
+    LightType type = LightType::Spot;
+    int firstLayer = 0;             //!< of ShadowMapSet::depth
+    int layers = 0;                 //!< 1 (spot) or the cascades (directional)
+    //! World -> clip space of each map (reversed-Z, clip control zero-to-one).
+    std::array<glm::mat4, kMaxShadowCascades> worldToClip{};
+    //! Directional: the far end of each cascade's slice, view distance along the camera's
+    //! axis, world units (the first slice starts at the scene's nearest point, >= near).
+    std::array<float, kMaxShadowCascades> sliceEnd{};
+    //! Side of one texel: world units (directional), or world units per unit distance along
+    //! the spot's axis (spot).
+    std::array<float, kMaxShadowCascades> texelSize{};
+};
+
+//! What ShadowMaps::render produced; valid until its next render.
+struct ShadowMapSet {
+    unsigned depth = 0; //!< GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F; 0 when no light casts shadows
+    int resolution = 0; //!< texels per side
+    int layers = 0;
+    std::vector<ShadowMapInfo> maps;
+    Camera camera;      //!< the camera the cascades were fitted to
+    //! The maps of Scene::lights[light], or null when it has none.
+    const ShadowMapInfo* find(std::size_t light) const;
+};
+
+enum class ShadowFilter {
+    Hard, //!< "shadow.hard"
+    Pcf,  //!< "shadow.pcf"
+};
+
+// Setting keys for tools (`--set`) are the field names in snake case.
+struct ShadowMaskSettings {
+    ShadowFilter filter = ShadowFilter::Pcf;
+    int pcfRadius = 1;         //!< Pcf: comparisons each side of the centre, [0, 8]
+    float constantBias = 0.0f; //!< world units toward the light, [0, inf)
+    float slopeBias = 1.0f;    //!< texels of depth per unit tan(theta) (tan clamped at 16), [0, 16]
+    float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]
+    float cascadeBlend = 0.1f; //!< fraction of each cascade's slice blended into the next, [0, 0.5]
+};
+
+class OBSCURA_API ShadowMaps {
+public:
+    explicit ShadowMaps(Context& context);
+    ~ShadowMaps();
+    ShadowMaps(const ShadowMaps&) = delete;
+    ShadowMaps& operator=(const ShadowMaps&) = delete;
+
+    //! Renders the maps of every shadow-casting spot and directional light (pass
+    //! "shadow.maps"); allocates nothing when there is none. Throws Error{InvalidArgument}
+    //! for settings out of range, an invalid scene or camera.
+    const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings);
+
+    //! The mask of Scene::lights[light] at the G-buffer's samples (pass "shadow.mask"),
+    //! GL_R16F at the G-buffer's size. `maps` must come from render() with the G-buffer's
+    //! camera. Throws Error{InvalidArgument} for settings out of range, a light without
+    //! maps, maps of another camera, or a G-buffer without depth or normal.
+    TextureView mask(const GBufferView& gbuffer, const ShadowMapSet& maps, std::size_t light,
+                     const ShadowMaskSettings& settings);
+
+    //! GPU memory held right now, bytes.
+    std::size_t memoryBytes() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace obscura

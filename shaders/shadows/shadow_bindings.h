@@ -1,0 +1,50 @@
+// Shadow maps: binding points and the mask pass's parameter block, shared by
+// src/shadows/*.cpp and shaders/shadows/*.glsl.
+#ifndef OBSCURA_SHADOW_BINDINGS_H
+#define OBSCURA_SHADOW_BINDINGS_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace obscura::shader {
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+#endif
+
+#include "../common/common_bindings.h"
+#include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
+
+#define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
+#define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip
+#define SHADOW_PARAMS_UBO_BINDING 2
+#define SHADOW_MAP_UNIT 0   // sampler2DArrayShadow, one layer per map
+#define SHADOW_MASK_IMAGE 0 // r16f output
+#define SHADOW_WORKGROUP 8
+#define SHADOW_MAX_CASCADES 4
+
+#define SHADOW_LIGHT_SPOT 0
+#define SHADOW_LIGHT_DIRECTIONAL 1
+
+#define SHADOW_FILTER_HARD 0
+#define SHADOW_FILTER_PCF 1
+
+struct ShadowCascade {
+    mat4 viewToLight; // G-buffer view space -> the map's clip space
+    vec4 info;        // x: far end of the slice (view distance, world units), y: texel side at the
+                      // map (orthographic: world units; perspective: per unit distance), z: layer
+};
+
+struct ShadowParams {
+    ShadowCascade cascades[SHADOW_MAX_CASCADES];
+    vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type
+    vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
+    vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
+    ivec4 counts; // x: cascades, y: filter, z: PCF radius, w: map resolution
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(ShadowParams) == SHADOW_MAX_CASCADES * 80 + 4 * 16, "ShadowParams must match std140");
+} // namespace obscura::shader
+#endif
+
+#endif

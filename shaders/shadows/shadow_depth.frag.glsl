@@ -1,0 +1,2 @@
+// Depth only: the rasterizer writes it; nothing else is needed.
+void main() {}

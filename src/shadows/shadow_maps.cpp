@@ -1,0 +1,259 @@
+#include "obscura/shadow_maps.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/frame_uniforms.hpp"
+#include "core/mesh_cache.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/validate.hpp"
+#include "obscura/context.hpp"
+#include "obscura/error.hpp"
+#include "shaders/shadows/shadow_bindings.h"
+#include "shadows/light_frusta.hpp"
+#include "visibility/screen_inputs.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace obscura {
+namespace {
+
+using namespace detail;
+
+bool hasMap(const Light& l) {
+    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional);
+}
+
+void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
+    requireInRange(s.resolution, 16, std::min(8192, maxTextureSize), "ShadowMapSettings::resolution", "texels");
+    requireInRange(s.cascades, 1, kMaxShadowCascades, "ShadowMapSettings::cascades", "maps");
+    requireInRange(s.splitLambda, 0.0, 1.0, "ShadowMapSettings::splitLambda");
+}
+
+void validateSettings(const ShadowMaskSettings& s) {
+    requireInRange(s.pcfRadius, 0, 8, "ShadowMaskSettings::pcfRadius", "texels");
+    if (!(s.constantBias >= 0.0f) || std::isinf(s.constantBias))
+        throw Error(ErrorCode::InvalidArgument, "ShadowMaskSettings::constantBias must be in [0, inf) world units, got " +
+                                                    std::to_string(s.constantBias));
+    requireInRange(s.slopeBias, 0.0, 16.0, "ShadowMaskSettings::slopeBias", "texels");
+    requireInRange(s.normalOffset, 0.0, 16.0, "ShadowMaskSettings::normalOffset", "texels");
+    requireInRange(s.cascadeBlend, 0.0, 0.5, "ShadowMaskSettings::cascadeBlend");
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+    return a.view == b.view && a.projection == b.projection && a.clipDepth == b.clipDepth;
+}
+
+glm::mat4 worldToClip(const Camera& c) { return glm::mat4(glm::dmat4(c.projection) * glm::dmat4(c.view)); }
+
+} // namespace
+
+const ShadowMapInfo* ShadowMapSet::find(std::size_t light) const {
+    for (const ShadowMapInfo& m : maps)
+        if (m.light == light) return &m;
+    return nullptr;
+}
+
+struct ShadowMaps::Impl {
+    explicit Impl(ContextImpl& c) : ctx(c), meshes(c) {}
+
+    ContextImpl& ctx;
+    MeshCache meshes;
+    Texture depth;
+    int depthResolution = 0, depthLayers = 0;
+    Framebuffer fbo;
+    Sampler nearestCompare, linearCompare;
+    FrameUniforms frame;
+    Buffer params;
+    SizedTexture maskTexture;
+    ShadowMapSet set;
+
+    // The maps' cameras, and what the mask pass needs to know of them.
+    std::vector<Camera> plan(const Scene& scene, const Camera& camera, const ShadowMapSettings& s) {
+        const Bounds bounds = sceneBounds(scene);
+        std::vector<Camera> cameras;
+        set.maps.clear();
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+            const Light& l = scene.lights[i];
+            if (!hasMap(l)) continue;
+            if (bounds.empty)
+                throw Error(ErrorCode::InvalidArgument, "ShadowMaps::render: the scene has no CPU meshes to fit the maps to");
+            ShadowMapInfo info;
+            info.light = i;
+            info.source = l;
+            info.type = l.type;
+            info.firstLayer = static_cast<int>(cameras.size());
+            if (l.type == LightType::Spot) {
+                const LightCamera lc = spotCamera(l, bounds, s.resolution);
+                cameras.push_back(lc.camera);
+                info.worldToClip[0] = worldToClip(lc.camera);
+                info.texelSize[0] = static_cast<float>(lc.texelSize);
+                info.layers = 1;
+            } else {
+                const DistanceRange range = visibleDistances(camera, bounds);
+                const std::vector<double> ends = cascadeSplits(range.nearest, range.farthest, s.cascades, s.splitLambda);
+                double from = range.nearest;
+                for (int c = 0; c < s.cascades; ++c) {
+                    const auto k = static_cast<std::size_t>(c);
+                    const LightCamera lc =
+                        directionalCascade(glm::dvec3(l.direction), camera, from, ends[k], bounds, s.resolution);
+                    cameras.push_back(lc.camera);
+                    info.worldToClip[k] = worldToClip(lc.camera);
+                    info.texelSize[k] = static_cast<float>(lc.texelSize);
+                    info.sliceEnd[k] = static_cast<float>(ends[k]);
+                    from = ends[k];
+                }
+                info.layers = s.cascades;
+            }
+            set.maps.push_back(info);
+        }
+        return cameras;
+    }
+
+    void ensureDepth(int resolution, int layers) {
+        if (depth && resolution == depthResolution && layers == depthLayers) return;
+        depth = createTexture2DArray(ctx, GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "shadow.maps");
+        depthResolution = resolution;
+        depthLayers = layers;
+        if (!fbo) fbo = createFramebuffer(ctx, "shadow.maps");
+    }
+
+    void drawMaps(const Scene& scene, const std::vector<Camera>& cameras) {
+        auto& gl = ctx.gl;
+        std::vector<DrawableMesh> hostMeshes; // first: reading a host VAO's layout binds it
+        for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) hostMeshes.push_back(meshes.hostMesh(i, scene.meshRefs[i]));
+        const GLuint program = ctx.shaders->program({"shadows/shadow_depth.vert.glsl", "shadows/shadow_depth.frag.glsl"});
+        gl.UseProgram(program);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+        gl.NamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
+        setViewport(ctx, 0, 0, depthResolution, depthResolution);
+        // Reversed-Z: nearer is greater; depth clamp keeps casters in front of the near plane.
+        applyDrawState(ctx, {true, true, GL_GREATER, false, false, GL_ZERO_TO_ONE, true});
+        const float clearDepth = 0.0f;
+        for (std::size_t layer = 0; layer < cameras.size(); ++layer) {
+            gl.NamedFramebufferTextureLayer(fbo.get(), GL_DEPTH_ATTACHMENT, depth.get(), 0, static_cast<GLint>(layer));
+            gl.ClearNamedFramebufferfv(fbo.get(), GL_DEPTH, 0, &clearDepth);
+            const glm::dmat4 lightClip = glm::dmat4(cameras[layer].projection) * glm::dmat4(cameras[layer].view);
+            const auto draw = [&](const DrawableMesh& mesh, const glm::mat4& model) {
+                const glm::mat4 m(lightClip * glm::dmat4(model));
+                gl.ProgramUniformMatrix4fv(program, SHADOW_LOC_MODEL_LIGHT_CLIP, 1, GL_FALSE, glm::value_ptr(m));
+                drawMesh(ctx, mesh);
+            };
+            for (const Mesh& mesh : scene.meshes) {
+                const DrawableMesh d = meshes.cpuMesh(mesh.data);
+                if (d.count > 0) draw(d, mesh.model);
+            }
+            for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) draw(hostMeshes[i], scene.meshRefs[i].model);
+        }
+    }
+
+    GLuint compareSampler(bool linear) {
+        Sampler& s = linear ? linearCompare : nearestCompare;
+        if (!s) {
+            s = createSampler(ctx, linear ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE,
+                              linear ? "shadow.linear_compare" : "shadow.nearest_compare");
+            // Reversed-Z: the receiver is lit when it is at least as near as the stored depth.
+            ctx.gl.SamplerParameteri(s.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+            ctx.gl.SamplerParameteri(s.get(), GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+        }
+        return s.get();
+    }
+
+    shader::ShadowParams makeParams(const Light& light, const ShadowMapInfo& info, const Camera& camera,
+                                    const ShadowMaskSettings& s) const {
+        shader::ShadowParams p{};
+        const glm::dmat4 view(camera.view), viewToWorld = glm::inverse(view);
+        for (int c = 0; c < info.layers; ++c) {
+            const auto k = static_cast<std::size_t>(c);
+            p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
+            p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), 0.0f);
+        }
+        if (light.type == LightType::Spot) {
+            p.light = glm::vec4(glm::vec3(view * glm::dvec4(glm::dvec3(light.position), 1.0)), SHADOW_LIGHT_SPOT);
+            p.spot = glm::vec4(glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0))),
+                               std::cos(light.outerAngle));
+        } else {
+            p.light = glm::vec4(-glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0))),
+                                SHADOW_LIGHT_DIRECTIONAL);
+        }
+        p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
+        p.counts = glm::ivec4(info.layers, s.filter == ShadowFilter::Pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD,
+                              s.pcfRadius, depthResolution);
+        return p;
+    }
+};
+
+ShadowMaps::ShadowMaps(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+ShadowMaps::~ShadowMaps() = default;
+
+const ShadowMapSet& ShadowMaps::render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings) {
+    auto& d = *impl_;
+    validateSettings(settings, d.ctx.info.maxTextureSize);
+    analyzeProjection(camera);
+    validateScene(scene);
+    const std::vector<Camera> cameras = d.plan(scene, camera, settings);
+    d.set.camera = camera;
+    d.set.resolution = settings.resolution;
+    d.set.layers = static_cast<int>(cameras.size());
+    d.set.depth = 0;
+    if (cameras.empty()) return d.set; // no shadowed light: no pass, no memory
+    StateScope scope(d.ctx);
+    PassScope pass(d.ctx, "shadow.maps");
+    d.meshes.collectGarbage();
+    d.ensureDepth(settings.resolution, static_cast<int>(cameras.size()));
+    d.drawMaps(scene, cameras);
+    d.set.depth = d.depth.get();
+    barrierForReaders(d.ctx);
+    return d.set;
+}
+
+TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std::size_t light,
+                             const ShadowMaskSettings& settings) {
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    validateSettings(settings);
+    const ShadowMapInfo* info = maps.find(light);
+    if (!info)
+        throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: light " + std::to_string(light) +
+                                                    " has no shadow map (only shadow-casting spot and directional "
+                                                    "lights have one)");
+    if (maps.depth != d.depth.get() || maps.layers != d.depthLayers)
+        throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps must be this module's latest render()");
+    if (!sameCamera(maps.camera, g.camera))
+        throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps were fitted to another camera than the G-buffer's");
+    analyzeProjection(g.camera);
+    const GBufferView view = checkScreenInputs(ctx, g, false, "ShadowMaps::mask");
+    StateScope scope(ctx);
+    PassScope pass(ctx, "shadow.mask");
+    const shader::ShadowParams p = d.makeParams(info->source, *info, g.camera, settings);
+    if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "shadow.params");
+    ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
+    ctx.state.bindUniformBuffer(ctx, SHADOW_PARAMS_UBO_BINDING, d.params.get());
+    d.frame.bind(ctx, view.camera, view.width, view.height);
+    bindScreenInputs(ctx, view, false);
+    const bool pcf = settings.filter == ShadowFilter::Pcf;
+    ctx.state.bindTexture(ctx, SHADOW_MAP_UNIT, d.depth.get());
+    ctx.state.bindSampler(ctx, SHADOW_MAP_UNIT, d.compareSampler(pcf));
+    const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");
+    ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"},
+                                           {"FILTER=" + std::to_string(pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD)}));
+    ctx.state.bindImage(ctx, SHADOW_MASK_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    dispatchCompute2D(ctx, view.width, view.height, SHADOW_WORKGROUP);
+    barrierForReaders(ctx);
+    return {out, GL_R16F, view.width, view.height};
+}
+
+std::size_t ShadowMaps::memoryBytes() const {
+    const auto& d = *impl_;
+    const std::size_t maps = d.depth ? 4u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
+                                           std::size_t(d.depthLayers)
+                                     : 0;
+    return maps + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() +
+           (d.params ? sizeof(shader::ShadowParams) : 0);
+}
+
+} // namespace obscura

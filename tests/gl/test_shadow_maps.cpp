@@ -1,0 +1,229 @@
+// Shadow maps: the hard and PCF masks of a square plate's shadow under a spot light and a
+// cascaded directional light against the Embree reference, misclassified pixels allowed
+// only within a band of texels around the shadow's edge; stability and bad input.
+#include "gl_fixture.hpp"
+#include "scene_builders.hpp"
+
+#include "obscura/obscura.hpp"
+#include "obscura/reference.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace obscura;
+
+namespace {
+
+constexpr double kPlate = 0.5, kHeight = 1.0; // the plate: [-0.5, 0.5]^2 at y = 1
+
+Scene plateScene(const Light& light) {
+    Scene s = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
+                               {{glm::dvec3(-kPlate, kHeight, -kPlate), {-kPlate, kHeight, kPlate}, {kPlate, kHeight, kPlate},
+                                 {kPlate, kHeight, -kPlate}}}});
+    s.lights = {light};
+    return s;
+}
+
+// Distance on the floor from (x, z) to the outline of the square of half side a centred at c.
+double squareEdgeDistance(double x, double z, glm::dvec2 c, double a) {
+    const glm::dvec2 q = glm::abs(glm::dvec2(x, z) - c) - glm::dvec2(a);
+    const double outside = glm::length(glm::max(q, glm::dvec2(0.0)));
+    return outside > 0.0 ? outside : -std::max(q.x, q.y);
+}
+
+struct ShadowFixture {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    ShadowMaps shadows{ctx};
+    GBufferView view;
+    Image positions;
+    Camera camera;
+    int width, height;
+
+    ShadowFixture(const Camera& c, int w, int h) : camera(c), width(w), height(h) {}
+
+    void render(const Scene& scene) {
+        view = gbuffer.render(scene, camera, {width, height, false, {}});
+        positions = readTexture(ctx, gbuffer.positions(view));
+    }
+    glm::dvec3 world(int x, int y) const {
+        const glm::dvec4 v(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0);
+        return glm::dvec3(glm::inverse(glm::dmat4(camera.view)) * v);
+    }
+    reference::Reference truth(const Scene& scene) {
+        const reference::RayScene rays(scene);
+        const reference::ShadingPoints points =
+            reference::fromGBuffer(rays, camera, positions, readTexture(ctx, view.normal));
+        reference::RenderSettings rs;
+        rs.samplesPerPixel = 2; // hard lights: one sample is exact
+        return reference::render(rays, points, reference::Shadow{0}, rs);
+    }
+};
+
+// Checks a mask against the reference: every pixel the light reaches and that lies farther
+// than `band(p)` world units from the shadow's edge on the floor (plate pixels: anywhere)
+// has the reference's value exactly (0 or 1); returns the pixels compared.
+template <typename Band, typename Edge>
+int checkMask(const ShadowFixture& f, const Image& mask, const reference::Reference& truth, Band band, Edge edge) {
+    int compared = 0, shadowed = 0;
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t i = std::size_t(y) * std::size_t(f.width) + std::size_t(x);
+            if (f.positions.at(x, y, 3) == 0.0f || truth.value.pixels[2 * i + 1] == 0.0f) continue;
+            const glm::dvec3 p = f.world(x, y);
+            const bool onFloor = std::abs(p.y) < 1e-3;
+            if (onFloor && std::abs(edge(p)) <= band(p)) continue;
+            const float expected = truth.value.pixels[2 * i];
+            CAPTURE(x, y, p.x, p.y, p.z, expected, mask.at(x, y, 0));
+            CHECK(mask.at(x, y, 0) == expected);
+            ++compared;
+            shadowed += expected == 0.0f ? 1 : 0;
+        }
+    CHECK(shadowed > 20);
+    return compared;
+}
+
+} // namespace
+
+TEST_CASE("A spot light's hard and PCF shadows of a plate match the reference away from the edge", "[shadows][reference]") {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.intensity = 10.0f;
+    spot.outerAngle = 1.2f; // the cone's edge (7.7 m out on the floor) is out of view
+    spot.innerAngle = 1.0f;
+    const Scene scene = plateScene(spot);
+    constexpr int W = 96, H = 72;
+    ShadowFixture f(Camera::perspective({{0, 3.5f, 4.5f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    const reference::Reference truth = f.truth(scene);
+    ShadowMapSettings maps;
+    maps.resolution = 512;
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, maps);
+    REQUIRE(set.find(0) != nullptr);
+    const double texelPerUnit = set.find(0)->texelSize[0];
+    // The shadow: the plate scaled from the light onto the floor.
+    const double scale = spot.position.y / (spot.position.y - kHeight);
+    const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale); };
+    for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+        ShadowMaskSettings s;
+        s.filter = filter;
+        s.pcfRadius = 1;
+        const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+        // Where the edge can be: the plate's outline lands in a texel of the map (one texel
+        // at the floor), the receiver in another (half a diagonal), the biases move it by
+        // under a texel here (normal offset 1 texel up, slope tan <= 0.6); PCF adds its
+        // kernel's reach, pcfRadius + 1 texels. A texel at the floor is the spot's texel per
+        // unit distance times the height of the light.
+        const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + 1 : 0;
+        const auto band = [&](const glm::dvec3& p) { return (3.0 + reach) * texelPerUnit * (spot.position.y - p.y); };
+        CAPTURE(static_cast<int>(filter));
+        CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+    }
+}
+
+TEST_CASE("A directional light's cascaded shadows of a plate match the reference away from the edge", "[shadows][reference]") {
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    sun.intensity = 3.0f;
+    const Scene scene = plateScene(sun);
+    constexpr int W = 96, H = 72;
+    ShadowFixture f(Camera::perspective({{0.5f, 2.5f, 5.0f}, {0, 0, -1}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    const reference::Reference truth = f.truth(scene);
+    ShadowMapSettings maps;
+    maps.resolution = 1024;
+    maps.cascades = 3;
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, maps);
+    const ShadowMapInfo& info = *set.find(0);
+    REQUIRE(info.layers == 3);
+    CHECK(info.texelSize[0] < info.texelSize[2]);
+    INFO("cascades end at " << info.sliceEnd[0] << ", " << info.sliceEnd[1] << ", " << info.sliceEnd[2] << " with texels "
+                            << info.texelSize[0] << ", " << info.texelSize[1] << ", " << info.texelSize[2]);
+    // The shadow: the plate moved along the light onto the floor.
+    const glm::dvec2 offset = glm::dvec2(sun.direction.x, sun.direction.z) * (kHeight / -sun.direction.y);
+    const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, offset, kPlate); };
+    for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+        ShadowMaskSettings s;
+        s.filter = filter;
+        const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+        const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + 1 : 0;
+        // As for the spot, in the texels of the pixel's cascade or, in its blend band, the
+        // coarser next one's (a texel of a tilted receiver along the light is 1 / cos
+        // longer: cos >= 0.9 here).
+        const auto band = [&](const glm::dvec3& p) {
+            const double distance = -(glm::dmat4(f.camera.view) * glm::dvec4(p, 1.0)).z;
+            std::size_t c = 0;
+            while (c + 1 < std::size_t(info.layers) && distance > info.sliceEnd[c]) ++c;
+            const double start = c > 0 ? info.sliceEnd[c - 1] : 0.0, end = info.sliceEnd[c];
+            const bool blending = c + 1 < std::size_t(info.layers) && distance > end - s.cascadeBlend * (end - start);
+            return (3.0 + reach) * info.texelSize[blending ? c + 1 : c] / 0.9;
+        };
+        CAPTURE(static_cast<int>(filter));
+        CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+    }
+}
+
+TEST_CASE("Shadow masks stay finite for vertical and grazing light and extreme depth ranges", "[shadows][stability]") {
+    constexpr int W = 48, H = 36;
+    for (const glm::vec3 direction : {glm::vec3(0, -1, 0), glm::vec3(0, 1, 0), glm::vec3(1, -1e-4f, 0)})
+        for (const auto& [nearPlane, farPlane] : {std::pair{1e-4f, 100.0f}, std::pair{0.05f, 1e6f}, std::pair{1e-4f, 1e6f}}) {
+            Light sun;
+            sun.type = LightType::Directional;
+            sun.direction = direction;
+            const Scene scene = plateScene(sun);
+            ShadowFixture f(Camera::perspective({{0, 2.5f, 5.0f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, float(W) / H, nearPlane, farPlane), W, H);
+            f.render(scene);
+            const ShadowMapSet& set = f.shadows.render(scene, f.camera, {256, 4, 0.9f});
+            for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+                ShadowMaskSettings s;
+                s.filter = filter;
+                const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+                CAPTURE(direction.x, direction.y, nearPlane, farPlane, static_cast<int>(filter));
+                int bad = 0;
+                for (const float v : mask.pixels) bad += std::isfinite(v) && v >= 0.0f && v <= 1.0f ? 0 : 1;
+                CHECK(bad == 0);
+            }
+        }
+}
+
+TEST_CASE("Shadow maps are left out without shadowed lights and refuse bad settings", "[shadows][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    ShadowMaps shadows(ctx);
+    GBuffer gbuffer(ctx);
+    const Camera camera = Camera::perspective({{0, 2.5f, 5.0f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, 1.0f, 0.05f, 100.0f);
+    Light point; // point lights have no maps yet
+    Scene scene = plateScene(point);
+    const GBufferView view = gbuffer.render(scene, camera, {32, 32, false, {}});
+    const ShadowMapSet& none = shadows.render(scene, camera, {});
+    CHECK(none.depth == 0);
+    CHECK(none.maps.empty());
+    CHECK(shadows.memoryBytes() == 0);
+    CHECK_THROWS_WITH(shadows.mask(view, none, 0, {}), Catch::Contains("has no shadow map"));
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.castsShadows = false;
+    scene.lights = {sun};
+    CHECK(shadows.render(scene, camera, {}).maps.empty());
+    scene.lights[0].castsShadows = true;
+    CHECK_THROWS_WITH(shadows.render(scene, camera, {8, 1, 0.5f}), Catch::Contains("resolution"));
+    CHECK_THROWS_WITH(shadows.render(scene, camera, {256, 5, 0.5f}), Catch::Contains("cascades"));
+    CHECK_THROWS_WITH(shadows.render(scene, camera, {256, 2, 1.5f}), Catch::Contains("splitLambda"));
+    const ShadowMapSet& set = shadows.render(scene, camera, {256, 2, 0.5f});
+    CHECK(shadows.memoryBytes() >= 256u * 256u * 4u * 2u);
+    ShadowMaskSettings bad;
+    bad.pcfRadius = 9;
+    CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("pcfRadius"));
+    bad = {};
+    bad.constantBias = NAN;
+    CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("constantBias"));
+    const Camera other = Camera::perspective({{0, 2.5f, 5.1f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, 1.0f, 0.05f, 100.0f);
+    const GBufferView otherView = gbuffer.render(scene, other, {32, 32, false, {}});
+    CHECK_THROWS_WITH(shadows.mask(otherView, set, 0, {}), Catch::Contains("another camera"));
+}
