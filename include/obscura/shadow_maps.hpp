@@ -14,8 +14,11 @@
 //                centre snapped to whole texels in light space, so that the maps do not
 //                shimmer with camera motion; along the light each spans the whole scene, so
 //                every caster is in every cascade.
-// Lights of other types, and lights with castsShadows off, get no map: mask() refuses them
-// (point lights as cube and dual-paraboloid maps are still to come).
+//   Point        a cube of six perspective maps along the world axes (+x, -x, +y, -y, +z,
+//                -z), each a little wider than 90 degrees so that filter kernels near a
+//                face's edge stay on it; a receiver is looked up in the face of the major
+//                axis of its direction from the light.
+// Rect and sphere lights, and lights with castsShadows off, get no map: mask() refuses them.
 //
 // Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
 // receiver lit, in [0, 1] (1 = lit), GL_R16F (values rounded by at most 2^-12). The
@@ -26,7 +29,8 @@
 // outside a spot's outer cone) are 0; background pixels are 1.
 //   Hard  one comparison: the texel the receiver falls in;
 //   Pcf   (2 pcfRadius + 1)^2 comparisons one texel apart, each bilinearly weighted over
-//         its four texels (hardware comparison with linear filtering).
+//         its four texels (hardware comparison with linear filtering), each against the
+//         receiver's plane extended to the tap (receiverPlane).
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
@@ -44,6 +48,7 @@ namespace obscura {
 class Context;
 
 constexpr int kMaxShadowCascades = 4;
+constexpr int kMaxShadowMapsPerLight = 6; //!< a point light's cube
 
 struct ShadowMapSettings {
     int resolution = 1024;     //!< texels per side of every map, [16, min(8192, GL_MAX_TEXTURE_SIZE)]
@@ -57,15 +62,15 @@ struct ShadowMapInfo {
     Light source;                   //!< that light, as the maps were rendered for it
     LightType type = LightType::Spot;
     int firstLayer = 0;             //!< of ShadowMapSet::depth
-    int layers = 0;                 //!< 1 (spot) or the cascades (directional)
+    int layers = 0;                 //!< 1 (spot), the cascades (directional) or 6 (point)
     //! World -> clip space of each map (reversed-Z, clip control zero-to-one).
-    std::array<glm::mat4, kMaxShadowCascades> worldToClip{};
+    std::array<glm::mat4, kMaxShadowMapsPerLight> worldToClip{};
     //! Directional: the far end of each cascade's slice, view distance along the camera's
     //! axis, world units (the first slice starts at the scene's nearest point, >= near).
-    std::array<float, kMaxShadowCascades> sliceEnd{};
+    std::array<float, kMaxShadowMapsPerLight> sliceEnd{};
     //! Side of one texel: world units (directional), or world units per unit distance along
-    //! the spot's axis (spot).
-    std::array<float, kMaxShadowCascades> texelSize{};
+    //! the map's axis (spot, point).
+    std::array<float, kMaxShadowMapsPerLight> texelSize{};
 };
 
 //! What ShadowMaps::render produced; valid until its next render.
@@ -92,6 +97,9 @@ struct ShadowMaskSettings {
     float slopeBias = 1.0f;    //!< texels of depth per unit tan(theta) (tan clamped at 16), [0, 16]
     float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]
     float cascadeBlend = 0.1f; //!< fraction of each cascade's slice blended into the next, [0, 0.5]
+    //! Pcf: compare each tap with the receiver's plane extended to it (receiver-plane depth
+    //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself.
+    bool receiverPlane = true;
 };
 
 class OBSCURA_API ShadowMaps {
@@ -101,7 +109,7 @@ public:
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
-    //! Renders the maps of every shadow-casting spot and directional light (pass
+    //! Renders the maps of every shadow-casting point, spot and directional light (pass
     //! "shadow.maps"); allocates nothing when there is none. Throws Error{InvalidArgument}
     //! for settings out of range, an invalid scene or camera.
     const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings);

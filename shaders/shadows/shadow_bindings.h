@@ -21,9 +21,11 @@ using mat4 = glm::mat4;
 #define SHADOW_MASK_IMAGE 0 // r16f output
 #define SHADOW_WORKGROUP 8
 #define SHADOW_MAX_CASCADES 4
+#define SHADOW_MAX_MAPS 6 // per light: cascades, or the faces of a cube
 
 #define SHADOW_LIGHT_SPOT 0
 #define SHADOW_LIGHT_DIRECTIONAL 1
+#define SHADOW_LIGHT_POINT 2
 
 #define SHADOW_FILTER_HARD 0
 #define SHADOW_FILTER_PCF 1
@@ -33,17 +35,18 @@ struct ShadowCascade {
     vec4 info;        // x: far end of the slice (view distance, world units), y: texel side at the
                       // map (orthographic: world units; perspective: per unit distance), z: layer
 };
+// (A cube's faces are "cascades" too: +x, -x, +y, -y, +z, -z of world space.)
 
 struct ShadowParams {
-    ShadowCascade cascades[SHADOW_MAX_CASCADES];
+    ShadowCascade cascades[SHADOW_MAX_MAPS];
     vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type
     vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
     vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
-    ivec4 counts; // x: cascades, y: filter, z: PCF radius, w: map resolution
+    ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ShadowParams) == SHADOW_MAX_CASCADES * 80 + 4 * 16, "ShadowParams must match std140");
+static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 80 + 4 * 16, "ShadowParams must match std140");
 } // namespace obscura::shader
 #endif
 

@@ -44,6 +44,15 @@ const char* const kColumns[] = {"scene",    "technique", "preset",   "width",   
                                 "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
                                 "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light"};
 
+// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break, as
+// RFC 4180 has it ("llvmpipe (LLVM 15.0.6, 256 bits)").
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
 // A reference::Shadow's channel 0, with `mask` narrowed to the pixels its channel 1 marks
 // (the light reaches the surface there: lit or shadowed).
 Image shadowReference(const Image& shadow, Image& mask) {
@@ -190,7 +199,7 @@ public:
                 const auto& v = row.fields.at(kColumns[i]);
                 // JSON has no NaN or Inf (they are written as null): the CSV spells them out.
                 const bool nonFinite = v.is_number_float() && !std::isfinite(v.get<double>());
-                const std::string text = v.is_string() ? v.get<std::string>()
+                const std::string text = v.is_string() ? csvField(v.get<std::string>())
                                          : nonFinite   ? (std::isnan(v.get<double>()) ? "nan" : "inf")
                                                        : v.dump();
                 csv << (i ? "," : "") << text;
@@ -225,7 +234,7 @@ private:
         for (const auto& row : rows) {
             for (std::size_t i = 0; i < keys.size(); ++i) {
                 const auto& v = row.at(keys[i]);
-                csv << (i ? "," : "") << (v.is_string() ? v.get<std::string>() : v.dump());
+                csv << (i ? "," : "") << (v.is_string() ? csvField(v.get<std::string>()) : v.dump());
             }
             csv << "\n";
         }

@@ -112,4 +112,22 @@ LightCamera spotCamera(const Light& light, const Bounds& bounds, int resolution)
     return out;
 }
 
+LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int resolution, int marginTexels) {
+    const glm::dvec3 eye(light.position);
+    glm::dvec3 axis(0.0);
+    axis[face / 2] = face % 2 == 0 ? 1.0 : -1.0;
+    double farthest = 0.0;
+    for (const glm::dvec3& c : boundsCorners(bounds)) farthest = std::max(farthest, glm::length(c - eye));
+    const double far = farthest > 0.0 ? 1.01 * farthest : 1.0;
+    // tan(half fov) = 1 + the margin in texels of the 90-degree face (2 / resolution each).
+    const double halfTan = 1.0 / (1.0 - 2.0 * marginTexels / resolution);
+    const double fovy = 2.0 * std::atan(halfTan);
+    LightCamera out;
+    out.camera = Camera::perspective({glm::vec3(eye), glm::vec3(eye + axis), glm::vec3(lightUp(axis))},
+                                     static_cast<float>(fovy), 1.0f, static_cast<float>(far * 1e-4), static_cast<float>(far),
+                                     DepthMode::Reversed);
+    out.texelSize = 2.0 * halfTan / resolution;
+    return out;
+}
+
 } // namespace obscura::detail

@@ -36,6 +36,11 @@ LightCamera directionalCascade(const glm::dvec3& direction, const Camera& camera
 //! farthest corner.
 LightCamera spotCamera(const Light& light, const Bounds& bounds, int resolution);
 
+//! Face `face` (+x, -x, +y, -y, +z, -z) of a point light's cube: a perspective map along
+//! that world axis, `marginTexels` texels wider than 90 degrees on every side, far plane at
+//! the bounds' farthest corner.
+LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int resolution, int marginTexels);
+
 //! A unit vector not parallel to `direction`: the up vector of a light's view.
 glm::dvec3 lightUp(const glm::dvec3& direction);
 

@@ -25,7 +25,7 @@ namespace {
 using namespace detail;
 
 bool hasMap(const Light& l) {
-    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional);
+    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional || l.type == LightType::Point);
 }
 
 void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
@@ -87,7 +87,18 @@ struct ShadowMaps::Impl {
             info.source = l;
             info.type = l.type;
             info.firstLayer = static_cast<int>(cameras.size());
-            if (l.type == LightType::Spot) {
+            if (l.type == LightType::Point) {
+                // Room for the widest PCF kernel (8 texels each side, plus the bilinear one).
+                const int margin = std::min(9, s.resolution / 8);
+                for (int face = 0; face < 6; ++face) {
+                    const auto k = static_cast<std::size_t>(face);
+                    const LightCamera lc = pointFace(l, face, bounds, s.resolution, margin);
+                    cameras.push_back(lc.camera);
+                    info.worldToClip[k] = worldToClip(lc.camera);
+                    info.texelSize[k] = static_cast<float>(lc.texelSize);
+                }
+                info.layers = 6;
+            } else if (l.type == LightType::Spot) {
                 const LightCamera lc = spotCamera(l, bounds, s.resolution);
                 cameras.push_back(lc.camera);
                 info.worldToClip[0] = worldToClip(lc.camera);
@@ -172,7 +183,9 @@ struct ShadowMaps::Impl {
             p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
             p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), 0.0f);
         }
-        if (light.type == LightType::Spot) {
+        if (light.type == LightType::Point) {
+            p.light = glm::vec4(glm::vec3(view * glm::dvec4(glm::dvec3(light.position), 1.0)), SHADOW_LIGHT_POINT);
+        } else if (light.type == LightType::Spot) {
             p.light = glm::vec4(glm::vec3(view * glm::dvec4(glm::dvec3(light.position), 1.0)), SHADOW_LIGHT_SPOT);
             p.spot = glm::vec4(glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0))),
                                std::cos(light.outerAngle));
@@ -181,8 +194,7 @@ struct ShadowMaps::Impl {
                                 SHADOW_LIGHT_DIRECTIONAL);
         }
         p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
-        p.counts = glm::ivec4(info.layers, s.filter == ShadowFilter::Pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD,
-                              s.pcfRadius, depthResolution);
+        p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, depthResolution);
         return p;
     }
 };
@@ -219,8 +231,8 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     const ShadowMapInfo* info = maps.find(light);
     if (!info)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: light " + std::to_string(light) +
-                                                    " has no shadow map (only shadow-casting spot and directional "
-                                                    "lights have one)");
+                                                    " has no shadow map (only shadow-casting point, spot and "
+                                                    "directional lights have one)");
     if (maps.depth != d.depth.get() || maps.layers != d.depthLayers)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps must be this module's latest render()");
     if (!sameCamera(maps.camera, g.camera))

@@ -42,7 +42,7 @@ run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "$
 file(STRINGS "${WORK_DIR}/bench/bench.csv" csv)
 list(GET csv 0 header)
 foreach(col scene technique preset width height quantity clock gpu_ms cpu_ms rmse relmse ssim max_abs nan_count
-            ref_noise_rmse)
+            ref_noise_rmse false_shadow false_light)
   if(NOT "${header}" MATCHES "(^|,)${col}(,|$)")
     message(FATAL_ERROR "bench.csv lacks the column ${col}: ${header}")
   endif()
@@ -67,7 +67,20 @@ foreach(i RANGE ${last})
   if(quantity STREQUAL "position" AND NOT rmse LESS 1)
     message(FATAL_ERROR "G-buffer positions are ${rmse} mm off the ray-traced hits")
   endif()
+  # The hard shadow of the Cornell box's point light (cube maps) classifies most pixels right.
+  string(JSON technique GET "${bench}" rows ${i} technique)
+  if(technique STREQUAL "shadow.cube")
+    string(JSON falseShadow GET "${bench}" rows ${i} false_shadow)
+    string(JSON falseLight GET "${bench}" rows ${i} false_light)
+    if(NOT (falseShadow GREATER_EQUAL 0 AND falseShadow LESS 0.2 AND falseLight GREATER_EQUAL 0 AND falseLight LESS 0.2))
+      message(FATAL_ERROR "shadow.cube row ${i}: false_shadow ${falseShadow}, false_light ${falseLight}")
+    endif()
+    set(sawShadow TRUE)
+  endif()
 endforeach()
+if(NOT sawShadow)
+  message(FATAL_ERROR "the bench ran no shadow.cube row on the Cornell box")
+endif()
 
 # The voxelizer's tables: every configuration timed, (b) and (c) agreeing, (c) fetching less
 # than (b) on the long segments.

@@ -1,5 +1,5 @@
-// Shadow maps: the hard and PCF masks of a square plate's shadow under a spot light and a
-// cascaded directional light against the Embree reference, misclassified pixels allowed
+// Shadow maps: the hard and PCF masks of a square plate's shadow under a spot light, a
+// point light (cube) and a cascaded directional light against the Embree reference, misclassified pixels allowed
 // only within a band of texels around the shadow's edge; stability and bad input.
 #include "gl_fixture.hpp"
 #include "scene_builders.hpp"
@@ -88,41 +88,48 @@ int checkMask(const ShadowFixture& f, const Image& mask, const reference::Refere
 
 } // namespace
 
-TEST_CASE("A spot light's hard and PCF shadows of a plate match the reference away from the edge", "[shadows][reference]") {
-    Light spot;
-    spot.type = LightType::Spot;
-    spot.position = {0.0f, 3.0f, 0.0f};
-    spot.direction = {0.0f, -1.0f, 0.0f};
-    spot.intensity = 10.0f;
-    spot.outerAngle = 1.2f; // the cone's edge (7.7 m out on the floor) is out of view
-    spot.innerAngle = 1.0f;
-    const Scene scene = plateScene(spot);
-    constexpr int W = 96, H = 72;
-    ShadowFixture f(Camera::perspective({{0, 3.5f, 4.5f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
-    f.render(scene);
-    const reference::Reference truth = f.truth(scene);
-    ShadowMapSettings maps;
-    maps.resolution = 512;
-    const ShadowMapSet& set = f.shadows.render(scene, f.camera, maps);
-    REQUIRE(set.find(0) != nullptr);
-    const double texelPerUnit = set.find(0)->texelSize[0];
-    // The shadow: the plate scaled from the light onto the floor.
-    const double scale = spot.position.y / (spot.position.y - kHeight);
-    const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale); };
-    for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
-        ShadowMaskSettings s;
-        s.filter = filter;
-        s.pcfRadius = 1;
-        const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
-        // Where the edge can be: the plate's outline lands in a texel of the map (one texel
-        // at the floor), the receiver in another (half a diagonal), the biases move it by
-        // under a texel here (normal offset 1 texel up, slope tan <= 0.6); PCF adds its
-        // kernel's reach, pcfRadius + 1 texels. A texel at the floor is the spot's texel per
-        // unit distance times the height of the light.
-        const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + 1 : 0;
-        const auto band = [&](const glm::dvec3& p) { return (3.0 + reach) * texelPerUnit * (spot.position.y - p.y); };
-        CAPTURE(static_cast<int>(filter));
-        CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+TEST_CASE("Spot and point light hard and PCF shadows of a plate match the reference away from the edge", "[shadows][reference]") {
+    for (const LightType type : {LightType::Spot, LightType::Point}) {
+        Light light;
+        light.type = type;
+        light.position = {0.0f, 3.0f, 0.0f};
+        light.direction = {0.0f, -1.0f, 0.0f};
+        light.intensity = 10.0f;
+        light.outerAngle = 1.2f; // the cone's edge (7.7 m out on the floor) is out of view
+        light.innerAngle = 1.0f;
+        const Scene scene = plateScene(light);
+        constexpr int W = 96, H = 72;
+        ShadowFixture f(Camera::perspective({{0, 3.5f, 4.5f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+        f.render(scene);
+        const reference::Reference truth = f.truth(scene);
+        ShadowMapSettings maps;
+        maps.resolution = 512;
+        const ShadowMapSet& set = f.shadows.render(scene, f.camera, maps);
+        REQUIRE(set.find(0) != nullptr);
+        REQUIRE(set.find(0)->layers == (type == LightType::Point ? 6 : 1));
+        const double texelPerUnit = set.find(0)->texelSize[0];
+        // The shadow: the plate scaled from the light onto the floor.
+        const double scale = light.position.y / (light.position.y - kHeight);
+        const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale); };
+        for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+            ShadowMaskSettings s;
+            s.filter = filter;
+            s.pcfRadius = 1;
+            const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+            // Where the edge can be: the plate's outline lands in a texel of the map (one
+            // texel at the floor), the receiver in another (half a diagonal), the biases move
+            // it by under a texel here (normal offset 1 texel up, slope tan <= 0.6); PCF adds
+            // its kernel's reach, pcfRadius + 1 texels. A texel at a point is the texel per
+            // unit distance times its distance along the map's axis (at most the largest
+            // component of its offset from the light).
+            const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + 1 : 0;
+            const auto band = [&](const glm::dvec3& p) {
+                const glm::dvec3 d = glm::abs(p - glm::dvec3(light.position));
+                return (3.0 + reach) * texelPerUnit * std::max({d.x, d.y, d.z});
+            };
+            CAPTURE(static_cast<int>(type), static_cast<int>(filter));
+            CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+        }
     }
 }
 
@@ -198,8 +205,10 @@ TEST_CASE("Shadow maps are left out without shadowed lights and refuse bad setti
     ShadowMaps shadows(ctx);
     GBuffer gbuffer(ctx);
     const Camera camera = Camera::perspective({{0, 2.5f, 5.0f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, 1.0f, 0.05f, 100.0f);
-    Light point; // point lights have no maps yet
-    Scene scene = plateScene(point);
+    Light rect; // rect and sphere lights have no maps
+    rect.type = LightType::Rect;
+    rect.position = {0, 2, 0};
+    Scene scene = plateScene(rect);
     const GBufferView view = gbuffer.render(scene, camera, {32, 32, false, {}});
     const ShadowMapSet& none = shadows.render(scene, camera, {});
     CHECK(none.depth == 0);

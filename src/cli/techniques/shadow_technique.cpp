@@ -1,5 +1,6 @@
-// "shadow.hard" and "shadow.pcf": the ShadowMaps module's mask of one spot or directional
-// light at the scene's G-buffer samples, against the reference's hard shadow.
+// "shadow.hard" and "shadow.pcf" (a spot or directional light) and "shadow.cube" (a point
+// light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
+// against the reference's hard shadow.
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/shadow_maps.hpp"
@@ -11,7 +12,8 @@ namespace obscura::cli {
 namespace {
 
 const std::vector<SettingInfo> kSettings = {
-    {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting spot or directional light)"},
+    {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)"},
+    {"filter", "", "hard|pcf", "shadow.cube: one comparison (default) or PCF"},
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
@@ -20,44 +22,56 @@ const std::vector<SettingInfo> kSettings = {
     {"slope_bias", "texels", "[0, 16]", "times tan(theta), toward the light"},
     {"normal_offset", "texels", "[0, 16]", "receiver moved along its normal"},
     {"cascade_blend", "", "[0, 0.5]", "fraction of each cascade blended into the next"},
+    {"receiver_plane", "", "0|1", "PCF: receiver-plane depth bias (default 1)"},
 };
 
-std::optional<std::size_t> firstMappedLight(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& l = scene.lights[i];
-        if (l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional)) return i;
-    }
+// The lights a technique maps: point lights (cube) or spot and directional ones.
+bool mapped(const Light& l, bool point) {
+    return l.castsShadows && (point ? l.type == LightType::Point : l.type == LightType::Spot || l.type == LightType::Directional);
+}
+
+std::optional<std::size_t> firstMappedLight(const Scene& scene, bool point) {
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (mapped(scene.lights[i], point)) return i;
     return std::nullopt;
 }
 
 class ShadowRun final : public TechniqueRun {
 public:
-    ShadowRun(Context& ctx, ShadowFilter filter) : ctx_(ctx), gbuffer_(ctx), shadows_(ctx) { mask_.filter = filter; }
+    ShadowRun(Context& ctx, ShadowFilter filter, bool point) : ctx_(ctx), gbuffer_(ctx), shadows_(ctx), point_(point) {
+        mask_.filter = filter;
+    }
 
     void set(const std::string& key, const std::string& value) override {
         if (key == "light") light_ = static_cast<std::size_t>(parseNumber(key, value, 0, 1e6, ""));
         else if (key == "resolution") maps_.resolution = static_cast<int>(parseNumber(key, value, 16, 8192, "texels"));
         else if (key == "cascades") maps_.cascades = static_cast<int>(parseNumber(key, value, 1, kMaxShadowCascades, ""));
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
+        else if (key == "filter")
+            mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}});
         else if (key == "pcf_radius") mask_.pcfRadius = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
         else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
         else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
+        else if (key == "receiver_plane") mask_.receiverPlane = parseBool(key, value);
         else if (key == "cascade_blend") mask_.cascadeBlend = static_cast<float>(parseNumber(key, value, 0, 0.5, ""));
         else throw Error(ErrorCode::Parse, "shadow has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     std::string unsupported(const Scene& scene) const override {
-        if (light_ ? *light_ < scene.lights.size() : firstMappedLight(scene).has_value()) return {};
-        return light_ ? "the scene has no light " + std::to_string(*light_)
-                      : "no shadow-casting spot or directional light (point lights are not mapped yet)";
+        if (light_ ? *light_ < scene.lights.size() && mapped(scene.lights[*light_], point_)
+                   : firstMappedLight(scene, point_).has_value())
+            return {};
+        const std::string kind = point_ ? "point" : "spot or directional";
+        return light_ ? "light " + std::to_string(*light_) + " is not a shadow-casting " + kind + " light"
+                      : "no shadow-casting " + kind + " light";
     }
 
     void run(const FrameSetup& frame) override {
         const Scene& scene = frame.scene.scene;
         const std::string why = unsupported(scene);
         if (!why.empty()) throw Error(ErrorCode::InvalidArgument, "shadow: " + why);
-        usedLight_ = light_ ? *light_ : *firstMappedLight(scene);
+        usedLight_ = light_ ? *light_ : *firstMappedLight(scene, point_);
         view_ = gbuffer_.render(scene, frame.camera, {frame.width, frame.height, false, {}});
         const ShadowMapSet& maps = shadows_.render(scene, frame.camera, maps_);
         result_ = shadows_.mask(view_, maps, usedLight_, mask_);
@@ -94,6 +108,7 @@ private:
     ShadowMaps shadows_;
     ShadowMapSettings maps_;
     ShadowMaskSettings mask_;
+    bool point_;
     std::optional<std::size_t> light_;
     std::size_t usedLight_ = 0;
     GBufferView view_;
@@ -116,15 +131,18 @@ std::vector<Preset> presets(bool pcf) {
     return p;
 }
 
-TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter) {
+TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
+                              bool point = false) {
     return {name, description, {"shadow"}, kSettings, presets(filter == ShadowFilter::Pcf),
-            [filter](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter); }};
+            [filter, point](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point); }};
 }
 
 const TechniqueRegistrar hard(shadowTechnique("shadow.hard", "Hard shadow mask: one shadow-map comparison (spot, cascaded directional)",
                                               ShadowFilter::Hard));
 const TechniqueRegistrar pcf(shadowTechnique("shadow.pcf", "Percentage-closer filtering: a grid of bilinear comparisons",
                                              ShadowFilter::Pcf));
+const TechniqueRegistrar cube(shadowTechnique("shadow.cube", "Point light: six perspective maps (hard unless filter=pcf)",
+                                              ShadowFilter::Hard, true));
 
 } // namespace
 } // namespace obscura::cli
