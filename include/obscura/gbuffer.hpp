@@ -11,14 +11,16 @@
 //   backDepth       second depth layer (depthLayers = 2, ours only): per pixel the nearest
 //                   surface strictly behind `depth` (depth peeling), 32F, clear depth where
 //                   none; the back of closed objects, for screen-space thickness
-//   directRadiance  GL_RGBA16F, W/(sr·m²): emission + unshadowed Lambert from the scene's
-//                   lights with the interpolated shading normal (ours only). Saturates at
-//                   65504, the largest finite half float, instead of overflowing to Inf.
+//   directRadiance  GL_RGBA16F, W/(sr·m²): emission + Lambert from the scene's lights with
+//                   the interpolated shading normal (ours only), each light shadowed when
+//                   GBufferSettings::shadows has maps for it. Saturates at 65504, the
+//                   largest finite half float, instead of overflowing to Inf.
 // View-space positions are never stored: they are reconstructed from depth
 // (shaders/common/depth.glsl, DepthReconstruction in camera.hpp).
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
 #include "obscura/scene.hpp"
+#include "obscura/shadow_maps.hpp"
 #include "obscura/texture.hpp"
 
 #include <cstddef>
@@ -47,6 +49,11 @@ struct GBufferSettings {
     //! Depth layers, [1, 2]: 2 adds `backDepth` (a second, depth-only pass over the scene
     //! that peels the first layer), for ScreenThickness::DepthPeeling.
     int depthLayers = 1;
+    //! With directLighting: each light that has maps here is multiplied by its shadow, looked
+    //! up per fragment as ShadowMaps::mask does (ShadowMaps::render with this camera, whose
+    //! set must outlive the call). Null: unshadowed lights.
+    const ShadowMapSet* shadows = nullptr;
+    ShadowMaskSettings shadowFilter{}; //!< how `shadows` are filtered and biased
 };
 
 enum class NormalSpace { View, World };

@@ -5,10 +5,10 @@
 // Both estimate obscura::reference::IndirectLight at the G-buffer's samples:
 //   L1(x) = (rho(x) / pi) Integral L(y(x, w)) (n.w) dw ~ rho(x) * mean over cosine-weighted
 //   directions of L at the first hit y within the radius,
-// where L is the G-buffer's direct radiance (emission and unshadowed lights until the shadow
-// module lands, which the reference does shadow: an error the bench reports as "indirect";
-// "indirect_unshadowed" compares with the gathering of unshadowed light, the method's own
-// error). The radiance
+// where L is the G-buffer's direct radiance: emission and the lights, shadowed where
+// GBufferSettings::shadows has maps for them (the bench's "indirect" compares with the
+// reference's shadowed hits; "indirect_unshadowed" with the gathering of unshadowed light,
+// the method's own error when the G-buffer is rendered without shadows). The radiance
 // at a hit is read from the screen, so only hits the camera sees, on their visible side,
 // contribute; others (hidden, behind the image border, seen from behind) count as dark.
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).

@@ -34,7 +34,6 @@
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
-#include "obscura/gbuffer.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
 
@@ -46,6 +45,7 @@
 namespace obscura {
 
 class Context;
+struct GBufferView; // obscura/gbuffer.hpp, which includes this header for its settings
 
 constexpr int kMaxShadowCascades = 4;
 constexpr int kMaxShadowMapsPerLight = 6; //!< a point light's cube

@@ -1,5 +1,7 @@
 //! variant: HAS_NORMALS
 //! variant: HAS_NORMALS RECT_LIGHTS
+//! variant: HAS_NORMALS SHADOWS FILTER=0
+//! variant: HAS_NORMALS RECT_LIGHTS SHADOWS FILTER=1
 //! variant: HAS_NORMALS HAS_TEXCOORDS ALBEDO_TEXTURE
 //! variant: NO_DIRECT_LIGHTING
 //! variant: PEEL
@@ -10,6 +12,9 @@
 #include "../common/frame.glsl"
 #include "../common/math.glsl"
 #include "gbuffer_bindings.h"
+#ifdef SHADOWS
+#include "../shadows/shadow_sample.glsl"
+#endif
 
 in FragmentData {
     vec3 viewPosition;
@@ -144,7 +149,15 @@ void main() {
     vec3 radiance = materialEmission;
 #ifndef NO_DIRECT_LIGHTING
     vec3 e = vec3(0.0);
-    for (int i = 0; i < lightCount; ++i) e += irradiance(lights[i], fin.viewPosition, ns, ng);
+    for (int i = 0; i < lightCount; ++i) {
+        float visible = 1.0;
+#ifdef SHADOWS
+        // cone.z: the light's shadow record, or -1 (see GBufferSettings::shadows).
+        const int record = int(lights[i].cone.z);
+        if (record >= 0) visible = shadowVisibility(record, fin.viewPosition, ng);
+#endif
+        e += irradiance(lights[i], fin.viewPosition, ns, ng) * visible;
+    }
     radiance += albedo * (1.0 / OBSCURA_PI) * e;
 #endif
     outNormal = vec4(ng, 1.0);

@@ -42,7 +42,7 @@ struct LightData {
     vec4 positionType;     // xyz: position (view space, world units), w: type
     vec4 directionRadius;  // xyz: unit direction the light travels / rect normal (view space), w: radius
     vec4 radiance;         // rgb: colour * intensity (W/sr; W/m^2 directional; W/(sr m^2) rect, sphere)
-    vec4 cone;             // x: cos(inner angle), y: cos(outer angle)
+    vec4 cone;             // x: cos(inner angle), y: cos(outer angle), z: shadow record or -1
     vec4 extent;           // rect: xyz = width axis * half width (view space), w = half height
 };
 

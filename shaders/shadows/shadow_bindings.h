@@ -16,9 +16,9 @@ using mat4 = glm::mat4;
 
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip
-#define SHADOW_PARAMS_UBO_BINDING 2
-#define SHADOW_MAP_UNIT 0   // sampler2DArrayShadow, one layer per map
-#define SHADOW_MASK_IMAGE 0 // r16f output
+#define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
+#define SHADOW_MAP_UNIT 9    // sampler2DArrayShadow, one layer per map (no other module's unit)
+#define SHADOW_MASK_IMAGE 0  // r16f output
 #define SHADOW_WORKGROUP 8
 #define SHADOW_MAX_CASCADES 4
 #define SHADOW_MAX_MAPS 6 // per light: cascades, or the faces of a cube
@@ -37,6 +37,7 @@ struct ShadowCascade {
 };
 // (A cube's faces are "cascades" too: +x, -x, +y, -y, +z, -z of world space.)
 
+// One mapped light, as shadow_sample.glsl reads it (std430 and std140 agree: vec4 and mat4 only).
 struct ShadowParams {
     ShadowCascade cascades[SHADOW_MAX_MAPS];
     vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type

@@ -38,6 +38,11 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
 std::string settingKeys(const std::vector<SettingInfo>& settings) {
     std::string keys;
     for (const auto& k : settings) keys += (keys.empty() ? "" : ", ") + k.key;

@@ -117,6 +117,8 @@ E parseChoice(const std::string& key, const std::string& value, const std::map<s
 //! "constant|depth_peeling".
 ScreenMarch parseScreenMarch(const std::string& key, const std::string& value);
 ScreenThickness parseScreenThickness(const std::string& key, const std::string& value);
+//! a followed by b.
+std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
 //! "a, b, c": the keys of the settings, for error messages.
 std::string settingKeys(const std::vector<SettingInfo>& settings);
 //! The radius techniques use when none is set: a tenth of the scene's bounding-box

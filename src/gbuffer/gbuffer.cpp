@@ -7,6 +7,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
+#include "shadows/shadow_lookup.hpp"
 #include "core/mesh_cache.hpp"
 #include "obscura/context.hpp"
 #include "shaders/gbuffer/gbuffer_bindings.h"
@@ -112,10 +113,32 @@ struct GBuffer::Impl {
         peelFbo = std::move(f);
     }
 
+    // Per light, its record in the shadow binding, or -1 (unshadowed).
+    std::vector<int> shadowRecordOf;
+    ShadowBinding shadowBinding;
+
+    // Binds the records of the lights that have maps; returns whether any has.
+    bool bindShadows(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
+        shadowRecordOf.assign(scene.lights.size(), -1);
+        if (!settings.directLighting || !settings.shadows || !settings.shadows->depth) return false;
+        std::vector<shader::ShadowParams> records;
+        for (std::size_t i = 0; i < scene.lights.size(); ++i)
+            if (const ShadowMapInfo* info = settings.shadows->find(i)) {
+                shadowRecordOf[i] = static_cast<int>(records.size());
+                records.push_back(shadowRecord(*info, camera, settings.shadowFilter, settings.shadows->resolution));
+            }
+        if (records.empty()) return false;
+        shadowBinding.bind(ctx, settings.shadows->depth, records, settings.shadowFilter.filter);
+        return true;
+    }
+
     void uploadLights(const Scene& scene, const glm::dmat4& view) {
         std::vector<shader::LightData> data;
         data.reserve(scene.lights.size());
-        for (const Light& l : scene.lights) data.push_back(toViewSpace(l, view));
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+            data.push_back(toViewSpace(scene.lights[i], view));
+            data.back().cone.z = static_cast<float>(shadowRecordOf[i]);
+        }
         const std::size_t needed = std::max<std::size_t>(1, data.size());
         if (!lights || lightCapacity < needed) {
             lights = createBuffer(ctx, static_cast<GLsizeiptr>(needed * sizeof(shader::LightData)), nullptr,
@@ -138,6 +161,8 @@ struct GBuffer::Impl {
         bool direct = false;
         bool rects = false; // any rect light: the polygon clipping is compiled in only then
         int count = 0;
+        bool shadows = false; // some light has maps: the lookups are compiled in only then
+        ShadowFilter filter = ShadowFilter::Hard;
     };
 
     void draw(const DrawableMesh& mesh, const glm::mat4& model, const Material& material, const glm::dmat4& view,
@@ -151,7 +176,10 @@ struct GBuffer::Impl {
         if (texture) defines.push_back("ALBEDO_TEXTURE");
         if (peel) defines.push_back("PEEL");
         else if (!lighting.direct) defines.push_back("NO_DIRECT_LIGHTING");
-        else if (lighting.rects) defines.push_back("RECT_LIGHTS");
+        else {
+            if (lighting.rects) defines.push_back("RECT_LIGHTS");
+            if (lighting.shadows) defines.insert(defines.end(), {"SHADOWS", shadowFilterDefine(lighting.filter)});
+        }
         const GLuint program = ctx.shaders->program(
             {"gbuffer/gbuffer.vert.glsl", "gbuffer/gbuffer.geom.glsl", "gbuffer/gbuffer.frag.glsl"}, defines);
         gl.UseProgram(program);
@@ -203,6 +231,14 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
                        "W/(sr m^2) (RGBA16F storage)");
     const ProjectionInfo projection = analyzeProjection(camera);
     validateScene(scene);
+    if (settings.shadows) {
+        validateShadowMask(settings.shadowFilter, "GBufferSettings::shadowFilter");
+        requireMapsFor(*settings.shadows, camera, "GBufferSettings::shadows");
+        for (const ShadowMapInfo& m : settings.shadows->maps)
+            if (m.light >= scene.lights.size())
+                throw Error(ErrorCode::InvalidArgument, "GBufferSettings::shadows has maps of light " + std::to_string(m.light) +
+                                                            " but the scene has " + std::to_string(scene.lights.size()) + " lights");
+    }
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
         if (scene.materials[i].albedoTexture != 0)
             impl_->validateHostTexture(scene.materials[i].albedoTexture,
@@ -218,6 +254,7 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     impl_->ensureTargets(settings.width, settings.height);
     const glm::dmat4 view(camera.view);
     impl_->frame.bind(ctx, camera, settings.width, settings.height);
+    const bool shadowed = impl_->bindShadows(scene, camera, settings);
     impl_->uploadLights(scene, view);
 
     const GLuint fbo = impl_->fbo.get();
@@ -236,7 +273,7 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     const Impl::Lighting lighting{settings.directLighting,
                                   std::any_of(scene.lights.begin(), scene.lights.end(),
                                               [](const Light& l) { return l.type == LightType::Rect; }),
-                                  static_cast<int>(scene.lights.size())};
+                                  static_cast<int>(scene.lights.size()), shadowed, settings.shadowFilter.filter};
     const auto drawScene = [&](bool peel) {
         for (const Mesh& mesh : scene.meshes) {
             const DrawableMesh d = impl_->meshes.cpuMesh(mesh.data);
@@ -365,7 +402,7 @@ std::size_t GBuffer::memoryBytes() const {
                  (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
     if (i.backDepth) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * bytesPerTexel(GL_DEPTH_COMPONENT32F);
     total += i.lightCapacity * sizeof(shader::LightData);
-    total += i.adoptedNormal.bytes() + i.positions.bytes();
+    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes();
     return total;
 }
 

@@ -11,6 +11,7 @@
 #include "obscura/error.hpp"
 #include "shaders/shadows/shadow_bindings.h"
 #include "shadows/light_frusta.hpp"
+#include "shadows/shadow_lookup.hpp"
 #include "visibility/screen_inputs.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -34,20 +35,6 @@ void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
     requireInRange(s.splitLambda, 0.0, 1.0, "ShadowMapSettings::splitLambda");
 }
 
-void validateSettings(const ShadowMaskSettings& s) {
-    requireInRange(s.pcfRadius, 0, 8, "ShadowMaskSettings::pcfRadius", "texels");
-    if (!(s.constantBias >= 0.0f) || std::isinf(s.constantBias))
-        throw Error(ErrorCode::InvalidArgument, "ShadowMaskSettings::constantBias must be in [0, inf) world units, got " +
-                                                    std::to_string(s.constantBias));
-    requireInRange(s.slopeBias, 0.0, 16.0, "ShadowMaskSettings::slopeBias", "texels");
-    requireInRange(s.normalOffset, 0.0, 16.0, "ShadowMaskSettings::normalOffset", "texels");
-    requireInRange(s.cascadeBlend, 0.0, 0.5, "ShadowMaskSettings::cascadeBlend");
-}
-
-bool sameCamera(const Camera& a, const Camera& b) {
-    return a.view == b.view && a.projection == b.projection && a.clipDepth == b.clipDepth;
-}
-
 glm::mat4 worldToClip(const Camera& c) { return glm::mat4(glm::dmat4(c.projection) * glm::dmat4(c.view)); }
 
 } // namespace
@@ -66,9 +53,8 @@ struct ShadowMaps::Impl {
     Texture depth;
     int depthResolution = 0, depthLayers = 0;
     Framebuffer fbo;
-    Sampler nearestCompare, linearCompare;
     FrameUniforms frame;
-    Buffer params;
+    ShadowBinding binding;
     SizedTexture maskTexture;
     ShadowMapSet set;
 
@@ -161,42 +147,6 @@ struct ShadowMaps::Impl {
             for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) draw(hostMeshes[i], scene.meshRefs[i].model);
         }
     }
-
-    GLuint compareSampler(bool linear) {
-        Sampler& s = linear ? linearCompare : nearestCompare;
-        if (!s) {
-            s = createSampler(ctx, linear ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE,
-                              linear ? "shadow.linear_compare" : "shadow.nearest_compare");
-            // Reversed-Z: the receiver is lit when it is at least as near as the stored depth.
-            ctx.gl.SamplerParameteri(s.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-            ctx.gl.SamplerParameteri(s.get(), GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
-        }
-        return s.get();
-    }
-
-    shader::ShadowParams makeParams(const Light& light, const ShadowMapInfo& info, const Camera& camera,
-                                    const ShadowMaskSettings& s) const {
-        shader::ShadowParams p{};
-        const glm::dmat4 view(camera.view), viewToWorld = glm::inverse(view);
-        for (int c = 0; c < info.layers; ++c) {
-            const auto k = static_cast<std::size_t>(c);
-            p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
-            p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), 0.0f);
-        }
-        if (light.type == LightType::Point) {
-            p.light = glm::vec4(glm::vec3(view * glm::dvec4(glm::dvec3(light.position), 1.0)), SHADOW_LIGHT_POINT);
-        } else if (light.type == LightType::Spot) {
-            p.light = glm::vec4(glm::vec3(view * glm::dvec4(glm::dvec3(light.position), 1.0)), SHADOW_LIGHT_SPOT);
-            p.spot = glm::vec4(glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0))),
-                               std::cos(light.outerAngle));
-        } else {
-            p.light = glm::vec4(-glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0))),
-                                SHADOW_LIGHT_DIRECTIONAL);
-        }
-        p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
-        p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, depthResolution);
-        return p;
-    }
 };
 
 ShadowMaps::ShadowMaps(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
@@ -227,7 +177,7 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
                              const ShadowMaskSettings& settings) {
     auto& d = *impl_;
     auto& ctx = d.ctx;
-    validateSettings(settings);
+    validateShadowMask(settings, "ShadowMaskSettings");
     const ShadowMapInfo* info = maps.find(light);
     if (!info)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: light " + std::to_string(light) +
@@ -235,24 +185,16 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
                                                     "directional lights have one)");
     if (maps.depth != d.depth.get() || maps.layers != d.depthLayers)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps must be this module's latest render()");
-    if (!sameCamera(maps.camera, g.camera))
-        throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps were fitted to another camera than the G-buffer's");
+    requireMapsFor(maps, g.camera, "ShadowMaps::mask");
     analyzeProjection(g.camera);
     const GBufferView view = checkScreenInputs(ctx, g, false, "ShadowMaps::mask");
     StateScope scope(ctx);
     PassScope pass(ctx, "shadow.mask");
-    const shader::ShadowParams p = d.makeParams(info->source, *info, g.camera, settings);
-    if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "shadow.params");
-    ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
-    ctx.state.bindUniformBuffer(ctx, SHADOW_PARAMS_UBO_BINDING, d.params.get());
     d.frame.bind(ctx, view.camera, view.width, view.height);
     bindScreenInputs(ctx, view, false);
-    const bool pcf = settings.filter == ShadowFilter::Pcf;
-    ctx.state.bindTexture(ctx, SHADOW_MAP_UNIT, d.depth.get());
-    ctx.state.bindSampler(ctx, SHADOW_MAP_UNIT, d.compareSampler(pcf));
+    d.binding.bind(ctx, d.depth.get(), {shadowRecord(*info, g.camera, settings, d.depthResolution)}, settings.filter);
     const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");
-    ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"},
-                                           {"FILTER=" + std::to_string(pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD)}));
+    ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"}, {shadowFilterDefine(settings.filter)}));
     ctx.state.bindImage(ctx, SHADOW_MASK_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     dispatchCompute2D(ctx, view.width, view.height, SHADOW_WORKGROUP);
     barrierForReaders(ctx);
@@ -264,8 +206,7 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t maps = d.depth ? 4u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                            std::size_t(d.depthLayers)
                                      : 0;
-    return maps + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() +
-           (d.params ? sizeof(shader::ShadowParams) : 0);
+    return maps + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes();
 }
 
 } // namespace obscura

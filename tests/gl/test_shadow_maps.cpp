@@ -176,6 +176,63 @@ TEST_CASE("A directional light's cascaded shadows of a plate match the reference
     }
 }
 
+TEST_CASE("The G-buffer's direct light is shadowed by the maps of its lights", "[shadows][gbuffer][reference]") {
+    Light light;
+    light.type = LightType::Point;
+    light.position = {0.0f, 3.0f, 0.0f};
+    light.intensity = 10.0f;
+    Scene scene = plateScene(light);
+    Light sun; // a second light, without maps: stays unshadowed
+    sun.type = LightType::Directional;
+    sun.castsShadows = false;
+    sun.direction = {0.0f, -1.0f, 0.0f};
+    scene.lights.push_back(sun);
+    constexpr int W = 96, H = 72;
+    ShadowFixture f(Camera::perspective({{0, 3.5f, 4.5f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    const reference::Reference truth = f.truth(scene);
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, {512, 1, 0.5f});
+    REQUIRE(set.find(1) == nullptr);
+    const double texelPerUnit = set.find(0)->texelSize[0];
+    const double scale = light.position.y / (light.position.y - kHeight);
+    GBufferSettings lit{W, H, true, {}};
+    const Image unshadowed = readTexture(f.ctx, f.gbuffer.render(scene, f.camera, lit).directRadiance);
+    // The sun alone: what a shadowed pixel keeps.
+    Scene sunOnly = scene;
+    sunOnly.lights = {sun};
+    const Image sunLight = readTexture(f.ctx, f.gbuffer.render(sunOnly, f.camera, lit).directRadiance);
+    for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+        lit.shadows = &set;
+        lit.shadowFilter.filter = filter;
+        const Image shadowed = readTexture(f.ctx, f.gbuffer.render(scene, f.camera, lit).directRadiance);
+        // Away from the edge (as in the mask test) the per-fragment lookup gives the
+        // reference's 0 or 1 exactly: a lit pixel keeps both lights' radiance, a shadowed one
+        // only the sun's. Both come from the same shader arithmetic: compared bit for bit.
+        int compared = 0, shadowedPixels = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const std::size_t i = std::size_t(y) * W + std::size_t(x);
+                if (f.positions.at(x, y, 3) == 0.0f || truth.value.pixels[2 * i + 1] == 0.0f) continue;
+                const glm::dvec3 p = f.world(x, y);
+                const glm::dvec3 d = glm::abs(p - glm::dvec3(light.position));
+                const double band = (filter == ShadowFilter::Pcf ? 5.0 : 3.0) * texelPerUnit * std::max({d.x, d.y, d.z});
+                if (std::abs(p.y) < 1e-3 && std::abs(squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale)) <= band) continue;
+                const bool inShadow = truth.value.pixels[2 * i] == 0.0f;
+                const Image& expected = inShadow ? sunLight : unshadowed;
+                CAPTURE(x, y, inShadow, static_cast<int>(filter));
+                for (int c = 0; c < 3; ++c) CHECK(shadowed.at(x, y, c) == expected.at(x, y, c));
+                ++compared;
+                shadowedPixels += inShadow ? 1 : 0;
+            }
+        CHECK(compared > W * H / 3);
+        CHECK(shadowedPixels > 20);
+    }
+    GBufferSettings other = lit;
+    other.shadows = &set;
+    const Camera moved = Camera::perspective({{0, 3.5f, 4.6f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f);
+    CHECK_THROWS_WITH(f.gbuffer.render(scene, moved, other), Catch::Contains("another camera"));
+}
+
 TEST_CASE("Shadow masks stay finite for vertical and grazing light and extreme depth ranges", "[shadows][stability]") {
     constexpr int W = 48, H = 36;
     for (const glm::vec3 direction : {glm::vec3(0, -1, 0), glm::vec3(0, 1, 0), glm::vec3(1, -1e-4f, 0)})

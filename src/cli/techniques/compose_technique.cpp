@@ -5,6 +5,7 @@
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
+#include "lit_gbuffer.hpp"
 #include "technique_registry.hpp"
 
 #include <optional>
@@ -12,7 +13,7 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = {
+const std::vector<SettingInfo> kSettings = joinSettings({
     {"formula", "", "thesis|physical", "see CombineFormula"},
     {"ambient", "W/(sr m^2)", "[0, 65504]", "grey ambient radiance L_amb"},
     {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
@@ -22,11 +23,11 @@ const std::vector<SettingInfo> kSettings = {
     {"ao", "", "0|1", "ray-marched AO (medium quality)"},
     {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
     {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
-};
+}, LitGBuffer::settings());
 
 class ComposeRun final : public TechniqueRun {
 public:
-    explicit ComposeRun(Context& ctx) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), gi_(ctx), composer_(ctx) {}
+    explicit ComposeRun(Context& ctx) : ctx_(ctx), lit_(ctx), ao_(ctx), gi_(ctx), composer_(ctx) {}
 
     void set(const std::string& key, const std::string& value) override {
         auto& s = settings_;
@@ -42,12 +43,12 @@ public:
         else if (key == "ao") withAo_ = parseBool(key, value);
         else if (key == "gi") withGi_ = parseBool(key, value);
         else if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
-        else throw Error(ErrorCode::Parse, "compose has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!lit_.set(key, value)) throw Error(ErrorCode::Parse, "compose has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
         const float radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
-        view_ = gbuffer_.render(frame.scene.scene, frame.camera, {frame.width, frame.height, true, {}});
+        view_ = lit_.render(frame, {frame.width, frame.height, true, {}});
         ComposeInputs inputs{view_, {}, {}};
         if (withAo_) {
             AmbientOcclusionSettings a;
@@ -91,7 +92,8 @@ public:
 
 private:
     Context& ctx_;
-    GBuffer gbuffer_;
+    LitGBuffer lit_;
+    GBuffer& gbuffer_ = lit_.gbuffer();
     AmbientOcclusion ao_;
     IndirectLight gi_;
     Composer composer_;

@@ -2,6 +2,7 @@
 // timed like every other technique.
 #include "obscura/gbuffer.hpp"
 #include "obscura/error.hpp"
+#include "lit_gbuffer.hpp"
 #include "technique_registry.hpp"
 
 #include <algorithm>
@@ -27,17 +28,19 @@ Image rgb(const Image& src) { return mapped(src, 3, [](const Image& s, int x, in
 
 class GBufferRun final : public TechniqueRun {
 public:
-    explicit GBufferRun(Context& ctx) : ctx_(ctx), gbuffer_(ctx) {}
+    explicit GBufferRun(Context& ctx) : ctx_(ctx), lit_(ctx) {}
 
     void set(const std::string& key, const std::string& value) override {
         if (key == "direct_lighting") settings_.directLighting = parseBool(key, value);
-        else throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting)");
+        else if (!lit_.set(key, value))
+            throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting, " +
+                                              settingKeys(LitGBuffer::settings()) + ")");
     }
 
     void run(const FrameSetup& frame) override {
         settings_.width = frame.width;
         settings_.height = frame.height;
-        view_ = gbuffer_.render(frame.scene.scene, frame.camera, settings_);
+        view_ = lit_.render(frame, settings_);
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
@@ -51,8 +54,9 @@ public:
     }
 
     // Positions and face normals against primary-ray hits (the reconstruction and
-    // rasterization error); the unshadowed direct radiance against direct light with
-    // visibility (what the missing shadows and the area-light approximations cost).
+    // rasterization error); the direct radiance (shadowed through shadow maps unless
+    // shadows=0) against direct light with visibility (what the shadow maps and the
+    // area-light approximations cost).
     std::vector<Measurement> measurements() override {
         const GBufferSamples s = samples();
         const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view_.camera.view));
@@ -121,16 +125,17 @@ private:
     }
 
     Context& ctx_;
-    GBuffer gbuffer_;
+    LitGBuffer lit_;
+    GBuffer& gbuffer_ = lit_.gbuffer();
     GBufferSettings settings_;
     GBufferView view_;
 };
 
 const TechniqueRegistrar registrar({
     "gbuffer",
-    "G-buffer: hardware depth, view-space face normal, albedo, unshadowed direct radiance",
+    "G-buffer: hardware depth, view-space face normal, albedo, direct radiance (shadow-mapped)",
     {"direct", "albedo", "normal", "depth", "position", "distance"},
-    {{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert, unshadowed)"}},
+    joinSettings({{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert)"}}, LitGBuffer::settings()),
     {{"default", {}}},
     [](Context& ctx) { return std::make_unique<GBufferRun>(ctx); },
 });

@@ -4,6 +4,7 @@
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
 #include "obscura/voxelizer.hpp"
+#include "lit_gbuffer.hpp"
 #include "technique_registry.hpp"
 
 #include <optional>
@@ -11,7 +12,7 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = {
+const std::vector<SettingInfo> kSettings = joinSettings({
     {"radius", "world units", "(0, inf)", "hits farther away are not gathered (default: a tenth of the scene's diagonal)"},
     {"rays", "", "[1, 1024]", "cosine-weighted directions per pixel"},
     {"steps", "", "[1, 256]", "depth samples per ray (gi.hybrid: march samples with voxel_traversal=march)"},
@@ -24,11 +25,11 @@ const std::vector<SettingInfo> kSettings = {
     {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
     {"voxel_resolution", "voxels", "8..2048, power of two", "gi.hybrid: grid columns per axis (128 slices)"},
     {"voxel_traversal", "", "march|exact|hierarchical", "gi.hybrid: visibility query"},
-};
+}, LitGBuffer::settings());
 
 class GiRun final : public TechniqueRun {
 public:
-    GiRun(Context& ctx, GiMethod method) : ctx_(ctx), gbuffer_(ctx), gi_(ctx), voxelizer_(ctx) { settings_.method = method; }
+    GiRun(Context& ctx, GiMethod method) : ctx_(ctx), lit_(ctx), gi_(ctx), voxelizer_(ctx) { settings_.method = method; }
 
     void set(const std::string& key, const std::string& value) override {
         auto& s = settings_;
@@ -49,14 +50,14 @@ public:
             s.voxelTraversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
                                                                         {"exact", VoxelTraversal::Exact},
                                                                         {"hierarchical", VoxelTraversal::Hierarchical}});
-        else throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         GBufferSettings g{frame.width, frame.height, true, {}};
         g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
-        view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
+        view_ = lit_.render(frame, g);
         if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
         result_ = gi_.run(view_, settings_);
     }
@@ -90,7 +91,8 @@ public:
 
 private:
     Context& ctx_;
-    GBuffer gbuffer_;
+    LitGBuffer lit_;
+    GBuffer& gbuffer_ = lit_.gbuffer();
     IndirectLight gi_;
     Voxelizer voxelizer_;
     IndirectLightSettings settings_;

@@ -1,0 +1,32 @@
+#include "lit_gbuffer.hpp"
+
+namespace obscura::cli {
+
+const std::vector<SettingInfo>& LitGBuffer::settings() {
+    static const std::vector<SettingInfo> s = {
+        {"shadows", "", "0|1", "shadow the direct light of shadow-casting point, spot and directional lights (default 1)"},
+        {"shadow_resolution", "texels", "[16, 8192]", "side of every shadow map (default 1024)"},
+        {"shadow_filter", "", "hard|pcf", "shadow lookups (default pcf)"},
+    };
+    return s;
+}
+
+bool LitGBuffer::set(const std::string& key, const std::string& value) {
+    if (key == "shadows") enabled_ = parseBool(key, value);
+    else if (key == "shadow_resolution") maps_.resolution = static_cast<int>(parseNumber(key, value, 16, 8192, "texels"));
+    else if (key == "shadow_filter")
+        filter_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}});
+    else return false;
+    return true;
+}
+
+const GBufferView& LitGBuffer::render(const FrameSetup& frame, GBufferSettings settings) {
+    if (enabled_ && settings.directLighting) {
+        settings.shadows = &shadows_.render(frame.scene.scene, frame.camera, maps_);
+        settings.shadowFilter = filter_;
+    }
+    view_ = gbuffer_.render(frame.scene.scene, frame.camera, settings);
+    return view_;
+}
+
+} // namespace obscura::cli

@@ -1,0 +1,38 @@
+#pragma once
+// The G-buffer of the techniques that gather direct light (gbuffer, gi.*, compose): lit, with
+// the scene's shadow-casting lights shadowed through ShadowMaps unless `shadows=0`.
+#include "technique_registry.hpp"
+
+#include "obscura/gbuffer.hpp"
+#include "obscura/shadow_maps.hpp"
+
+#include <string>
+#include <vector>
+
+namespace obscura::cli {
+
+class LitGBuffer {
+public:
+    explicit LitGBuffer(Context& ctx) : gbuffer_(ctx), shadows_(ctx) {}
+
+    //! The `--set` keys this adds to a technique's.
+    static const std::vector<SettingInfo>& settings();
+    //! Takes `key` if it is one of settings(); returns whether it did.
+    bool set(const std::string& key, const std::string& value);
+    //! Renders shadow maps (pass "shadow.maps", only for scenes with shadow-casting lights)
+    //! and the G-buffer; `settings` gives everything but the shadows.
+    const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);
+
+    GBuffer& gbuffer() { return gbuffer_; }
+    const GBufferView& view() const { return view_; }
+
+private:
+    GBuffer gbuffer_;
+    ShadowMaps shadows_;
+    bool enabled_ = true;
+    ShadowMapSettings maps_;
+    ShadowMaskSettings filter_;
+    GBufferView view_;
+};
+
+} // namespace obscura::cli

@@ -1,0 +1,80 @@
+#include "shadows/shadow_lookup.hpp"
+
+#include "core/context_impl.hpp"
+#include "core/validate.hpp"
+#include "obscura/error.hpp"
+
+#include <cmath>
+
+namespace obscura::detail {
+
+void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
+    requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");
+    if (!(s.constantBias >= 0.0f) || std::isinf(s.constantBias))
+        throw Error(ErrorCode::InvalidArgument,
+                    owner + "::constantBias must be in [0, inf) world units, got " + std::to_string(s.constantBias));
+    requireInRange(s.slopeBias, 0.0, 16.0, owner + "::slopeBias", "texels");
+    requireInRange(s.normalOffset, 0.0, 16.0, owner + "::normalOffset", "texels");
+    requireInRange(s.cascadeBlend, 0.0, 0.5, owner + "::cascadeBlend");
+}
+
+void requireMapsFor(const ShadowMapSet& maps, const Camera& camera, const std::string& owner) {
+    const Camera& c = maps.camera;
+    if (!(c.view == camera.view && c.projection == camera.projection && c.clipDepth == camera.clipDepth))
+        throw Error(ErrorCode::InvalidArgument, owner + ": the shadow maps were fitted to another camera (render them "
+                                                        "with the camera of the G-buffer)");
+}
+
+shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camera, const ShadowMaskSettings& s,
+                                  int resolution) {
+    shader::ShadowParams p{};
+    const glm::dmat4 view(camera.view), viewToWorld = glm::inverse(view);
+    for (int c = 0; c < info.layers; ++c) {
+        const auto k = static_cast<std::size_t>(c);
+        p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
+        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), 0.0f);
+    }
+    const Light& light = info.source;
+    const glm::vec3 position(view * glm::dvec4(glm::dvec3(light.position), 1.0));
+    const glm::vec3 direction = glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0)));
+    if (light.type == LightType::Point) {
+        p.light = glm::vec4(position, SHADOW_LIGHT_POINT);
+    } else if (light.type == LightType::Spot) {
+        p.light = glm::vec4(position, SHADOW_LIGHT_SPOT);
+        p.spot = glm::vec4(direction, std::cos(light.outerAngle));
+    } else {
+        p.light = glm::vec4(-direction, SHADOW_LIGHT_DIRECTIONAL);
+    }
+    p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
+    p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
+    return p;
+}
+
+std::string shadowFilterDefine(ShadowFilter filter) {
+    return "FILTER=" + std::to_string(filter == ShadowFilter::Pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD);
+}
+
+void ShadowBinding::bind(ContextImpl& ctx, GLuint maps, const std::vector<shader::ShadowParams>& records,
+                         ShadowFilter filter) {
+    if (!records_ || capacity_ < records.size()) {
+        records_ = createBuffer(ctx, static_cast<GLsizeiptr>(records.size() * sizeof(shader::ShadowParams)), nullptr,
+                                GL_DYNAMIC_STORAGE_BIT, "shadow.records");
+        capacity_ = records.size();
+    }
+    ctx.gl.NamedBufferSubData(records_.get(), 0, static_cast<GLsizeiptr>(records.size() * sizeof(shader::ShadowParams)),
+                              records.data());
+    ctx.state.bindStorageBuffer(ctx, SHADOW_LIGHTS_SSBO, records_.get());
+    const bool linear = filter == ShadowFilter::Pcf;
+    Sampler& sampler = linear ? linear_ : nearest_;
+    if (!sampler) {
+        sampler = createSampler(ctx, linear ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE,
+                                linear ? "shadow.linear_compare" : "shadow.nearest_compare");
+        // Reversed-Z: the receiver is lit when it is at least as near as the stored depth.
+        ctx.gl.SamplerParameteri(sampler.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        ctx.gl.SamplerParameteri(sampler.get(), GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+    }
+    ctx.state.bindTexture(ctx, SHADOW_MAP_UNIT, maps);
+    ctx.state.bindSampler(ctx, SHADOW_MAP_UNIT, sampler.get());
+}
+
+} // namespace obscura::detail
