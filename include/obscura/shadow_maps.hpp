@@ -31,6 +31,8 @@
 //   Pcf   (2 pcfRadius + 1)^2 comparisons one texel apart, each bilinearly weighted over
 //         its four texels (hardware comparison with linear filtering), each against the
 //         receiver's plane extended to the tap (receiverPlane).
+//   Vsm, Esm, Evsm2, Evsm4, Msm   from prefiltered moments of the maps' distances (see the
+//         settings); ShadowMaps::mask only (the G-buffer's lookups are Hard or Pcf).
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
@@ -71,6 +73,10 @@ struct ShadowMapInfo {
     //! Side of one texel: world units (directional), or world units per unit distance along
     //! the map's axis (spot, point).
     std::array<float, kMaxShadowMapsPerLight> texelSize{};
+    //! Per map (a, b, near, far): a window depth d lies at distance b / (d + a) (perspective)
+    //! or (b - d) / a (orthographic) along the map's axis, between its near and far planes
+    //! (world units): the moment filters work on that distance scaled to [0, 1].
+    std::array<glm::vec4, kMaxShadowMapsPerLight> depthMapping{};
 };
 
 //! What ShadowMaps::render produced; valid until its next render.
@@ -85,8 +91,13 @@ struct ShadowMapSet {
 };
 
 enum class ShadowFilter {
-    Hard, //!< "shadow.hard"
-    Pcf,  //!< "shadow.pcf"
+    Hard,  //!< "shadow.hard"
+    Pcf,   //!< "shadow.pcf"
+    Vsm,   //!< "shadow.vsm": variance shadow map, Chebyshev's bound
+    Esm,   //!< "shadow.esm": exponential shadow map, prefiltered in log space
+    Evsm2, //!< "shadow.evsm2": exponentially warped VSM, positive warp
+    Evsm4, //!< "shadow.evsm4": positive and negative warps
+    Msm,   //!< "shadow.msm": four moments, Hamburger reconstruction (32F)
 };
 
 // Setting keys for tools (`--set`) are the field names in snake case.
@@ -100,6 +111,15 @@ struct ShadowMaskSettings {
     //! Pcf: compare each tap with the receiver's plane extended to it (receiver-plane depth
     //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself.
     bool receiverPlane = true;
+    // Moment filters (Vsm .. Msm): the maps' distances t in [0, 1] (near to far plane) become
+    // moments in a 32F array, blurred by a separable Gaussian, sampled bilinearly.
+    int momentBlur = 2;               //!< Gaussian radius, texels (sigma = radius / 2), [0, 8]
+    float minVariance = 1e-6f;        //!< Vsm, Evsm: variance floor, units of t^2 (warped: scaled), [0, 1]
+    float lightBleedReduction = 0.2f; //!< Vsm, Evsm: Chebyshev bounds below this count as 0, [0, 1)
+    //! Esm: exponent c, [0, 80] (log-space filtering keeps e^(c t) out of the float range);
+    //! Evsm: the positive warp's c+, clamped to 42 so that e^(2 c+) stays finite in 32F.
+    float exponent = 40.0f;
+    float negativeExponent = 5.0f;    //!< Evsm4: the negative warp's c-, [0, 42]
 };
 
 class OBSCURA_API ShadowMaps {

@@ -17,7 +17,13 @@ using mat4 = glm::mat4;
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
-#define SHADOW_MAP_UNIT 9    // sampler2DArrayShadow, one layer per map (no other module's unit)
+#define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (no other module's unit)
+#define SHADOW_MOMENTS_UNIT 10 // sampler2DArray of the moment filters, linear
+#define SHADOW_DEPTH_READ_UNIT 11 // the maps as plain sampler2DArray (moments pass)
+#define SHADOW_MOMENTS_IMAGE 1  // rgba32f image2DArray written by the moments and blur passes
+#define SHADOW_MOMENTS_READ_IMAGE 2
+#define SHADOW_LOC_FILTER_PARAMS 0 // moments pass: x exponent +, y exponent -; blur: x radius, y direction
+#define SHADOW_LOC_LAYER_RANGE 1   // moments pass: first layer, layers
 #define SHADOW_MASK_IMAGE 0  // r16f output
 #define SHADOW_WORKGROUP 8
 #define SHADOW_MAX_CASCADES 4
@@ -29,11 +35,18 @@ using mat4 = glm::mat4;
 
 #define SHADOW_FILTER_HARD 0
 #define SHADOW_FILTER_PCF 1
+#define SHADOW_FILTER_VSM 2   // moments (t, t^2)
+#define SHADOW_FILTER_ESM 3   // c t, filtered in log space
+#define SHADOW_FILTER_EVSM2 4 // (e^(c+ t'), e^(2 c+ t')), t' = 2 t - 1
+#define SHADOW_FILTER_EVSM4 5 // and (-e^(-c- t'), e^(-2 c- t'))
+#define SHADOW_FILTER_MSM 6   // (t, t^2, t^3, t^4), Hamburger 4MSM
 
 struct ShadowCascade {
     mat4 viewToLight; // G-buffer view space -> the map's clip space
     vec4 info;        // x: far end of the slice (view distance, world units), y: texel side at the
-                      // map (orthographic: world units; perspective: per unit distance), z: layer
+                      // map (orthographic: world units; perspective: per unit distance), z: layer,
+                      // w: 1 perspective, 0 orthographic
+    vec4 depth;       // ShadowMapInfo::depthMapping: a, b, near, far
 };
 // (A cube's faces are "cascades" too: +x, -x, +y, -y, +z, -z of world space.)
 
@@ -43,11 +56,12 @@ struct ShadowParams {
     vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type
     vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
     vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
+    vec4 moments; // x: minimum variance, y: light-bleeding reduction, z: exponent c+, w: exponent c-
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 80 + 4 * 16, "ShadowParams must match std140");
+static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 5 * 16, "ShadowParams must match std140");
 } // namespace obscura::shader
 #endif
 

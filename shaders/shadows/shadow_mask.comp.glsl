@@ -3,6 +3,11 @@
 // light is record 0 of SHADOW_LIGHTS_SSBO.
 //! variant: FILTER=0
 //! variant: FILTER=1
+//! variant: FILTER=2
+//! variant: FILTER=3
+//! variant: FILTER=4
+//! variant: FILTER=5
+//! variant: FILTER=6
 #include "../visibility/screen_march.glsl"
 #include "shadow_sample.glsl"
 

@@ -1,8 +1,9 @@
 // Shadow-map lookups for a mapped light (see obscura/shadow_maps.hpp): which map a receiver
 // uses, the biased receiver, and the lit fraction of the filter's comparisons. Reads the
 // ShadowParams records at SHADOW_LIGHTS_SSBO and the maps at SHADOW_MAP_UNIT; needs
-// frame.glsl's block (view space is the frame's). FILTER: SHADOW_FILTER_HARD (default) or
-// SHADOW_FILTER_PCF, matching the sampler bound with the maps (nearest or linear).
+// frame.glsl's block (view space is the frame's). FILTER: SHADOW_FILTER_* (Hard by default);
+// Hard and Pcf compare the maps at SHADOW_MAP_UNIT (a nearest or linear comparison sampler),
+// the moment filters read the prefiltered moments at SHADOW_MOMENTS_UNIT.
 #include "../common/frame.glsl"
 #include "../common/math.glsl"
 #include "shadow_bindings.h"
@@ -15,6 +16,73 @@ layout(std430, binding = SHADOW_LIGHTS_SSBO) readonly buffer ShadowLights {
     ShadowParams shadowLights[];
 };
 layout(binding = SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMaps;
+#if FILTER >= SHADOW_FILTER_VSM
+layout(binding = SHADOW_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
+
+// Window depth d of map c of light k as the distance t in [0, 1] from its near to its far plane.
+float shadowLinear(int k, int c, float d) {
+    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
+    const float distance = shadowLights[k].cascades[c].info.w > 0.5 ? m.y / (d + m.x) : (m.y - d) / m.x;
+    return clamp((distance - m.z) / (m.w - m.z), 0.0, 1.0);
+}
+
+// The exponential warps of EVSM: t' = 2 t - 1 in [-1, 1], exponents clamped for 32F.
+vec2 shadowWarp(int k, float t) {
+    const vec2 c = clamp(shadowLights[k].moments.zw, vec2(0.0), vec2(42.0));
+    const float w = 2.0 * t - 1.0;
+    return vec2(exp(c.x * w), -exp(-c.y * w));
+}
+
+// What the moment filters store for distance t (before prefiltering).
+vec4 shadowMomentsOf(float t, int k) {
+#if FILTER == SHADOW_FILTER_ESM
+    return vec4(clamp(shadowLights[k].moments.z, 0.0, 80.0) * t, 0.0, 0.0, 0.0); // c t: its log
+#elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
+    const vec2 w = shadowWarp(k, t);
+    return vec4(w.x, w.x * w.x, w.y, w.y * w.y);
+#elif FILTER == SHADOW_FILTER_MSM
+    return vec4(t, t * t, t * t * t, t * t * t * t);
+#else
+    return vec4(t, t * t, 0.0, 0.0);
+#endif
+}
+
+// Chebyshev's one-sided bound that an occluder distribution of mean m.x and second moment
+// m.y leaves a receiver at t lit, with the variance floored and light bleeding cut off.
+float shadowChebyshev(vec2 m, float t, float minVariance, float bleed) {
+    const float variance = max(m.y - m.x * m.x, minVariance);
+    const float d = t - m.x;
+    const float p = variance / (variance + d * d);
+    return t <= m.x ? 1.0 : clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
+}
+
+// Moment shadow mapping's Hamburger 4MSM (Peters and Klein 2015): the lit fraction at t
+// from four moments, biased toward those of a uniform distribution for stability (3e-5 for
+// 32F moments).
+float shadowHamburger(vec4 b, float t) {
+    b = mix(b, vec4(0.5, 0.5, 0.5, 0.5), 3e-5);
+    const float l32d22 = -b.x * b.y + b.z;
+    const float d22 = -b.x * b.x + b.y;
+    const float squaredVariance = -b.y * b.y + b.w;
+    const float d33d22 = dot(vec2(squaredVariance, -l32d22), vec2(d22, l32d22));
+    const float invD22 = 1.0 / d22;
+    const float l32 = l32d22 * invD22;
+    vec3 c = vec3(1.0, t, t * t);
+    c.y -= b.x;
+    c.z -= b.y + l32 * c.y;
+    c.y *= invD22;
+    c.z *= d22 / d33d22;
+    c.y -= l32 * c.z;
+    c.x -= dot(c.yz, b.xy);
+    const float p = c.y / c.z, q = c.x / c.z;
+    const float r = sqrt(max(p * p * 0.25 - q, 0.0));
+    const float z1 = -p * 0.5 - r, z2 = -p * 0.5 + r;
+    const vec4 sw = z2 < t ? vec4(z1, t, 1.0, 1.0) : (z1 < t ? vec4(t, z1, 0.0, 1.0) : vec4(0.0));
+    const float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (t - z1));
+    const float shadowed = clamp(sw.z + sw.w * quotient, 0.0, 1.0);
+    return allFinite(vec3(shadowed, quotient, 0.0)) ? 1.0 - shadowed : 1.0;
+}
+#endif
 
 int shadowLightType(int k) { return int(shadowLights[k].light.w); }
 bool shadowIsSpot(int k) { return shadowLightType(k) == SHADOW_LIGHT_SPOT; }
@@ -72,6 +140,26 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
 float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const vec4 centre = shadowMapCoord(k, q, c);
     const float layer = shadowLights[k].cascades[c].info.z;
+#if FILTER >= SHADOW_FILTER_VSM
+    const vec4 m = texture(shadowMoments, vec3(centre.xy, layer));
+    const float t = shadowLinear(k, c, centre.z);
+    const vec4 settings = shadowLights[k].moments;
+#if FILTER == SHADOW_FILTER_ESM
+    const float lit = clamp(exp(m.x - clamp(settings.z, 0.0, 80.0) * t), 0.0, 1.0);
+#elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
+    // The variance floor in warped units: scaled by the warp's slope at t.
+    const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(settings.zw, vec2(0.0), vec2(42.0)) * w;
+    float lit = shadowChebyshev(m.xy, w.x, settings.x * c2.x * c2.x, settings.y);
+#if FILTER == SHADOW_FILTER_EVSM4
+    lit = min(lit, shadowChebyshev(m.zw, w.y, settings.x * c2.y * c2.y, settings.y));
+#endif
+#elif FILTER == SHADOW_FILTER_MSM
+    const float lit = shadowHamburger(m, t);
+#else
+    const float lit = shadowChebyshev(m.xy, t, settings.x, settings.y);
+#endif
+    return centre.w > 0.0 ? lit : 0.0;
+#else
     const float texel = 1.0 / float(shadowLights[k].counts.w);
 #if FILTER == SHADOW_FILTER_PCF
     const int r = shadowLights[k].counts.z;
@@ -88,6 +176,7 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
         }
     const float count = float((2 * r + 1) * (2 * r + 1));
     return centre.w > 0.0 ? lit / count : 0.0;
+#endif
 }
 
 // The receiver of view point p (geometric normal n, unit direction l to the light, cosine

@@ -16,6 +16,13 @@ void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
     requireInRange(s.slopeBias, 0.0, 16.0, owner + "::slopeBias", "texels");
     requireInRange(s.normalOffset, 0.0, 16.0, owner + "::normalOffset", "texels");
     requireInRange(s.cascadeBlend, 0.0, 0.5, owner + "::cascadeBlend");
+    requireInRange(s.momentBlur, 0, 8, owner + "::momentBlur", "texels");
+    requireInRange(s.minVariance, 0.0, 1.0, owner + "::minVariance");
+    if (!(s.lightBleedReduction >= 0.0f && s.lightBleedReduction < 1.0f))
+        throw Error(ErrorCode::InvalidArgument,
+                    owner + "::lightBleedReduction must be in [0, 1), got " + std::to_string(s.lightBleedReduction));
+    requireInRange(s.exponent, 0.0, 80.0, owner + "::exponent");
+    requireInRange(s.negativeExponent, 0.0, 42.0, owner + "::negativeExponent");
 }
 
 void requireMapsFor(const ShadowMapSet& maps, const Camera& camera, const std::string& owner) {
@@ -32,7 +39,9 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     for (int c = 0; c < info.layers; ++c) {
         const auto k = static_cast<std::size_t>(c);
         p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
-        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), 0.0f);
+        const float perspective = info.type == LightType::Directional ? 0.0f : 1.0f;
+        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), perspective);
+        p.cascades[k].depth = info.depthMapping[k];
     }
     const Light& light = info.source;
     const glm::vec3 position(view * glm::dvec4(glm::dvec3(light.position), 1.0));
@@ -46,13 +55,27 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
         p.light = glm::vec4(-direction, SHADOW_LIGHT_DIRECTIONAL);
     }
     p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
+    p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
     return p;
 }
 
-std::string shadowFilterDefine(ShadowFilter filter) {
-    return "FILTER=" + std::to_string(filter == ShadowFilter::Pcf ? SHADOW_FILTER_PCF : SHADOW_FILTER_HARD);
+int shadowFilterCode(ShadowFilter filter) {
+    switch (filter) {
+    case ShadowFilter::Hard: return SHADOW_FILTER_HARD;
+    case ShadowFilter::Pcf: return SHADOW_FILTER_PCF;
+    case ShadowFilter::Vsm: return SHADOW_FILTER_VSM;
+    case ShadowFilter::Esm: return SHADOW_FILTER_ESM;
+    case ShadowFilter::Evsm2: return SHADOW_FILTER_EVSM2;
+    case ShadowFilter::Evsm4: return SHADOW_FILTER_EVSM4;
+    case ShadowFilter::Msm: return SHADOW_FILTER_MSM;
+    }
+    return SHADOW_FILTER_HARD;
 }
+
+bool isMomentFilter(ShadowFilter filter) { return shadowFilterCode(filter) >= SHADOW_FILTER_VSM; }
+
+std::string shadowFilterDefine(ShadowFilter filter) { return "FILTER=" + std::to_string(shadowFilterCode(filter)); }
 
 void ShadowBinding::bind(ContextImpl& ctx, GLuint maps, const std::vector<shader::ShadowParams>& records,
                          ShadowFilter filter) {

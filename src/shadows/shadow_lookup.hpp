@@ -20,8 +20,11 @@ void requireMapsFor(const ShadowMapSet& maps, const Camera& camera, const std::s
 shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camera, const ShadowMaskSettings& s,
                                   int resolution);
 
-//! The shader define of the filter (FILTER=...).
+//! The shader's code of the filter (SHADOW_FILTER_*) and its define (FILTER=...).
+int shadowFilterCode(ShadowFilter filter);
 std::string shadowFilterDefine(ShadowFilter filter);
+//! Vsm, Esm, Evsm2, Evsm4, Msm: looked up in prefiltered moments, not in the depth maps.
+bool isMomentFilter(ShadowFilter filter);
 
 //! Uploads records to SHADOW_LIGHTS_SSBO and binds the maps at SHADOW_MAP_UNIT with the
 //! comparison sampler of the filter (nearest for Hard, linear for Pcf).

@@ -37,6 +37,14 @@ void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
 
 glm::mat4 worldToClip(const Camera& c) { return glm::mat4(glm::dmat4(c.projection) * glm::dmat4(c.view)); }
 
+// Window depth (clip control zero-to-one: z_ndc) back to distance along the map's axis:
+// perspective z_ndc = (A z + B) / -z, orthographic z_ndc = A z + B, z = -distance.
+glm::vec4 depthMapping(const Camera& c) {
+    const ProjectionInfo info = analyzeProjection(c);
+    const glm::dmat4 p(c.projection);
+    return glm::vec4(static_cast<float>(p[2][2]), static_cast<float>(p[3][2]), info.nearPlane, info.farPlane);
+}
+
 } // namespace
 
 const ShadowMapInfo* ShadowMapSet::find(std::size_t light) const {
@@ -55,6 +63,7 @@ struct ShadowMaps::Impl {
     Framebuffer fbo;
     FrameUniforms frame;
     ShadowBinding binding;
+    Texture moments, momentsTemp; // rgba32f arrays with the maps' layers, for the moment filters
     SizedTexture maskTexture;
     ShadowMapSet set;
 
@@ -82,6 +91,7 @@ struct ShadowMaps::Impl {
                     cameras.push_back(lc.camera);
                     info.worldToClip[k] = worldToClip(lc.camera);
                     info.texelSize[k] = static_cast<float>(lc.texelSize);
+                    info.depthMapping[k] = depthMapping(lc.camera);
                 }
                 info.layers = 6;
             } else if (l.type == LightType::Spot) {
@@ -89,6 +99,7 @@ struct ShadowMaps::Impl {
                 cameras.push_back(lc.camera);
                 info.worldToClip[0] = worldToClip(lc.camera);
                 info.texelSize[0] = static_cast<float>(lc.texelSize);
+                info.depthMapping[0] = depthMapping(lc.camera);
                 info.layers = 1;
             } else {
                 const DistanceRange range = visibleDistances(camera, bounds);
@@ -101,6 +112,7 @@ struct ShadowMaps::Impl {
                     cameras.push_back(lc.camera);
                     info.worldToClip[k] = worldToClip(lc.camera);
                     info.texelSize[k] = static_cast<float>(lc.texelSize);
+                    info.depthMapping[k] = depthMapping(lc.camera);
                     info.sliceEnd[k] = static_cast<float>(ends[k]);
                     from = ends[k];
                 }
@@ -111,11 +123,53 @@ struct ShadowMaps::Impl {
         return cameras;
     }
 
+    // The moments of `info`'s maps, prefiltered (pass "shadow.moments"), bound at
+    // SHADOW_MOMENTS_UNIT; the light's record must be bound already.
+    void prepareMoments(const ShadowMapInfo& info, const ShadowMaskSettings& s) {
+        auto& gl = ctx.gl;
+        PassScope pass(ctx, "shadow.moments");
+        if (!moments) {
+            moments = createTexture2DArray(ctx, GL_RGBA32F, depthResolution, depthResolution, depthLayers, "shadow.moments");
+            momentsTemp = createTexture2DArray(ctx, GL_RGBA32F, depthResolution, depthResolution, depthLayers, "shadow.moments_temp");
+        }
+        const Defines filter{shadowFilterDefine(s.filter)};
+        GLuint program = ctx.shaders->program({"shadows/shadow_moments.comp.glsl"}, filter);
+        gl.UseProgram(program);
+        gl.ProgramUniform2i(program, SHADOW_LOC_LAYER_RANGE, info.firstLayer, info.layers);
+        ctx.state.bindTexture(ctx, SHADOW_DEPTH_READ_UNIT, depth.get());
+        ctx.state.bindSampler(ctx, SHADOW_DEPTH_READ_UNIT, ctx.nearestClampSampler());
+        ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, moments.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const GLuint groups = static_cast<GLuint>((depthResolution + SHADOW_WORKGROUP - 1) / SHADOW_WORKGROUP);
+        gl.DispatchCompute(groups, groups, static_cast<GLuint>(info.layers));
+        if (s.momentBlur > 0) {
+            // ESM's log-space moment has its own blur; the others are plain averages.
+            program = ctx.shaders->program({"shadows/shadow_moments_blur.comp.glsl"},
+                                           {"FILTER=" + std::to_string(s.filter == ShadowFilter::Esm ? SHADOW_FILTER_ESM
+                                                                                                     : SHADOW_FILTER_VSM)});
+            gl.UseProgram(program);
+            gl.ProgramUniform2i(program, SHADOW_LOC_LAYER_RANGE, info.firstLayer, info.layers);
+            for (int direction = 0; direction < 2; ++direction) {
+                const GLuint from = direction == 0 ? moments.get() : momentsTemp.get();
+                const GLuint to = direction == 0 ? momentsTemp.get() : moments.get();
+                gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                gl.ProgramUniform2i(program, SHADOW_LOC_FILTER_PARAMS, s.momentBlur, direction);
+                ctx.state.bindImage(ctx, SHADOW_MOMENTS_READ_IMAGE, from, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+                ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, to, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+                gl.DispatchCompute(groups, groups, static_cast<GLuint>(info.layers));
+            }
+        }
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        ctx.state.bindTexture(ctx, SHADOW_MOMENTS_UNIT, moments.get());
+        ctx.state.bindSampler(ctx, SHADOW_MOMENTS_UNIT, ctx.linearClampSampler());
+    }
+
     void ensureDepth(int resolution, int layers) {
         if (depth && resolution == depthResolution && layers == depthLayers) return;
         depth = createTexture2DArray(ctx, GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "shadow.maps");
         depthResolution = resolution;
         depthLayers = layers;
+        moments.reset(); // reallocated at the maps' size when a moment filter asks
+        momentsTemp.reset();
         if (!fbo) fbo = createFramebuffer(ctx, "shadow.maps");
     }
 
@@ -193,6 +247,7 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     d.frame.bind(ctx, view.camera, view.width, view.height);
     bindScreenInputs(ctx, view, false);
     d.binding.bind(ctx, d.depth.get(), {shadowRecord(*info, g.camera, settings, d.depthResolution)}, settings.filter);
+    if (isMomentFilter(settings.filter)) d.prepareMoments(*info, settings);
     const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");
     ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"}, {shadowFilterDefine(settings.filter)}));
     ctx.state.bindImage(ctx, SHADOW_MASK_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -206,7 +261,10 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t maps = d.depth ? 4u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                            std::size_t(d.depthLayers)
                                      : 0;
-    return maps + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes();
+    const std::size_t moments = d.moments ? 2u * 16u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
+                                                std::size_t(d.depthLayers)
+                                          : 0;
+    return maps + moments + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes();
 }
 
 } // namespace obscura

@@ -133,6 +133,65 @@ TEST_CASE("Spot and point light hard and PCF shadows of a plate match the refere
     }
 }
 
+TEST_CASE("Moment filters light the lit side fully and leak at most their bound into the umbra", "[shadows][reference]") {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.outerAngle = 1.2f;
+    spot.innerAngle = 1.0f;
+    const Scene scene = plateScene(spot);
+    constexpr int W = 96, H = 72;
+    ShadowFixture f(Camera::perspective({{0, 3.5f, 4.5f}, {0, 0.3f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    const reference::Reference truth = f.truth(scene);
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, {512, 1, 0.5f});
+    const ShadowMapInfo& info = *set.find(0);
+    const double texelPerUnit = info.texelSize[0];
+    const double scale = spot.position.y / (spot.position.y - kHeight);
+    // The map's distances run along the spot's axis from its near to its far plane; the
+    // plate is 1 m nearer than the floor under it: dt = 1 / (far - near) apart.
+    const double dt = 1.0 / (info.depthMapping[0].w - info.depthMapping[0].z);
+    for (const ShadowFilter filter : {ShadowFilter::Vsm, ShadowFilter::Esm, ShadowFilter::Evsm2, ShadowFilter::Evsm4, ShadowFilter::Msm}) {
+        ShadowMaskSettings s;
+        s.filter = filter;
+        const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+        // In the umbra: VSM and EVSM's Chebyshev bound is at most minVariance / dt^2 (in warped
+        // units likewise), far below the light-bleeding cut, so exactly 0; ESM leaks
+        // e^(-c dt); MSM's bias toward uniform moments (3e-5) leaks at most about 1e-3 here.
+        double leak = 0.0;
+        if (filter == ShadowFilter::Esm) leak = std::exp(-s.exponent * dt);
+        if (filter == ShadowFilter::Msm) leak = 1e-3;
+        // Outside a band of the edge: the PCF band plus the blur's reach (2 sigma = radius).
+        double worstLeak = 0.0, worstLit = 1.0;
+        int lit = 0, umbra = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const std::size_t i = std::size_t(y) * W + std::size_t(x);
+                if (f.positions.at(x, y, 3) == 0.0f || truth.value.pixels[2 * i + 1] == 0.0f) continue;
+                const glm::dvec3 p = f.world(x, y);
+                const glm::dvec3 d = glm::abs(p - glm::dvec3(spot.position));
+                const double band = (4.0 + s.momentBlur) * texelPerUnit * std::max({d.x, d.y, d.z});
+                if (std::abs(p.y) < 1e-3 && std::abs(squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale)) <= band) continue;
+                const double v = mask.at(x, y, 0);
+                if (truth.value.pixels[2 * i] > 0.5f) {
+                    ++lit;
+                    worstLit = std::min(worstLit, v);
+                } else {
+                    ++umbra;
+                    worstLeak = std::max(worstLeak, v);
+                }
+            }
+        INFO("filter " << static_cast<int>(filter) << ": " << lit << " lit pixels, the darkest " << worstLit << "; " << umbra
+                       << " umbra pixels, the brightest " << worstLeak << " (bound " << leak << ")");
+        CHECK(lit > W * H / 3);
+        CHECK(umbra > 20);
+        // Lit: 1 up to the half-float rounding of 1; MSM darkens by its bias as it leaks.
+        CHECK(worstLit >= 1.0 - std::max(std::ldexp(1.0, -11), filter == ShadowFilter::Msm ? 1e-3 : 0.0));
+        CHECK(worstLeak <= leak + std::ldexp(1.0, -12));
+    }
+}
+
 TEST_CASE("A directional light's cascaded shadows of a plate match the reference away from the edge", "[shadows][reference]") {
     Light sun;
     sun.type = LightType::Directional;

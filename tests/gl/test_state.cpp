@@ -305,6 +305,11 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     const ShadowMapSet* maps = nullptr;
     check("ShadowMaps::render (spot, two cascades)", [&] { maps = &shadows->render(s.scene, s.camera, {64, 2, 0.5f}); });
     check("ShadowMaps::mask (PCF, directional)", [&] { shadows->mask(view, *maps, 2, {}); });
+    check("ShadowMaps::mask (moments, spot)", [&] {
+        ShadowMaskSettings m;
+        m.filter = ShadowFilter::Evsm4;
+        shadows->mask(view, *maps, 1, m);
+    });
     check("ShadowMaps::~ShadowMaps", [&] { shadows.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
     TextureView display;
@@ -381,7 +386,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 33);
+    CHECK(checked == 34);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

@@ -13,7 +13,7 @@ namespace {
 
 const std::vector<SettingInfo> kSettings = {
     {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)"},
-    {"filter", "", "hard|pcf", "shadow.cube: one comparison (default) or PCF"},
+    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm", "shadow.cube: the lookup (default hard)"},
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
@@ -23,6 +23,11 @@ const std::vector<SettingInfo> kSettings = {
     {"normal_offset", "texels", "[0, 16]", "receiver moved along its normal"},
     {"cascade_blend", "", "[0, 0.5]", "fraction of each cascade blended into the next"},
     {"receiver_plane", "", "0|1", "PCF: receiver-plane depth bias (default 1)"},
+    {"moment_blur", "texels", "[0, 8]", "moment filters: Gaussian prefilter radius"},
+    {"min_variance", "t^2", "[0, 1]", "VSM, EVSM: variance floor"},
+    {"light_bleed_reduction", "", "[0, 1)", "VSM, EVSM: Chebyshev bounds below it count as 0"},
+    {"exponent", "", "[0, 80]", "ESM: c; EVSM: c+ (clamped to 42)"},
+    {"negative_exponent", "", "[0, 42]", "EVSM4: c-"},
 };
 
 // The lights a technique maps: point lights (cube) or spot and directional ones.
@@ -48,12 +53,21 @@ public:
         else if (key == "cascades") maps_.cascades = static_cast<int>(parseNumber(key, value, 1, kMaxShadowCascades, ""));
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "filter")
-            mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}});
+            mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},
+                                                                {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
+                                                                {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
+                                                                {"msm", ShadowFilter::Msm}});
         else if (key == "pcf_radius") mask_.pcfRadius = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
         else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
         else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "receiver_plane") mask_.receiverPlane = parseBool(key, value);
+        else if (key == "moment_blur") mask_.momentBlur = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
+        else if (key == "min_variance") mask_.minVariance = static_cast<float>(parseNumber(key, value, 0, 1, ""));
+        else if (key == "light_bleed_reduction")
+            mask_.lightBleedReduction = static_cast<float>(parseNumber(key, value, 0, 0.999, ""));
+        else if (key == "exponent") mask_.exponent = static_cast<float>(parseNumber(key, value, 0, 80, ""));
+        else if (key == "negative_exponent") mask_.negativeExponent = static_cast<float>(parseNumber(key, value, 0, 42, ""));
         else if (key == "cascade_blend") mask_.cascadeBlend = static_cast<float>(parseNumber(key, value, 0, 0.5, ""));
         else throw Error(ErrorCode::Parse, "shadow has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
@@ -115,6 +129,14 @@ private:
     TextureView result_;
 };
 
+// The moment filters prefilter every texel of every map each frame: smaller maps, wider blurs.
+std::vector<Preset> momentPresets() {
+    return {{"low", {{"resolution", "256"}, {"cascades", "1"}, {"moment_blur", "1"}}},
+            {"medium", {{"resolution", "512"}, {"cascades", "2"}, {"moment_blur", "2"}}},
+            {"high", {{"resolution", "1024"}, {"cascades", "2"}, {"moment_blur", "2"}}},
+            {"ultra", {{"resolution", "1024"}, {"cascades", "4"}, {"moment_blur", "3"}}}};
+}
+
 // Map sizes and cascades grow with the preset; PCF's kernel too.
 std::vector<Preset> presets(bool pcf) {
     const auto kernel = [pcf](const char* r) {
@@ -133,7 +155,8 @@ std::vector<Preset> presets(bool pcf) {
 
 TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
                               bool point = false) {
-    return {name, description, {"shadow"}, kSettings, presets(filter == ShadowFilter::Pcf),
+    const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf;
+    return {name, description, {"shadow"}, kSettings, moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
             [filter, point](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point); }};
 }
 
@@ -141,6 +164,14 @@ const TechniqueRegistrar hard(shadowTechnique("shadow.hard", "Hard shadow mask: 
                                               ShadowFilter::Hard));
 const TechniqueRegistrar pcf(shadowTechnique("shadow.pcf", "Percentage-closer filtering: a grid of bilinear comparisons",
                                              ShadowFilter::Pcf));
+const TechniqueRegistrar vsm(shadowTechnique("shadow.vsm", "Variance shadow map: Chebyshev's bound on prefiltered moments",
+                                             ShadowFilter::Vsm));
+const TechniqueRegistrar esm(shadowTechnique("shadow.esm", "Exponential shadow map, prefiltered in log space", ShadowFilter::Esm));
+const TechniqueRegistrar evsm2(shadowTechnique("shadow.evsm2", "Exponentially warped VSM (positive warp)", ShadowFilter::Evsm2));
+const TechniqueRegistrar evsm4(shadowTechnique("shadow.evsm4", "Exponentially warped VSM (positive and negative warps)",
+                                               ShadowFilter::Evsm4));
+const TechniqueRegistrar msm(shadowTechnique("shadow.msm", "Moment shadow map: four moments, Hamburger reconstruction (32F)",
+                                             ShadowFilter::Msm));
 const TechniqueRegistrar cube(shadowTechnique("shadow.cube", "Point light: six perspective maps (hard unless filter=pcf)",
                                               ShadowFilter::Hard, true));
 
