@@ -8,6 +8,7 @@
 #include "obscura/reference.hpp"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -292,6 +293,20 @@ TEST_CASE("The G-buffer's direct light is shadowed by the maps of its lights", "
     CHECK_THROWS_WITH(f.gbuffer.render(scene, moved, other), Catch::Contains("another camera"));
 }
 
+namespace {
+
+const ShadowFilter kAllFilters[] = {ShadowFilter::Hard,  ShadowFilter::Pcf,   ShadowFilter::Vsm, ShadowFilter::Esm,
+                                    ShadowFilter::Evsm2, ShadowFilter::Evsm4, ShadowFilter::Msm};
+
+// Pixels of the mask that are not finite or not in [0, 1].
+int badValues(const Image& mask) {
+    int bad = 0;
+    for (const float v : mask.pixels) bad += std::isfinite(v) && v >= 0.0f && v <= 1.0f ? 0 : 1;
+    return bad;
+}
+
+} // namespace
+
 TEST_CASE("Shadow masks stay finite for vertical and grazing light and extreme depth ranges", "[shadows][stability]") {
     constexpr int W = 48, H = 36;
     for (const glm::vec3 direction : {glm::vec3(0, -1, 0), glm::vec3(0, 1, 0), glm::vec3(1, -1e-4f, 0)})
@@ -303,15 +318,42 @@ TEST_CASE("Shadow masks stay finite for vertical and grazing light and extreme d
             ShadowFixture f(Camera::perspective({{0, 2.5f, 5.0f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, float(W) / H, nearPlane, farPlane), W, H);
             f.render(scene);
             const ShadowMapSet& set = f.shadows.render(scene, f.camera, {256, 4, 0.9f});
-            for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+            for (const ShadowFilter filter : kAllFilters) {
                 ShadowMaskSettings s;
                 s.filter = filter;
-                const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
                 CAPTURE(direction.x, direction.y, nearPlane, farPlane, static_cast<int>(filter));
-                int bad = 0;
-                for (const float v : mask.pixels) bad += std::isfinite(v) && v >= 0.0f && v <= 1.0f ? 0 : 1;
-                CHECK(bad == 0);
+                CHECK(badValues(readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s))) == 0);
             }
+        }
+}
+
+TEST_CASE("Point and spot lights inside geometry or on a vertex and extreme exponents stay finite", "[shadows][stability]") {
+    constexpr int W = 48, H = 36;
+    // Inside the unit cube lifted onto the floor, on the plate's corner, and just above it.
+    for (const glm::vec3 position : {glm::vec3(0.3f, 0.5f, 0.2f), glm::vec3(0.5f, 1.0f, 0.5f), glm::vec3(0.0f, 1.0f + 1e-6f, 0.0f)})
+        for (const LightType type : {LightType::Point, LightType::Spot}) {
+            Light light;
+            light.type = type;
+            light.position = position;
+            light.direction = {0.0f, -1.0f, 0.0f};
+            Scene scene = plateScene(light);
+            scene.meshes.push_back({test::cubeMesh(), glm::translate(glm::mat4(1.0f), glm::vec3(-0.2f, 0.0f, -0.3f)), 0, "cube"});
+            ShadowFixture f(Camera::perspective({{0, 2.5f, 5.0f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+            f.render(scene);
+            const ShadowMapSet& set = f.shadows.render(scene, f.camera, {128, 1, 0.5f});
+            for (const ShadowFilter filter : kAllFilters)
+                for (const float exponent : {0.0f, 42.0f, 80.0f}) {
+                    ShadowMaskSettings s;
+                    s.filter = filter;
+                    s.exponent = exponent; // ESM up to 80; EVSM at and beyond its 32F clamp (42)
+                    s.negativeExponent = std::min(exponent, 42.0f);
+                    CAPTURE(position.x, position.y, position.z, static_cast<int>(type), static_cast<int>(filter), exponent);
+                    CHECK(badValues(readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s))) == 0);
+                }
+            GBufferSettings lit{W, H, true, {}};
+            lit.shadows = &set;
+            const Image direct = readTexture(f.ctx, f.gbuffer.render(scene, f.camera, lit).directRadiance);
+            CHECK(std::all_of(direct.pixels.begin(), direct.pixels.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }));
         }
 }
 
