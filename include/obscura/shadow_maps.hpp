@@ -120,6 +120,15 @@ struct ShadowMaskSettings {
     //! Evsm: the positive warp's c+, clamped to 42 so that e^(2 c+) stays finite in 32F.
     float exponent = 40.0f;
     float negativeExponent = 5.0f;    //!< Evsm4: the negative warp's c-, [0, 42]
+    //! ShadowMaps::mask only: a screen-space ray this long toward the light (ScreenVisibility's
+    //! view-space march, from the receiver lifted by a texel) shadows pixels it finds hidden:
+    //! the contact shadows that the biases remove. World units, [0, inf); 0: off.
+    float contactLength = 0.0f;
+    int contactSteps = 16;            //!< samples of the contact ray, [1, 256]
+    //! How far behind a depth sample the contact ray counts as inside (ScreenVisibility's
+    //! constant thickness): thin, so that rays passing behind an occluder stay lit. World
+    //! units, (0, inf).
+    float contactThickness = 0.05f;
 };
 
 class OBSCURA_API ShadowMaps {

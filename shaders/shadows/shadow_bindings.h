@@ -57,11 +57,12 @@ struct ShadowParams {
     vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
     vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
     vec4 moments; // x: minimum variance, y: light-bleeding reduction, z: exponent c+, w: exponent c-
+    vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 5 * 16, "ShadowParams must match std140");
+static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 6 * 16, "ShadowParams must match std140");
 } // namespace obscura::shader
 #endif
 

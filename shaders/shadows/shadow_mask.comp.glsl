@@ -22,7 +22,18 @@ void main() {
     float v = 1.0;
     if (!isBackground(depth) && normalTexel.a != 0.0) {
         const vec3 p = viewPositionFromDepth(pixelCenterUv(pixel), depth);
-        v = shadowVisibility(0, p, safeNormalize(normalTexel.xyz, viewDirectionTo(p)));
+        const vec3 n = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+        v = shadowVisibility(0, p, n);
+        // Contact shadows: a short screen-space ray toward the light from the receiver lifted
+        // off its surface by a texel (so that its own plane does not hide it).
+        const vec4 contact = shadowLights[0].contact;
+        if (contact.x > 0.0 && v > 0.0) {
+            const vec3 start = p + n * shadowTexel(0, p, 0);
+            const bool directional = shadowLightType(0) == SHADOW_LIGHT_DIRECTIONAL;
+            const float reach = directional ? contact.x : min(contact.x, length(shadowLights[0].light.xyz - start));
+            const float hit = screenMarch(start, shadowToLight(0, p), reach, int(contact.y), 0.5, contact.z);
+            v = hit >= 0.0 ? 0.0 : v;
+        }
     }
     imageStore(maskOut, pixel, vec4(clamp(v, 0.0, 1.0)));
 }

@@ -23,6 +23,13 @@ void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
                     owner + "::lightBleedReduction must be in [0, 1), got " + std::to_string(s.lightBleedReduction));
     requireInRange(s.exponent, 0.0, 80.0, owner + "::exponent");
     requireInRange(s.negativeExponent, 0.0, 42.0, owner + "::negativeExponent");
+    if (!(s.contactLength >= 0.0f) || std::isinf(s.contactLength))
+        throw Error(ErrorCode::InvalidArgument,
+                    owner + "::contactLength must be in [0, inf) world units, got " + std::to_string(s.contactLength));
+    requireInRange(s.contactSteps, 1, 256, owner + "::contactSteps", "samples");
+    if (!(s.contactThickness > 0.0f) || std::isinf(s.contactThickness))
+        throw Error(ErrorCode::InvalidArgument,
+                    owner + "::contactThickness must be in (0, inf) world units, got " + std::to_string(s.contactThickness));
 }
 
 void requireMapsFor(const ShadowMapSet& maps, const Camera& camera, const std::string& owner) {
@@ -56,6 +63,7 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     }
     p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
     p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
+    p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, 0.0f);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
     return p;
 }

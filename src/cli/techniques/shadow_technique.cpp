@@ -28,6 +28,9 @@ const std::vector<SettingInfo> kSettings = {
     {"light_bleed_reduction", "", "[0, 1)", "VSM, EVSM: Chebyshev bounds below it count as 0"},
     {"exponent", "", "[0, 80]", "ESM: c; EVSM: c+ (clamped to 42)"},
     {"negative_exponent", "", "[0, 42]", "EVSM4: c-"},
+    {"contact_length", "world units", "[0, inf)", "screen-space contact-shadow ray toward the light (0: off)"},
+    {"contact_steps", "", "[1, 256]", "samples of the contact ray"},
+    {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
 };
 
 // The lights a technique maps: point lights (cube) or spot and directional ones.
@@ -66,6 +69,10 @@ public:
         else if (key == "min_variance") mask_.minVariance = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "light_bleed_reduction")
             mask_.lightBleedReduction = static_cast<float>(parseNumber(key, value, 0, 0.999, ""));
+        else if (key == "contact_length") mask_.contactLength = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
+        else if (key == "contact_steps") mask_.contactSteps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
+        else if (key == "contact_thickness")
+            mask_.contactThickness = static_cast<float>(parseNumber(key, value, 1e-30, 1e30, "world units"));
         else if (key == "exponent") mask_.exponent = static_cast<float>(parseNumber(key, value, 0, 80, ""));
         else if (key == "negative_exponent") mask_.negativeExponent = static_cast<float>(parseNumber(key, value, 0, 42, ""));
         else if (key == "cascade_blend") mask_.cascadeBlend = static_cast<float>(parseNumber(key, value, 0, 0.5, ""));
