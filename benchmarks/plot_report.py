@@ -162,6 +162,28 @@ def resolution_section(rows):
             "|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
 
 
+def shadow_section(rows):
+    """Hard-shadow misclassification next to time and RMSE, for the shadow techniques."""
+    srows = [r for r in rows if r["quantity"] == "shadow"]
+    if not srows:
+        return []
+    lines = ["## Shadows", "",
+             "Shadow masks against the ray-traced visibility of the same light at the G-buffer's samples, over the "
+             "pixels the light reaches. `false shadow` and `false light` (hard masks only) are the fractions of those "
+             "pixels classified shadowed while lit (acne) and lit while shadowed (peter-panning); the filtered masks "
+             "are compared with the hard reference (an area-light reference is still to come). Times are all the "
+             "technique's passes: the G-buffer, the maps, for the moment filters the moments and their blur, and "
+             "the mask.", "",
+             "| scene | technique | preset | time ms | RMSE | false shadow | false light |",
+             "|---|---|---|---|---|---|---|"]
+    order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
+    for r in sorted(srows, key=lambda r: (r["scene"], r["technique"], order.get(r["preset"], 9))):
+        fs, fl = r.get("false_shadow", ""), r.get("false_light", "")
+        lines.append(f'| {r["scene"]} | {r["technique"]} | {r["preset"]} | {fmt(r["gpu_ms"])} | {fmt(r["rmse"])} | '
+                     f'{fmt(fs) if fs != "" else ""} | {fmt(fl) if fl != "" else ""} |')
+    return lines + [""]
+
+
 def voxel_section(voxel, out_dir):
     lines = []
     if voxel["voxelization"]:
@@ -265,6 +287,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=()):
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
+    lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
