@@ -310,6 +310,11 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         m.filter = ShadowFilter::Evsm4;
         shadows->mask(view, *maps, 1, m);
     });
+    check("GBuffer::render (shadowed by the maps, PCF)", [&] {
+        GBufferSettings shadowed{40, 32, true, {}};
+        shadowed.shadows = maps;
+        view = gbuffer->render(s.scene, s.camera, shadowed);
+    });
     check("ShadowMaps::~ShadowMaps", [&] { shadows.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
     TextureView display;
@@ -386,7 +391,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 34);
+    CHECK(checked == 35);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {
