@@ -10,10 +10,11 @@
 //   Directional  `cascades` orthographic maps over slices of the camera's view distance
 //                range inside the scene's bounds, split by the PSSM rule
 //                d_i = lambda d_log + (1 - lambda) d_uniform. Each covers its slice's bounding
-//                sphere (whose size does not change when the camera moves or turns), with its
-//                centre snapped to whole texels in light space, so that the maps do not
-//                shimmer with camera motion; along the light each spans the whole scene, so
-//                every caster is in every cascade.
+//                sphere (whose size depends only on the slice's distances and the projection,
+//                not on where the camera looks; the distances follow the scene's depth range),
+//                with its centre snapped to whole texels in light space, so that the maps do
+//                not shimmer with camera motion; along the light each spans the whole scene,
+//                so every caster is in every cascade.
 //   Point        a cube of six perspective maps along the world axes (+x, -x, +y, -y, +z,
 //                -z), each a little wider than 90 degrees so that filter kernels near a
 //                face's edge stay on it; a receiver is looked up in the face of the major
@@ -70,6 +71,7 @@ struct ShadowMapInfo {
     //! Directional: the far end of each cascade's slice, view distance along the camera's
     //! axis, world units (the first slice starts at the scene's nearest point, >= near).
     std::array<float, kMaxShadowMapsPerLight> sliceEnd{};
+    float sliceStart = 0.0f; //!< directional: where the first slice begins (view distance, world units)
     //! Side of one texel: world units (directional), or world units per unit distance along
     //! the map's axis (spot, point).
     std::array<float, kMaxShadowMapsPerLight> texelSize{};

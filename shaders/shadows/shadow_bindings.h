@@ -17,7 +17,7 @@ using mat4 = glm::mat4;
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
-#define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (no other module's unit)
+#define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (bound with its sampler by every reader)
 #define SHADOW_MOMENTS_UNIT 10 // sampler2DArray of the moment filters, linear
 #define SHADOW_DEPTH_READ_UNIT 11 // the maps as plain sampler2DArray (moments pass)
 #define SHADOW_MOMENTS_IMAGE 1  // rgba32f image2DArray written by the moments and blur passes
@@ -57,7 +57,8 @@ struct ShadowParams {
     vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
     vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
     vec4 moments; // x: minimum variance, y: light-bleeding reduction, z: exponent c+, w: exponent c-
-    vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness
+    vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness,
+                  // w: directional: where the first cascade's slice begins (view distance)
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
 };
 

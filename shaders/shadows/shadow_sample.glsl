@@ -149,9 +149,10 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
 #elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
     // The variance floor in warped units: scaled by the warp's slope at t.
     const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(settings.zw, vec2(0.0), vec2(42.0)) * w;
-    float lit = shadowChebyshev(m.xy, w.x, settings.x * c2.x * c2.x, settings.y);
+    // (bounded: c+ = 42 at t = 1 with a floor near 1 would overflow)
+    float lit = shadowChebyshev(m.xy, w.x, min(settings.x * c2.x * c2.x, 1e30), settings.y);
 #if FILTER == SHADOW_FILTER_EVSM4
-    lit = min(lit, shadowChebyshev(m.zw, w.y, settings.x * c2.y * c2.y, settings.y));
+    lit = min(lit, shadowChebyshev(m.zw, w.y, min(settings.x * c2.y * c2.y, 1e30), settings.y));
 #endif
 #elif FILTER == SHADOW_FILTER_MSM
     const float lit = shadowHamburger(m, t);
@@ -199,13 +200,15 @@ float shadowVisibility(int k, vec3 p, vec3 n) {
     const float distance = -p.z;
     int m = 0;
     for (int i = 0; i + 1 < shadowLights[k].counts.x; ++i) m += distance > shadowLights[k].cascades[i].info.x ? 1 : 0;
-    m = shadowIsPoint(k) ? shadowCubeFace(shadowFromLightWorld(k, p)) : m;
+    // A cube's face comes from the biased receiver, which may lie past a face edge (every
+    // face has the same texel, so the receiver does not depend on the face).
+    m = shadowIsPoint(k) && c > 0.0 ? shadowCubeFace(shadowFromLightWorld(k, shadowReceiver(k, p, n, l, c, 0))) : m;
     float v = 0.0;
     if (c > 0.0 && inCone) {
         v = shadowLookup(k, shadowReceiver(k, p, n, l, c, m), n, m);
         // Blend into the next cascade over the end of this slice (cascades only).
         const float end = shadowLights[k].cascades[m].info.x;
-        const float start = m > 0 ? shadowLights[k].cascades[max(m - 1, 0)].info.x : 0.0;
+        const float start = m > 0 ? shadowLights[k].cascades[max(m - 1, 0)].info.x : shadowLights[k].contact.w;
         const float band = shadowLights[k].bias.w * (end - start);
         const float t = band > 0.0 ? clamp((distance - (end - band)) / band, 0.0, 1.0) : 0.0;
         if (!shadowIsPoint(k) && m + 1 < shadowLights[k].counts.x && t > 0.0)

@@ -63,7 +63,7 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     }
     p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
     p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
-    p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, 0.0f);
+    p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, info.sliceStart);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
     return p;
 }

@@ -105,6 +105,7 @@ struct ShadowMaps::Impl {
                 const DistanceRange range = visibleDistances(camera, bounds);
                 const std::vector<double> ends = cascadeSplits(range.nearest, range.farthest, s.cascades, s.splitLambda);
                 double from = range.nearest;
+                info.sliceStart = static_cast<float>(range.nearest);
                 for (int c = 0; c < s.cascades; ++c) {
                     const auto k = static_cast<std::size_t>(c);
                     const LightCamera lc =
