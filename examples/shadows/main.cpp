@@ -45,11 +45,8 @@ struct ShadowControls {
 };
 
 std::optional<std::size_t> firstShadowedLight(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& l = scene.lights[i];
-        if (l.castsShadows && (l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::Directional))
-            return i;
-    }
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (hasShadowMaps(scene.lights[i])) return i;
     return std::nullopt;
 }
 

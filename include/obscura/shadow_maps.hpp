@@ -81,6 +81,10 @@ struct ShadowMapInfo {
     std::array<glm::vec4, kMaxShadowMapsPerLight> depthMapping{};
 };
 
+//! Whether ShadowMaps::render gives `light` maps: a shadow-casting point, spot or
+//! directional light.
+OBSCURA_API bool hasShadowMaps(const Light& light);
+
 //! What ShadowMaps::render produced; valid until its next render.
 struct ShadowMapSet {
     unsigned depth = 0; //!< GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F; 0 when no light casts shadows

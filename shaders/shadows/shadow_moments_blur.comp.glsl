@@ -23,8 +23,10 @@ void main() {
     const float sigma = max(0.5 * float(blur.x), 1e-3);
     vec4 sum = vec4(0.0);
     float total = 0.0, largest = -3.0e38;
+#if FILTER == SHADOW_FILTER_ESM
     for (int i = -blur.x; i <= blur.x; ++i)
         largest = max(largest, imageLoad(momentsIn, ivec3(clamp(texel.xy + step * i, ivec2(0), size - 1), texel.z)).x);
+#endif
     for (int i = -blur.x; i <= blur.x; ++i) {
         const float w = exp(-0.5 * float(i * i) / (sigma * sigma));
         const vec4 m = imageLoad(momentsIn, ivec3(clamp(texel.xy + step * i, ivec2(0), size - 1), texel.z));

@@ -25,10 +25,6 @@ namespace {
 
 using namespace detail;
 
-bool hasMap(const Light& l) {
-    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional || l.type == LightType::Point);
-}
-
 void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
     requireInRange(s.resolution, 16, std::min(8192, maxTextureSize), "ShadowMapSettings::resolution", "texels");
     requireInRange(s.cascades, 1, kMaxShadowCascades, "ShadowMapSettings::cascades", "maps");
@@ -46,6 +42,10 @@ glm::vec4 depthMapping(const Camera& c) {
 }
 
 } // namespace
+
+bool hasShadowMaps(const Light& l) {
+    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional || l.type == LightType::Point);
+}
 
 const ShadowMapInfo* ShadowMapSet::find(std::size_t light) const {
     for (const ShadowMapInfo& m : maps)
@@ -74,7 +74,7 @@ struct ShadowMaps::Impl {
         set.maps.clear();
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const Light& l = scene.lights[i];
-            if (!hasMap(l)) continue;
+            if (!hasShadowMaps(l)) continue;
             if (bounds.empty)
                 throw Error(ErrorCode::InvalidArgument, "ShadowMaps::render: the scene has no CPU meshes to fit the maps to");
             ShadowMapInfo info;
@@ -244,11 +244,12 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     analyzeProjection(g.camera);
     const GBufferView view = checkScreenInputs(ctx, g, false, "ShadowMaps::mask");
     StateScope scope(ctx);
-    PassScope pass(ctx, "shadow.mask");
     d.frame.bind(ctx, view.camera, view.width, view.height);
     bindScreenInputs(ctx, view, false);
     d.binding.bind(ctx, d.depth.get(), {shadowRecord(*info, g.camera, settings, d.depthResolution)}, settings.filter);
     if (isMomentFilter(settings.filter)) d.prepareMoments(*info, settings);
+    // After the moments' own pass: passes are timed one after another, never nested.
+    PassScope pass(ctx, "shadow.mask");
     const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");
     ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"}, {shadowFilterDefine(settings.filter)}));
     ctx.state.bindImage(ctx, SHADOW_MASK_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);

@@ -34,9 +34,7 @@ const std::vector<SettingInfo> kSettings = {
 };
 
 // The lights a technique maps: point lights (cube) or spot and directional ones.
-bool mapped(const Light& l, bool point) {
-    return l.castsShadows && (point ? l.type == LightType::Point : l.type == LightType::Spot || l.type == LightType::Directional);
-}
+bool mapped(const Light& l, bool point) { return hasShadowMaps(l) && (l.type == LightType::Point) == point; }
 
 std::optional<std::size_t> firstMappedLight(const Scene& scene, bool point) {
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
