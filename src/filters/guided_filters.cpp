@@ -82,7 +82,8 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
         bindRead(ctx, FILTER_DIRECTION_UNIT, images.direction);
         bindWrite(ctx, FILTER_DIRECTION_IMAGE, fullDirection, GL_RGBA16F);
     }
-    dispatchCompute2D(ctx, fullSize.x, fullSize.y, FILTER_WORKGROUP);
+    // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
+    dispatchCompute2D(ctx, (fullSize.x + 1) / 2, (fullSize.y + 1) / 2, FILTER_WORKGROUP);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
