@@ -5,6 +5,7 @@
 //   obscura_example_shadows --scene cornell --filter pcf --out mask.png
 //   obscura_example_shadows --scene /usr/share/assimp/models/PLY/Wuson.ply --filter evsm4 --window --frames 0
 //   --view lit: the composed direct light, shadowed per fragment (hard and pcf)
+//   --point-maps paraboloid: point lights as two paraboloid maps instead of a cube
 #include "app.hpp"
 #include "obscura/obscura.hpp"
 
@@ -25,6 +26,7 @@ struct ShadowControls {
     int filter = 1;
     int resolution = 1024;
     int cascades = 3;
+    bool paraboloid = false;
     ShadowMaskSettings mask;
     bool lit = false;
     bool changed = true;
@@ -35,6 +37,7 @@ struct ShadowControls {
         changed |= ImGui::Combo("filter", &filter, kFilters, kFilterCount);
         changed |= ImGui::SliderInt("resolution", &resolution, 64, 4096);
         changed |= ImGui::SliderInt("cascades", &cascades, 1, kMaxShadowCascades);
+        changed |= ImGui::Checkbox("point: dual paraboloid", &paraboloid);
         changed |= ImGui::SliderInt("pcf radius", &mask.pcfRadius, 0, 8);
         changed |= ImGui::SliderFloat("normal offset", &mask.normalOffset, 0.0f, 16.0f);
         changed |= ImGui::SliderFloat("slope bias", &mask.slopeBias, 0.0f, 16.0f);
@@ -57,13 +60,14 @@ int main(int argc, char** argv) {
     examples::AppOptions options;
     examples::addAppOptions(parser, options);
     ShadowControls controls;
-    std::string filterName = "pcf", viewName = "mask";
+    std::string filterName = "pcf", viewName = "mask", pointMaps = "cube";
     parser.add_option("--filter", filterName, "hard|pcf|vsm|esm|evsm2|evsm4|msm")->capture_default_str();
     parser.add_option("--resolution", controls.resolution, "Shadow map side, texels [16, 8192]")->capture_default_str();
     parser.add_option("--cascades", controls.cascades, "Directional lights: maps [1, 4]")->capture_default_str();
     parser.add_option("--pcf-radius", controls.mask.pcfRadius, "PCF taps each side [0, 8]")->capture_default_str();
     parser.add_option("--normal-offset", controls.mask.normalOffset, "Texels [0, 16]")->capture_default_str();
     parser.add_option("--contact", controls.mask.contactLength, "Contact-shadow ray, world units (0: off)")->capture_default_str();
+    parser.add_option("--point-maps", pointMaps, "Point lights: cube or paraboloid")->capture_default_str();
     parser.add_option("--view", viewName, "mask (the light's shadow) or lit (the shadowed direct light)")->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
@@ -72,6 +76,8 @@ int main(int argc, char** argv) {
         controls.filter = static_cast<int>(known - std::begin(kFilters));
         if (viewName != "mask" && viewName != "lit") throw Error(ErrorCode::Parse, "--view: expected mask or lit");
         controls.lit = viewName == "lit";
+        if (pointMaps != "cube" && pointMaps != "paraboloid") throw Error(ErrorCode::Parse, "--point-maps: expected cube or paraboloid");
+        controls.paraboloid = pointMaps == "paraboloid";
         examples::App app(options);
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const Scene& scene = example.loaded.scene;
@@ -87,7 +93,8 @@ int main(int argc, char** argv) {
             shown = app.presentUntilDone(controls.changed, [&] {
                 ShadowMaskSettings mask = controls.mask;
                 mask.filter = static_cast<ShadowFilter>(controls.filter);
-                const ShadowMapSet& maps = shadows.render(scene, example.camera, {controls.resolution, controls.cascades, 0.75f});
+                const PointShadowMapping point = controls.paraboloid ? PointShadowMapping::DualParaboloid : PointShadowMapping::Cube;
+                const ShadowMapSet& maps = shadows.render(scene, example.camera, {controls.resolution, controls.cascades, 0.75f, point});
                 GBufferSettings g{app.width(), app.height(), true, {}};
                 // The G-buffer looks shadows up with hard or PCF comparisons only.
                 const bool lit = controls.lit && (mask.filter == ShadowFilter::Hard || mask.filter == ShadowFilter::Pcf);

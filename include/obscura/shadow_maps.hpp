@@ -19,6 +19,24 @@
 //                -z), each a little wider than 90 degrees so that filter kernels near a
 //                face's edge stay on it; a receiver is looked up in the face of the major
 //                axis of its direction from the light.
+//                With PointShadowMapping::DualParaboloid instead: two paraboloid maps, the
+//                first looking down (-y), the second up (+y). A unit direction r from the
+//                light (in the map's frame, r_z along its axis) lands at
+//                (r_x, r_y) / (1 + r_z), which fills the map's inscribed disc with one
+//                hemisphere; the other hemisphere is clipped off (at r_z = 0, in 3D, before
+//                the projection). The projection is non-linear but the rasterizer draws
+//                straight edges, so each fragment's depth is corrected: it is the distance
+//                along the fragment's exact direction to its triangle's plane. What stays
+//                wrong is coverage: a triangle covers the straight-edged shape of its
+//                projected corners, not its curved image, so pixels near a silhouette edge
+//                can see a caster that misses them or miss one that covers them. That
+//                residual is measured against the reference by `obscura bench`
+//                (shadow.paraboloid next to shadow.cube: false_shadow and false_light);
+//                away from silhouette edges the mask equals the reference exactly
+//                (tests/gl/test_shadow_maps.cpp, a 40 m floor of two triangles). A texel
+//                spans (L + r_z L) 2 / resolution world units at distance L: twice as fine
+//                at the rim as on the axis. PCF kernels that cross the disc's rim read the
+//                empty margin around it (lit).
 // Rect and sphere lights, and lights with castsShadows off, get no map: mask() refuses them.
 //
 // Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
@@ -53,10 +71,17 @@ struct GBufferView; // obscura/gbuffer.hpp, which includes this header for its s
 constexpr int kMaxShadowCascades = 4;
 constexpr int kMaxShadowMapsPerLight = 6; //!< a point light's cube
 
+//! How a point light is mapped: "shadow.cube" and "shadow.paraboloid".
+enum class PointShadowMapping {
+    Cube,           //!< six perspective maps
+    DualParaboloid, //!< two paraboloid maps (a third of the cube's memory), per-pixel depth correction
+};
+
 struct ShadowMapSettings {
     int resolution = 1024;     //!< texels per side of every map, [16, min(8192, GL_MAX_TEXTURE_SIZE)]
     int cascades = 3;          //!< maps per directional light, [1, kMaxShadowCascades]
     float splitLambda = 0.75f; //!< PSSM weight of the logarithmic split (0: uniform), [0, 1]
+    PointShadowMapping pointMapping = PointShadowMapping::Cube;
 };
 
 //! The maps of one light.
@@ -65,18 +90,21 @@ struct ShadowMapInfo {
     Light source;                   //!< that light, as the maps were rendered for it
     LightType type = LightType::Spot;
     int firstLayer = 0;             //!< of ShadowMapSet::depth
-    int layers = 0;                 //!< 1 (spot), the cascades (directional) or 6 (point)
-    //! World -> clip space of each map (reversed-Z, clip control zero-to-one).
+    int layers = 0;                 //!< 1 (spot), the cascades (directional), 6 (cube) or 2 (paraboloid)
+    bool paraboloid = false;        //!< a point light's dual-paraboloid maps
+    //! World -> clip space of each map (reversed-Z, clip control zero-to-one); paraboloid
+    //! maps: world -> the map's frame (rigid; the light at the origin, the map's axis +z).
     std::array<glm::mat4, kMaxShadowMapsPerLight> worldToClip{};
     //! Directional: the far end of each cascade's slice, view distance along the camera's
     //! axis, world units (the first slice starts at the scene's nearest point, >= near).
     std::array<float, kMaxShadowMapsPerLight> sliceEnd{};
     float sliceStart = 0.0f; //!< directional: where the first slice begins (view distance, world units)
-    //! Side of one texel: world units (directional), or world units per unit distance along
-    //! the map's axis (spot, point).
+    //! Side of one texel: world units (directional), world units per unit distance along
+    //! the map's axis (spot, cube), or 2 / resolution (paraboloid: see above).
     std::array<float, kMaxShadowMapsPerLight> texelSize{};
     //! Per map (a, b, near, far): a window depth d lies at distance b / (d + a) (perspective)
-    //! or (b - d) / a (orthographic) along the map's axis, between its near and far planes
+    //! or (b - d) / a (orthographic) along the map's axis (paraboloid: from the light),
+    //! between its near and far planes
     //! (world units): the moment filters work on that distance scaled to [0, 1].
     std::array<glm::vec4, kMaxShadowMapsPerLight> depthMapping{};
 };

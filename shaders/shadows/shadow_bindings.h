@@ -15,7 +15,8 @@ using mat4 = glm::mat4;
 #include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
 
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
-#define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip
+#define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip (paraboloid: -> the map's frame)
+#define SHADOW_LOC_PARABOLOID_DEPTH 1 // paraboloid depth pass: (a, b, 2 / resolution), window depth b / distance - a
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
 #define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (bound with its sampler by every reader)
 #define SHADOW_MOMENTS_UNIT 10 // sampler2DArray of the moment filters, linear
@@ -44,8 +45,9 @@ using mat4 = glm::mat4;
 struct ShadowCascade {
     mat4 viewToLight; // G-buffer view space -> the map's clip space
     vec4 info;        // x: far end of the slice (view distance, world units), y: texel side at the
-                      // map (orthographic: world units; perspective: per unit distance), z: layer,
-                      // w: 1 perspective, 0 orthographic
+                      // map (orthographic: world units; perspective: per unit distance;
+                      // paraboloid: 2 / resolution), z: layer, w: 0 orthographic, 1 perspective,
+                      // 2 paraboloid (viewToLight: view space -> the map's frame)
     vec4 depth;       // ShadowMapInfo::depthMapping: a, b, near, far
 };
 // (A cube's faces are "cascades" too: +x, -x, +y, -y, +z, -z of world space.)

@@ -87,6 +87,10 @@ float shadowHamburger(vec4 b, float t) {
 int shadowLightType(int k) { return int(shadowLights[k].light.w); }
 bool shadowIsSpot(int k) { return shadowLightType(k) == SHADOW_LIGHT_SPOT; }
 bool shadowIsPoint(int k) { return shadowLightType(k) == SHADOW_LIGHT_POINT; }
+bool shadowIsParaboloid(int k, int c) { return shadowLights[k].cascades[c].info.w > 1.5; }
+
+// View point p in paraboloid map c's frame (the light at the origin, the map's axis +z).
+vec3 shadowInParaboloid(int k, vec3 p, int c) { return (shadowLights[k].cascades[c].viewToLight * vec4(p, 1.0)).xyz; }
 
 // Unit direction from view point p toward the light.
 vec3 shadowToLight(int k, vec3 p) {
@@ -104,19 +108,33 @@ int shadowCubeFace(vec3 d) {
 }
 
 // World size of one texel of map c at view point p: perspective maps grow with the
-// distance along their axis (a cube face's axis is the major one).
+// distance along their axis (a cube face's axis is the major one); a paraboloid texel is
+// 2 / resolution times |v| + v.z at v in its frame (the projection's derivative).
 float shadowTexel(int k, vec3 p, int c) {
     const float t = shadowLights[k].cascades[c].info.y;
     const vec3 a = abs(shadowFromLightWorld(k, p));
-    const float along = shadowIsSpot(k) ? max(dot(p - shadowLights[k].light.xyz, shadowLights[k].spot.xyz), 0.0)
-                                        : max(a.x, max(a.y, a.z));
+    const vec3 v = shadowInParaboloid(k, p, c);
+    const float along = shadowIsSpot(k)                ? max(dot(p - shadowLights[k].light.xyz, shadowLights[k].spot.xyz), 0.0)
+                        : shadowIsParaboloid(k, c) ? length(v) + max(v.z, 0.0)
+                                                   : max(a.x, max(a.y, a.z));
     return shadowLightType(k) == SHADOW_LIGHT_DIRECTIONAL ? t : t * along;
 }
 
 // Map c's texture coordinate and depth of view point q; w: the clip w (> 0 in front).
+// Paraboloid maps: (x, y) = v.xy / (|v| + v.z), depth b / |v| - a, w = |v| + v.z.
 vec4 shadowMapCoord(int k, vec3 q, int c) {
     const vec4 clip = shadowLights[k].cascades[c].viewToLight * vec4(q, 1.0);
-    return vec4(clip.xy / clip.w * 0.5 + 0.5, clip.z / clip.w, clip.w);
+    const float distance = length(clip.xyz), w = distance + clip.z;
+    const vec4 m = shadowLights[k].cascades[c].depth;
+    const vec4 paraboloid = vec4(clip.xy / max(w, 1e-30) * 0.5 + 0.5, m.y / max(distance, 1e-30) - m.x, w);
+    return shadowIsParaboloid(k, c) ? paraboloid : vec4(clip.xy / clip.w * 0.5 + 0.5, clip.z / clip.w, clip.w);
+}
+
+// A point light's map for view point p: the cube face of the major axis of its direction
+// from the light, or the paraboloid whose hemisphere holds it.
+int shadowPointMap(int k, vec3 p) {
+    return shadowIsParaboloid(k, 0) ? (shadowInParaboloid(k, p, 0).z >= 0.0 ? 0 : 1)
+                                    : shadowCubeFace(shadowFromLightWorld(k, p));
 }
 
 // Receiver-plane depth bias (PCF): d depth / d uv of the plane through q with normal n in
@@ -200,9 +218,10 @@ float shadowVisibility(int k, vec3 p, vec3 n) {
     const float distance = -p.z;
     int m = 0;
     for (int i = 0; i + 1 < shadowLights[k].counts.x; ++i) m += distance > shadowLights[k].cascades[i].info.x ? 1 : 0;
-    // A cube's face comes from the biased receiver, which may lie past a face edge (every
-    // face has the same texel, so the receiver does not depend on the face).
-    m = shadowIsPoint(k) && c > 0.0 ? shadowCubeFace(shadowFromLightWorld(k, shadowReceiver(k, p, n, l, c, 0))) : m;
+    // A point light's map comes from the biased receiver, which may lie past a face edge or
+    // the paraboloids' rim (every cube face has the same texel, so the receiver does not
+    // depend on the face; a paraboloid's does a little: the map p lies in sets it).
+    m = shadowIsPoint(k) && c > 0.0 ? shadowPointMap(k, shadowReceiver(k, p, n, l, c, shadowPointMap(k, p))) : m;
     float v = 0.0;
     if (c > 0.0 && inCone) {
         v = shadowLookup(k, shadowReceiver(k, p, n, l, c, m), n, m);

@@ -1,5 +1,7 @@
 #include "shadows/light_frusta.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -112,13 +114,22 @@ LightCamera spotCamera(const Light& light, const Bounds& bounds, int resolution)
     return out;
 }
 
+namespace {
+
+// Far plane of a point light's maps: just past the bounds' farthest corner.
+double pointFarPlane(const glm::dvec3& eye, const Bounds& bounds) {
+    double farthest = 0.0;
+    for (const glm::dvec3& c : boundsCorners(bounds)) farthest = std::max(farthest, glm::length(c - eye));
+    return farthest > 0.0 ? 1.01 * farthest : 1.0;
+}
+
+} // namespace
+
 LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int resolution, int marginTexels) {
     const glm::dvec3 eye(light.position);
     glm::dvec3 axis(0.0);
     axis[face / 2] = face % 2 == 0 ? 1.0 : -1.0;
-    double farthest = 0.0;
-    for (const glm::dvec3& c : boundsCorners(bounds)) farthest = std::max(farthest, glm::length(c - eye));
-    const double far = farthest > 0.0 ? 1.01 * farthest : 1.0;
+    const double far = pointFarPlane(eye, bounds);
     // tan(half fov) = 1 + the margin in texels of the 90-degree face (2 / resolution each).
     const double halfTan = 1.0 / (1.0 - 2.0 * marginTexels / resolution);
     const double fovy = 2.0 * std::atan(halfTan);
@@ -127,6 +138,26 @@ LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int re
                                      static_cast<float>(fovy), 1.0f, static_cast<float>(far * 1e-4), static_cast<float>(far),
                                      DepthMode::Reversed);
     out.texelSize = 2.0 * halfTan / resolution;
+    return out;
+}
+
+ParaboloidMap paraboloidHemisphere(const Light& light, int hemisphere, const Bounds& bounds, int resolution) {
+    const glm::dvec3 eye(light.position);
+    // Rows: the map's x, y and axis z in world space (orthonormal; y = z cross x).
+    const glm::dvec3 x(1.0, 0.0, 0.0), z(0.0, hemisphere == 0 ? -1.0 : 1.0, 0.0), y = glm::cross(z, x);
+    glm::dmat4 rotation(1.0);
+    for (int c = 0; c < 3; ++c) {
+        rotation[c][0] = x[c];
+        rotation[c][1] = y[c];
+        rotation[c][2] = z[c];
+    }
+    ParaboloidMap out;
+    out.worldToMap = rotation * glm::translate(glm::dmat4(1.0), -eye);
+    // The cube's depth range, as a function of distance rather than of depth along an axis:
+    // reversed-Z d = (near / L) (far - L) / (far - near), 1 at the near plane, 0 at the far.
+    const double far = pointFarPlane(eye, bounds), near = far * 1e-4;
+    out.depthMapping = glm::dvec4(near / (far - near), near * far / (far - near), near, far);
+    out.texelSize = 2.0 / resolution;
     return out;
 }
 

@@ -46,8 +46,8 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     for (int c = 0; c < info.layers; ++c) {
         const auto k = static_cast<std::size_t>(c);
         p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
-        const float perspective = info.type == LightType::Directional ? 0.0f : 1.0f;
-        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), perspective);
+        const float projection = info.paraboloid ? 2.0f : info.type == LightType::Directional ? 0.0f : 1.0f;
+        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), projection);
         p.cascades[k].depth = info.depthMapping[k];
     }
     const Light& light = info.source;

@@ -31,7 +31,15 @@ void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
     requireInRange(s.splitLambda, 0.0, 1.0, "ShadowMapSettings::splitLambda");
 }
 
-glm::mat4 worldToClip(const Camera& c) { return glm::mat4(glm::dmat4(c.projection) * glm::dmat4(c.view)); }
+glm::dmat4 worldToClip(const Camera& c) { return glm::dmat4(c.projection) * glm::dmat4(c.view); }
+
+// One layer of the maps' array as the depth pass draws it: a world -> clip transform, or
+// (paraboloid) world -> the map's frame and the distance -> depth mapping.
+struct MapLayer {
+    glm::dmat4 transform{1.0};
+    bool paraboloid = false;
+    glm::vec2 depthAB{0.0f};
+};
 
 // Window depth (clip control zero-to-one: z_ndc) back to distance along the map's axis:
 // perspective z_ndc = (A z + B) / -z, orthographic z_ndc = A z + B, z = -distance.
@@ -67,10 +75,16 @@ struct ShadowMaps::Impl {
     SizedTexture maskTexture;
     ShadowMapSet set;
 
-    // The maps' cameras, and what the mask pass needs to know of them.
-    std::vector<Camera> plan(const Scene& scene, const Camera& camera, const ShadowMapSettings& s) {
+    // The maps' layers, and what the mask pass needs to know of them.
+    std::vector<MapLayer> plan(const Scene& scene, const Camera& camera, const ShadowMapSettings& s) {
         const Bounds bounds = sceneBounds(scene);
-        std::vector<Camera> cameras;
+        std::vector<MapLayer> cameras;
+        const auto addCamera = [&](ShadowMapInfo& info, std::size_t k, const LightCamera& lc) {
+            cameras.push_back({worldToClip(lc.camera), false, {}});
+            info.worldToClip[k] = glm::mat4(cameras.back().transform);
+            info.texelSize[k] = static_cast<float>(lc.texelSize);
+            info.depthMapping[k] = depthMapping(lc.camera);
+        };
         set.maps.clear();
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const Light& l = scene.lights[i];
@@ -82,24 +96,25 @@ struct ShadowMaps::Impl {
             info.source = l;
             info.type = l.type;
             info.firstLayer = static_cast<int>(cameras.size());
-            if (l.type == LightType::Point) {
+            if (l.type == LightType::Point && s.pointMapping == PointShadowMapping::DualParaboloid) {
+                for (int h = 0; h < 2; ++h) {
+                    const auto k = static_cast<std::size_t>(h);
+                    const ParaboloidMap pm = paraboloidHemisphere(l, h, bounds, s.resolution);
+                    cameras.push_back({pm.worldToMap, true, glm::vec2(pm.depthMapping)});
+                    info.worldToClip[k] = glm::mat4(pm.worldToMap);
+                    info.texelSize[k] = static_cast<float>(pm.texelSize);
+                    info.depthMapping[k] = glm::vec4(pm.depthMapping);
+                }
+                info.layers = 2;
+                info.paraboloid = true;
+            } else if (l.type == LightType::Point) {
                 // Room for the widest PCF kernel (8 texels each side, plus the bilinear one).
                 const int margin = std::min(9, s.resolution / 8);
-                for (int face = 0; face < 6; ++face) {
-                    const auto k = static_cast<std::size_t>(face);
-                    const LightCamera lc = pointFace(l, face, bounds, s.resolution, margin);
-                    cameras.push_back(lc.camera);
-                    info.worldToClip[k] = worldToClip(lc.camera);
-                    info.texelSize[k] = static_cast<float>(lc.texelSize);
-                    info.depthMapping[k] = depthMapping(lc.camera);
-                }
+                for (int face = 0; face < 6; ++face)
+                    addCamera(info, static_cast<std::size_t>(face), pointFace(l, face, bounds, s.resolution, margin));
                 info.layers = 6;
             } else if (l.type == LightType::Spot) {
-                const LightCamera lc = spotCamera(l, bounds, s.resolution);
-                cameras.push_back(lc.camera);
-                info.worldToClip[0] = worldToClip(lc.camera);
-                info.texelSize[0] = static_cast<float>(lc.texelSize);
-                info.depthMapping[0] = depthMapping(lc.camera);
+                addCamera(info, 0, spotCamera(l, bounds, s.resolution));
                 info.layers = 1;
             } else {
                 const DistanceRange range = visibleDistances(camera, bounds);
@@ -108,12 +123,7 @@ struct ShadowMaps::Impl {
                 info.sliceStart = static_cast<float>(range.nearest);
                 for (int c = 0; c < s.cascades; ++c) {
                     const auto k = static_cast<std::size_t>(c);
-                    const LightCamera lc =
-                        directionalCascade(glm::dvec3(l.direction), camera, from, ends[k], bounds, s.resolution);
-                    cameras.push_back(lc.camera);
-                    info.worldToClip[k] = worldToClip(lc.camera);
-                    info.texelSize[k] = static_cast<float>(lc.texelSize);
-                    info.depthMapping[k] = depthMapping(lc.camera);
+                    addCamera(info, k, directionalCascade(glm::dvec3(l.direction), camera, from, ends[k], bounds, s.resolution));
                     info.sliceEnd[k] = static_cast<float>(ends[k]);
                     from = ends[k];
                 }
@@ -174,12 +184,10 @@ struct ShadowMaps::Impl {
         if (!fbo) fbo = createFramebuffer(ctx, "shadow.maps");
     }
 
-    void drawMaps(const Scene& scene, const std::vector<Camera>& cameras) {
+    void drawMaps(const Scene& scene, const std::vector<MapLayer>& cameras) {
         auto& gl = ctx.gl;
         std::vector<DrawableMesh> hostMeshes; // first: reading a host VAO's layout binds it
         for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) hostMeshes.push_back(meshes.hostMesh(i, scene.meshRefs[i]));
-        const GLuint program = ctx.shaders->program({"shadows/shadow_depth.vert.glsl", "shadows/shadow_depth.frag.glsl"});
-        gl.UseProgram(program);
         gl.BindFramebuffer(GL_FRAMEBUFFER, fbo.get());
         gl.NamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
         setViewport(ctx, 0, 0, depthResolution, depthResolution);
@@ -189,7 +197,17 @@ struct ShadowMaps::Impl {
         for (std::size_t layer = 0; layer < cameras.size(); ++layer) {
             gl.NamedFramebufferTextureLayer(fbo.get(), GL_DEPTH_ATTACHMENT, depth.get(), 0, static_cast<GLint>(layer));
             gl.ClearNamedFramebufferfv(fbo.get(), GL_DEPTH, 0, &clearDepth);
-            const glm::dmat4 lightClip = glm::dmat4(cameras[layer].projection) * glm::dmat4(cameras[layer].view);
+            const MapLayer& target = cameras[layer];
+            const GLuint program = target.paraboloid ? ctx.shaders->program({"shadows/shadow_paraboloid.vert.glsl",
+                                                                              "shadows/shadow_paraboloid.geom.glsl",
+                                                                              "shadows/shadow_paraboloid.frag.glsl"})
+                                                     : ctx.shaders->program({"shadows/shadow_depth.vert.glsl",
+                                                                              "shadows/shadow_depth.frag.glsl"});
+            gl.UseProgram(program);
+            if (target.paraboloid)
+                gl.ProgramUniform3f(program, SHADOW_LOC_PARABOLOID_DEPTH, target.depthAB.x, target.depthAB.y,
+                                    2.0f / static_cast<float>(depthResolution));
+            const glm::dmat4& lightClip = target.transform;
             const auto draw = [&](const DrawableMesh& mesh, const glm::mat4& model) {
                 const glm::mat4 m(lightClip * glm::dmat4(model));
                 gl.ProgramUniformMatrix4fv(program, SHADOW_LOC_MODEL_LIGHT_CLIP, 1, GL_FALSE, glm::value_ptr(m));
@@ -212,7 +230,7 @@ const ShadowMapSet& ShadowMaps::render(const Scene& scene, const Camera& camera,
     validateSettings(settings, d.ctx.info.maxTextureSize);
     analyzeProjection(camera);
     validateScene(scene);
-    const std::vector<Camera> cameras = d.plan(scene, camera, settings);
+    const std::vector<MapLayer> cameras = d.plan(scene, camera, settings);
     d.set.camera = camera;
     d.set.resolution = settings.resolution;
     d.set.layers = static_cast<int>(cameras.size());

@@ -1,5 +1,5 @@
-// "shadow.hard" and "shadow.pcf" (a spot or directional light) and "shadow.cube" (a point
-// light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
+// "shadow.hard" .. "shadow.msm" (a spot or directional light), "shadow.cube" and
+// "shadow.paraboloid" (a point light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
 // against the reference's hard shadow.
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
@@ -13,7 +13,7 @@ namespace {
 
 const std::vector<SettingInfo> kSettings = {
     {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)"},
-    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm", "shadow.cube: the lookup (default hard)"},
+    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm", "shadow.cube, shadow.paraboloid: the lookup (default hard)"},
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
@@ -44,8 +44,10 @@ std::optional<std::size_t> firstMappedLight(const Scene& scene, bool point) {
 
 class ShadowRun final : public TechniqueRun {
 public:
-    ShadowRun(Context& ctx, ShadowFilter filter, bool point) : ctx_(ctx), gbuffer_(ctx), shadows_(ctx), point_(point) {
+    ShadowRun(Context& ctx, ShadowFilter filter, bool point, PointShadowMapping mapping)
+        : ctx_(ctx), gbuffer_(ctx), shadows_(ctx), point_(point) {
         mask_.filter = filter;
+        maps_.pointMapping = mapping;
     }
 
     void set(const std::string& key, const std::string& value) override {
@@ -159,10 +161,10 @@ std::vector<Preset> presets(bool pcf) {
 }
 
 TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
-                              bool point = false) {
+                              bool point = false, PointShadowMapping mapping = PointShadowMapping::Cube) {
     const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf;
     return {name, description, {"shadow"}, kSettings, moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
-            [filter, point](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point); }};
+            [filter, point, mapping](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point, mapping); }};
 }
 
 const TechniqueRegistrar hard(shadowTechnique("shadow.hard", "Hard shadow mask: one shadow-map comparison (spot, cascaded directional)",
@@ -179,6 +181,9 @@ const TechniqueRegistrar msm(shadowTechnique("shadow.msm", "Moment shadow map: f
                                              ShadowFilter::Msm));
 const TechniqueRegistrar cube(shadowTechnique("shadow.cube", "Point light: six perspective maps (hard unless filter=pcf)",
                                               ShadowFilter::Hard, true));
+const TechniqueRegistrar paraboloid(shadowTechnique("shadow.paraboloid",
+                                                    "Point light: two paraboloid maps with per-pixel depth (hard unless filter=pcf)",
+                                                    ShadowFilter::Hard, true, PointShadowMapping::DualParaboloid));
 
 } // namespace
 } // namespace obscura::cli
