@@ -49,7 +49,11 @@
 //   Hard  one comparison: the texel the receiver falls in;
 //   Pcf   (2 pcfRadius + 1)^2 comparisons one texel apart, each bilinearly weighted over
 //         its four texels (hardware comparison with linear filtering), each against the
-//         receiver's plane extended to the tap (receiverPlane).
+//         receiver's plane extended to the tap (receiverPlane). With PcfKernel::PoissonDisc
+//         instead: 16 bilinear comparisons at a Poisson disc's points (minimum distance
+//         0.3 of the disc's radius) scaled to pcfRadius + 0.5 texels and rotated per pixel
+//         (interleaved gradient noise on the map coordinate), which trades the grid's
+//         banding for noise at a fixed cost.
 //   Vsm, Esm, Evsm2, Evsm4, Msm   from prefiltered moments of the maps' distances (see the
 //         settings); ShadowMaps::mask only (the G-buffer's lookups are Hard or Pcf).
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
@@ -124,6 +128,11 @@ struct ShadowMapSet {
     const ShadowMapInfo* find(std::size_t light) const;
 };
 
+enum class PcfKernel {
+    Grid,        //!< (2 pcfRadius + 1)^2 taps one texel apart
+    PoissonDisc, //!< 16 taps, a rotated Poisson disc of radius pcfRadius + 0.5 texels
+};
+
 enum class ShadowFilter {
     Hard,  //!< "shadow.hard"
     Pcf,   //!< "shadow.pcf"
@@ -138,6 +147,7 @@ enum class ShadowFilter {
 struct ShadowMaskSettings {
     ShadowFilter filter = ShadowFilter::Pcf;
     int pcfRadius = 1;         //!< Pcf: comparisons each side of the centre, [0, 8]
+    PcfKernel pcfKernel = PcfKernel::Grid;
     float constantBias = 0.0f; //!< world units toward the light, [0, inf)
     float slopeBias = 1.0f;    //!< texels of depth per unit tan(theta) (tan clamped at 16), [0, 16]
     float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]

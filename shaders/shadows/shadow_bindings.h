@@ -34,6 +34,10 @@ using mat4 = glm::mat4;
 #define SHADOW_LIGHT_DIRECTIONAL 1
 #define SHADOW_LIGHT_POINT 2
 
+#define SHADOW_PCF_GRID 0
+#define SHADOW_PCF_POISSON 1
+#define SHADOW_POISSON_TAPS 16
+
 #define SHADOW_FILTER_HARD 0
 #define SHADOW_FILTER_PCF 1
 #define SHADOW_FILTER_VSM 2   // moments (t, t^2)
@@ -62,10 +66,12 @@ struct ShadowParams {
     vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness,
                   // w: directional: where the first cascade's slice begins (view distance)
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
+    ivec4 pcf;    // x: SHADOW_PCF_GRID or SHADOW_PCF_POISSON
+    vec4 poisson[SHADOW_POISSON_TAPS / 2]; // the Poisson disc's points in the unit disc, two per vec4
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 6 * 16, "ShadowParams must match std140");
+static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 7 * 16 + SHADOW_POISSON_TAPS * 8, "ShadowParams must match std140");
 } // namespace obscura::shader
 #endif
 

@@ -188,6 +188,22 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const vec2 gradient = vec2(0.0);
 #endif
     float lit = 0.0;
+#if FILTER == SHADOW_FILTER_PCF
+    if (shadowLights[k].pcf.x == SHADOW_PCF_POISSON) {
+        // Rotated per pixel by interleaved gradient noise on the map coordinate (stable for a
+        // receiver that does not move in the map), scaled to cover the grid's square.
+        const vec2 at = centre.xy * float(shadowLights[k].counts.w);
+        const float angle = 6.2831853 * fract(52.9829189 * fract(dot(at, vec2(0.06711056, 0.00583715))));
+        const mat2 spin = (float(r) + 0.5) * texel * mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+        for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
+            const vec4 pair = shadowLights[k].poisson[i];
+            const vec2 a = spin * pair.xy, b = spin * pair.zw;
+            lit += texture(shadowMaps, vec4(centre.xy + a, layer, centre.z + dot(gradient, a)));
+            lit += texture(shadowMaps, vec4(centre.xy + b, layer, centre.z + dot(gradient, b)));
+        }
+        return centre.w > 0.0 ? lit / float(SHADOW_POISSON_TAPS) : 0.0;
+    }
+#endif
     for (int y = -r; y <= r; ++y)
         for (int x = -r; x <= r; ++x) {
             const vec2 offset = vec2(x, y) * texel;

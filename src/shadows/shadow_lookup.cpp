@@ -4,9 +4,37 @@
 #include "core/validate.hpp"
 #include "obscura/error.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace obscura::detail {
+namespace {
+
+// SHADOW_POISSON_TAPS points in the unit disc, none closer than 0.3 to another (dart
+// throwing with a fixed seed, so every run and machine gets the same kernel), ordered by
+// distance from the centre.
+std::array<glm::vec2, SHADOW_POISSON_TAPS> makePoissonDisc() {
+    std::array<glm::vec2, SHADOW_POISSON_TAPS> points{};
+    std::minstd_rand random(12345);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::size_t count = 0;
+    while (count < points.size()) {
+        const glm::vec2 p(unit(random), unit(random));
+        bool far = glm::dot(p, p) <= 1.0f;
+        for (std::size_t i = 0; i < count && far; ++i) far = glm::distance(p, points[i]) >= 0.3f;
+        if (far) points[count++] = p;
+    }
+    std::sort(points.begin(), points.end(), [](glm::vec2 a, glm::vec2 b) { return glm::dot(a, a) < glm::dot(b, b); });
+    return points;
+}
+
+} // namespace
+
+const std::array<glm::vec2, SHADOW_POISSON_TAPS>& poissonDisc() {
+    static const std::array<glm::vec2, SHADOW_POISSON_TAPS> disc = makePoissonDisc();
+    return disc;
+}
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
     requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");
@@ -65,6 +93,9 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
     p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, info.sliceStart);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
+    p.pcf = glm::ivec4(s.pcfKernel == PcfKernel::PoissonDisc ? SHADOW_PCF_POISSON : SHADOW_PCF_GRID, 0, 0, 0);
+    const std::array<glm::vec2, SHADOW_POISSON_TAPS>& disc = poissonDisc();
+    for (std::size_t i = 0; i < disc.size(); i += 2) p.poisson[i / 2] = glm::vec4(disc[i], disc[i + 1]);
     return p;
 }
 

@@ -119,28 +119,31 @@ TEST_CASE("Spot and point light hard and PCF shadows of a plate match the refere
         // The shadow: the plate scaled from the light onto the floor.
         const double scale = light.position.y / (light.position.y - kHeight);
         const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * scale); };
-        for (const ShadowFilter filter : {ShadowFilter::Hard, ShadowFilter::Pcf}) {
+        for (const auto& [filter, kernel] : {std::pair{ShadowFilter::Hard, PcfKernel::Grid}, std::pair{ShadowFilter::Pcf, PcfKernel::Grid},
+                                             std::pair{ShadowFilter::Pcf, PcfKernel::PoissonDisc}}) {
             ShadowMaskSettings s;
             s.filter = filter;
             s.pcfRadius = 1;
+            s.pcfKernel = kernel;
             const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
             // Where the edge can be: the plate's outline lands in a texel of the map (one
             // texel at the floor), the receiver in another (half a diagonal), the biases move
             // it by under a texel here (normal offset 1 texel up, slope tan <= 0.6); PCF adds
-            // its kernel's reach, pcfRadius + 1 texels. A texel at a point is the texel per
+            // its kernel's reach, pcfRadius + 1 texels (the Poisson disc's radius is
+            // pcfRadius + 0.5, plus the bilinear texel: pcfRadius + 2 rounded up). A texel at a point is the texel per
             // unit distance times its distance along the map's axis (at most the largest
             // component of its offset from the light); a paraboloid's is 2 / resolution times
             // |v| + v.z (v: the offset in the lower map's frame, whose axis is -y). The
             // paraboloid's straight-edge coverage error adds nothing here: the plate's
             // corners lie within 14 degrees of the axis, where the projection's curvature
             // moves an edge's midpoint by under 0.01 texel.
-            const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + 1 : 0;
+            const int reach = filter == ShadowFilter::Pcf ? s.pcfRadius + (kernel == PcfKernel::PoissonDisc ? 2 : 1) : 0;
             const auto band = [&](const glm::dvec3& p) {
                 const glm::dvec3 v = p - glm::dvec3(light.position), d = glm::abs(v);
                 const double texel = paraboloid ? texelPerUnit * (glm::length(v) - v.y) : texelPerUnit * std::max({d.x, d.y, d.z});
                 return (3.0 + reach) * texel;
             };
-            CAPTURE(static_cast<int>(type), paraboloid, static_cast<int>(filter));
+            CAPTURE(static_cast<int>(type), paraboloid, static_cast<int>(filter), static_cast<int>(kernel));
             CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
         }
     }
@@ -380,6 +383,10 @@ TEST_CASE("Shadow masks stay finite for vertical and grazing light and extreme d
                 CAPTURE(direction.x, direction.y, nearPlane, farPlane, static_cast<int>(filter));
                 CHECK(badValues(readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s))) == 0);
             }
+            ShadowMaskSettings poisson;
+            poisson.pcfKernel = PcfKernel::PoissonDisc;
+            poisson.pcfRadius = 8;
+            CHECK(badValues(readTexture(f.ctx, f.shadows.mask(f.view, set, 0, poisson))) == 0);
         }
 }
 

@@ -18,6 +18,7 @@ const std::vector<SettingInfo> kSettings = {
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
     {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
+    {"pcf_kernel", "", "grid|poisson", "shadow.pcf: a grid, or 16 taps of a rotated Poisson disc"},
     {"constant_bias", "world units", "[0, inf)", "receiver moved toward the light"},
     {"slope_bias", "texels", "[0, 16]", "times tan(theta), toward the light"},
     {"normal_offset", "texels", "[0, 16]", "receiver moved along its normal"},
@@ -61,6 +62,8 @@ public:
                                                                 {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
                                                                 {"msm", ShadowFilter::Msm}});
         else if (key == "pcf_radius") mask_.pcfRadius = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
+        else if (key == "pcf_kernel")
+            mask_.pcfKernel = parseChoice<PcfKernel>(key, value, {{"grid", PcfKernel::Grid}, {"poisson", PcfKernel::PoissonDisc}});
         else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
         else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
@@ -157,6 +160,9 @@ std::vector<Preset> presets(bool pcf) {
     const char* radii[] = {"1", "1", "2", "3"};
     for (std::size_t i = 0; i < p.size(); ++i)
         for (auto& kv : kernel(radii[i])) p[i].settings.push_back(kv);
+    // "high" with 16 Poisson-disc taps over the same reach instead of the 5 x 5 grid.
+    if (pcf)
+        p.push_back({"high_poisson", {{"resolution", "2048"}, {"cascades", "3"}, {"pcf_radius", "2"}, {"pcf_kernel", "poisson"}}});
     return p;
 }
 
