@@ -18,6 +18,11 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --size 128x128 --frames 20 --spp 1024 --reference-performance \
   --voxels --voxel-scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
+# Soft shadows: the Cornell box's sphere light, whose reference is the fraction of the area
+# light that arrives (shadow.pcss, and the hard point-light masks beside it).
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell_sphere --techniques 'shadow.*' --size 128x128 --frames 20 --spp 1024 \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/soft_shadows"
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
 # pass, dominates: presets medium and medium_half on the Cornell box and the finest model.
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
@@ -25,5 +30,5 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
-/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" \
+/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" --out "$OBSCURA_ROOT/docs"

@@ -19,8 +19,8 @@ using namespace obscura;
 
 namespace {
 
-const char* const kFilters[] = {"hard", "pcf", "vsm", "esm", "evsm2", "evsm4", "msm"};
-constexpr int kFilterCount = 7;
+const char* const kFilters[] = {"hard", "pcf", "vsm", "esm", "evsm2", "evsm4", "msm", "pcss"}; // ShadowFilter order
+constexpr int kFilterCount = 8;
 
 struct ShadowControls {
     int filter = 1;
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     examples::addAppOptions(parser, options);
     ShadowControls controls;
     std::string filterName = "pcf", viewName = "mask", pointMaps = "cube";
-    parser.add_option("--filter", filterName, "hard|pcf|vsm|esm|evsm2|evsm4|msm")->capture_default_str();
+    parser.add_option("--filter", filterName, "hard|pcf|vsm|esm|evsm2|evsm4|msm|pcss")->capture_default_str();
     parser.add_option("--resolution", controls.resolution, "Shadow map side, texels [16, 8192]")->capture_default_str();
     parser.add_option("--cascades", controls.cascades, "Directional lights: maps [1, 4]")->capture_default_str();
     parser.add_option("--pcf-radius", controls.mask.pcfRadius, "PCF taps each side [0, 8]")->capture_default_str();
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
         const auto* known = std::find(std::begin(kFilters), std::end(kFilters), filterName);
-        if (known == std::end(kFilters)) throw Error(ErrorCode::Parse, "--filter: expected hard, pcf, vsm, esm, evsm2, evsm4 or msm");
+        if (known == std::end(kFilters)) throw Error(ErrorCode::Parse, "--filter: expected hard, pcf, vsm, esm, evsm2, evsm4, msm or pcss");
         controls.filter = static_cast<int>(known - std::begin(kFilters));
         if (viewName != "mask" && viewName != "lit") throw Error(ErrorCode::Parse, "--view: expected mask or lit");
         controls.lit = viewName == "lit";
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const Scene& scene = example.loaded.scene;
         const std::optional<std::size_t> light = firstShadowedLight(scene);
-        if (!light) throw Error(ErrorCode::InvalidArgument, "the scene has no shadow-casting point, spot or directional light");
+        if (!light) throw Error(ErrorCode::InvalidArgument, "the scene has no shadow-casting point, spot, directional or sphere light");
         app.setPanel([&] { controls.drawPanel(); });
         TextureImage shown;
         {

@@ -37,7 +37,8 @@
 //                spans (L + r_z L) 2 / resolution world units at distance L: twice as fine
 //                at the rim as on the axis. PCF kernels that cross the disc's rim read the
 //                empty margin around it (lit).
-// Rect and sphere lights, and lights with castsShadows off, get no map: mask() refuses them.
+// Sphere lights are mapped like point lights, from their centre (for Pcss). Rect lights, and
+// lights with castsShadows off, get no map: mask() refuses them.
 //
 // Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
 // receiver lit, in [0, 1] (1 = lit), GL_R16F (values rounded by at most 2^-12). The
@@ -56,6 +57,15 @@
 //         banding for noise at a fixed cost.
 //   Vsm, Esm, Evsm2, Evsm4, Msm   from prefiltered moments of the maps' distances (see the
 //         settings); ShadowMaps::mask only (the G-buffer's lookups are Hard or Pcf).
+//   Pcss  percentage-closer soft shadows (Fernando 2005) for a light of radius R
+//         (Light::radius; 0 for directional lights, which then get a half-texel kernel):
+//         the mean distance z_b of the blockers among 16 Poisson-disc depth reads (a
+//         blocker: nearer the light than the receiver's plane; see pcssBlockerFraction for
+//         the disc), then a 16-tap Poisson PCF of radius R (z_r - z_b) / z_b world units at
+//         the receiver (distance z_r), the penumbra's half-width for a blocker parallel to
+//         the receiver, converted to texels there and clamped to [0.5, 128]. No blocker
+//         found: lit. The flat-blocker assumption and the 16 taps (noise in wide penumbrae)
+//         are its error against an area light's shadow; ShadowMaps::mask only.
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
@@ -113,8 +123,8 @@ struct ShadowMapInfo {
     std::array<glm::vec4, kMaxShadowMapsPerLight> depthMapping{};
 };
 
-//! Whether ShadowMaps::render gives `light` maps: a shadow-casting point, spot or
-//! directional light.
+//! Whether ShadowMaps::render gives `light` maps: a shadow-casting point, spot, directional
+//! or sphere light.
 OBSCURA_API bool hasShadowMaps(const Light& light);
 
 //! What ShadowMaps::render produced; valid until its next render.
@@ -141,6 +151,7 @@ enum class ShadowFilter {
     Evsm2, //!< "shadow.evsm2": exponentially warped VSM, positive warp
     Evsm4, //!< "shadow.evsm4": positive and negative warps
     Msm,   //!< "shadow.msm": four moments, Hamburger reconstruction (32F)
+    Pcss,  //!< "shadow.pcss": percentage-closer soft shadows for a light of Light::radius
 };
 
 // Setting keys for tools (`--set`) are the field names in snake case.
@@ -148,6 +159,10 @@ struct ShadowMaskSettings {
     ShadowFilter filter = ShadowFilter::Pcf;
     int pcfRadius = 1;         //!< Pcf: comparisons each side of the centre, [0, 8]
     PcfKernel pcfKernel = PcfKernel::Grid;
+    //! Pcss: the blocker search covers blockers down to this fraction of the receiver's
+    //! distance from the light, (0, 1): a disc of R (1 - f) / f world units at the receiver
+    //! (at most 128 texels). Nearer blockers are found only in part.
+    float pcssBlockerFraction = 0.25f;
     float constantBias = 0.0f; //!< world units toward the light, [0, inf)
     float slopeBias = 1.0f;    //!< texels of depth per unit tan(theta) (tan clamped at 16), [0, 16]
     float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]

@@ -20,7 +20,7 @@ using mat4 = glm::mat4;
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
 #define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (bound with its sampler by every reader)
 #define SHADOW_MOMENTS_UNIT 10 // sampler2DArray of the moment filters, linear
-#define SHADOW_DEPTH_READ_UNIT 11 // the maps as plain sampler2DArray (moments pass)
+#define SHADOW_DEPTH_READ_UNIT 11 // the maps as plain sampler2DArray (moments pass, PCSS blocker search)
 #define SHADOW_MOMENTS_IMAGE 1  // rgba32f image2DArray written by the moments and blur passes
 #define SHADOW_MOMENTS_READ_IMAGE 2
 #define SHADOW_LOC_FILTER_PARAMS 0 // moments pass: x exponent +, y exponent -; blur: x radius, y direction
@@ -37,6 +37,7 @@ using mat4 = glm::mat4;
 #define SHADOW_PCF_GRID 0
 #define SHADOW_PCF_POISSON 1
 #define SHADOW_POISSON_TAPS 16
+#define SHADOW_PCSS_MAX_RADIUS 128 // texels: the widest PCSS search and kernel
 
 #define SHADOW_FILTER_HARD 0
 #define SHADOW_FILTER_PCF 1
@@ -45,6 +46,8 @@ using mat4 = glm::mat4;
 #define SHADOW_FILTER_EVSM2 4 // (e^(c+ t'), e^(2 c+ t')), t' = 2 t - 1
 #define SHADOW_FILTER_EVSM4 5 // and (-e^(-c- t'), e^(-2 c- t'))
 #define SHADOW_FILTER_MSM 6   // (t, t^2, t^3, t^4), Hamburger 4MSM
+#define SHADOW_FILTER_PCSS 7  // blocker search, then a Poisson-disc PCF as wide as the penumbra
+#define SHADOW_FILTER_MOMENTS(f) ((f) >= SHADOW_FILTER_VSM && (f) <= SHADOW_FILTER_MSM)
 
 struct ShadowCascade {
     mat4 viewToLight; // G-buffer view space -> the map's clip space
@@ -66,7 +69,8 @@ struct ShadowParams {
     vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness,
                   // w: directional: where the first cascade's slice begins (view distance)
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
-    ivec4 pcf;    // x: SHADOW_PCF_GRID or SHADOW_PCF_POISSON
+    vec4 pcf;     // x: SHADOW_PCF_GRID or SHADOW_PCF_POISSON; y: the light's radius (world units);
+                  // z: PCSS blocker search radius in light radii at the receiver, (1 - f) / f
     vec4 poisson[SHADOW_POISSON_TAPS / 2]; // the Poisson disc's points in the unit disc, two per vec4
 };
 

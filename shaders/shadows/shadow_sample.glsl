@@ -16,7 +16,10 @@ layout(std430, binding = SHADOW_LIGHTS_SSBO) readonly buffer ShadowLights {
     ShadowParams shadowLights[];
 };
 layout(binding = SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMaps;
-#if FILTER >= SHADOW_FILTER_VSM
+#if FILTER == SHADOW_FILTER_PCSS
+layout(binding = SHADOW_DEPTH_READ_UNIT) uniform sampler2DArray shadowDepths;
+#endif
+#if SHADOW_FILTER_MOMENTS(FILTER)
 layout(binding = SHADOW_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
 
 // Window depth d of map c of light k as the distance t in [0, 1] from its near to its far plane.
@@ -152,13 +155,70 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
     return abs(det) > 0.0 && allFinite(vec3(g, 0.0)) ? clamp(g, vec2(-limit), vec2(limit)) : vec2(0.0);
 }
 
+// Distance from the light (along the map's axis for cube faces and spots) of window depth d
+// in map c (ShadowMapInfo::depthMapping).
+float shadowDistance(int k, int c, float d) {
+    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
+    return shadowLights[k].cascades[c].info.w > 0.5 ? m.y / max(d + m.x, 1e-30) : (m.y - d) / m.x;
+}
+
+// The Poisson disc scaled to `radius` map units, rotated per pixel by interleaved gradient
+// noise on the map coordinate (stable for a receiver that does not move in the map).
+mat2 shadowPoissonFrame(int k, vec4 centre, float radius) {
+    const vec2 at = centre.xy * float(shadowLights[k].counts.w);
+    const float angle = 6.2831853 * fract(52.9829189 * fract(dot(at, vec2(0.06711056, 0.00583715))));
+    return radius * mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+}
+
+// Mean of SHADOW_POISSON_TAPS bilinear comparisons over the disc `spin`, each against the
+// receiver's plane at the tap (depth gradient `gradient` per map unit).
+float shadowPoissonPcf(int k, vec4 centre, float layer, vec2 gradient, mat2 spin) {
+    float lit = 0.0;
+    for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
+        const vec4 pair = shadowLights[k].poisson[i];
+        const vec2 a = spin * pair.xy, b = spin * pair.zw;
+        lit += texture(shadowMaps, vec4(centre.xy + a, layer, centre.z + dot(gradient, a)));
+        lit += texture(shadowMaps, vec4(centre.xy + b, layer, centre.z + dot(gradient, b)));
+    }
+    return lit / float(SHADOW_POISSON_TAPS);
+}
+
+#if FILTER == SHADOW_FILTER_PCSS
+// Percentage-closer soft shadows: the mean depth of the blockers (taps nearer the light than
+// the receiver's plane) within the search disc, then a Poisson PCF whose radius is the
+// penumbra's half-width R (z_r - z_b) / z_b for a light of radius R, in texels at the
+// receiver (one texel spans `receiverTexel` world units there). No blocker: lit.
+float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, float receiverTexel) {
+    const float texel = 1.0 / float(shadowLights[k].counts.w);
+    const float lightTexels = shadowLights[k].pcf.y / max(receiverTexel, 1e-30); // R in texels at the receiver
+    const float searchTexels = clamp(shadowLights[k].pcf.z * lightTexels, 1.0, float(SHADOW_PCSS_MAX_RADIUS));
+    const mat2 search = shadowPoissonFrame(k, centre, searchTexels * texel);
+    float depthSum = 0.0, blockers = 0.0;
+    for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
+        const vec4 pair = shadowLights[k].poisson[i];
+        const vec2 a = search * pair.xy, b = search * pair.zw;
+        const float da = texture(shadowDepths, vec3(centre.xy + a, layer)).r;
+        const float db = texture(shadowDepths, vec3(centre.xy + b, layer)).r;
+        // Reversed-Z: a blocker's depth is greater than the receiver's plane there.
+        const bool blockA = da > centre.z + dot(gradient, a), blockB = db > centre.z + dot(gradient, b);
+        depthSum += (blockA ? da : 0.0) + (blockB ? db : 0.0);
+        blockers += float(blockA) + float(blockB);
+    }
+    const float zb = shadowDistance(k, c, depthSum / max(blockers, 1.0)), zr = shadowDistance(k, c, centre.z);
+    const float halfWidth = shadowLights[k].pcf.y * max(zr - zb, 0.0) / max(zb, 1e-30); // world units
+    const float radius = clamp(halfWidth / max(receiverTexel, 1e-30), 0.5, float(SHADOW_PCSS_MAX_RADIUS));
+    const float lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, centre, radius * texel));
+    return blockers > 0.0 ? lit : 1.0;
+}
+#endif
+
 // Lit fraction at view point q (normal n) in map c: one comparison (Hard, nearest) or a grid
 // of bilinear comparisons one texel apart (Pcf), each against the receiver's plane at the
 // tap when receiver-plane bias is on. Points behind the map's eye: unlit.
 float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const vec4 centre = shadowMapCoord(k, q, c);
     const float layer = shadowLights[k].cascades[c].info.z;
-#if FILTER >= SHADOW_FILTER_VSM
+#if SHADOW_FILTER_MOMENTS(FILTER)
     const vec4 m = texture(shadowMoments, vec3(centre.xy, layer));
     const float t = shadowLinear(k, c, centre.z);
     const vec4 settings = shadowLights[k].moments;
@@ -180,37 +240,37 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     return centre.w > 0.0 ? lit : 0.0;
 #else
     const float texel = 1.0 / float(shadowLights[k].counts.w);
-#if FILTER == SHADOW_FILTER_PCF
+#if FILTER == SHADOW_FILTER_PCF || FILTER == SHADOW_FILTER_PCSS
     const int r = shadowLights[k].counts.z;
     const vec2 gradient = shadowLights[k].counts.y != 0 ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
 #else
     const int r = 0;
     const vec2 gradient = vec2(0.0);
 #endif
+    // Single exit: Mesa 22.3 llvmpipe miscompiles early returns inside loops, and the
+    // G-buffer calls this inside its loop over lights.
     float lit = 0.0;
+#if FILTER == SHADOW_FILTER_PCSS
+    lit = shadowPcss(k, q, c, centre, layer, gradient, shadowTexel(k, q, c));
+#else
 #if FILTER == SHADOW_FILTER_PCF
-    if (shadowLights[k].pcf.x == SHADOW_PCF_POISSON) {
-        // Rotated per pixel by interleaved gradient noise on the map coordinate (stable for a
-        // receiver that does not move in the map), scaled to cover the grid's square.
-        const vec2 at = centre.xy * float(shadowLights[k].counts.w);
-        const float angle = 6.2831853 * fract(52.9829189 * fract(dot(at, vec2(0.06711056, 0.00583715))));
-        const mat2 spin = (float(r) + 0.5) * texel * mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
-        for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
-            const vec4 pair = shadowLights[k].poisson[i];
-            const vec2 a = spin * pair.xy, b = spin * pair.zw;
-            lit += texture(shadowMaps, vec4(centre.xy + a, layer, centre.z + dot(gradient, a)));
-            lit += texture(shadowMaps, vec4(centre.xy + b, layer, centre.z + dot(gradient, b)));
-        }
-        return centre.w > 0.0 ? lit / float(SHADOW_POISSON_TAPS) : 0.0;
+    const bool poisson = shadowLights[k].pcf.x == float(SHADOW_PCF_POISSON);
+#else
+    const bool poisson = false;
+#endif
+    if (poisson) {
+        // The Poisson disc covers the grid's square: radius pcfRadius + 0.5 texels.
+        lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, centre, (float(r) + 0.5) * texel));
+    } else {
+        for (int y = -r; y <= r; ++y)
+            for (int x = -r; x <= r; ++x) {
+                const vec2 offset = vec2(x, y) * texel;
+                lit += texture(shadowMaps, vec4(centre.xy + offset, layer, centre.z + dot(gradient, offset)));
+            }
+        lit /= float((2 * r + 1) * (2 * r + 1));
     }
 #endif
-    for (int y = -r; y <= r; ++y)
-        for (int x = -r; x <= r; ++x) {
-            const vec2 offset = vec2(x, y) * texel;
-            lit += texture(shadowMaps, vec4(centre.xy + offset, layer, centre.z + dot(gradient, offset)));
-        }
-    const float count = float((2 * r + 1) * (2 * r + 1));
-    return centre.w > 0.0 ? lit / count : 0.0;
+    return centre.w > 0.0 ? lit : 0.0;
 #endif
 }
 

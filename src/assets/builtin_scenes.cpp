@@ -113,6 +113,18 @@ LoadedScene cornell() {
     return s;
 }
 
+// The Cornell box lit by a sphere light of the point light's radius and the emitter's
+// radiance, hanging below the emitter: an area light, whose soft shadows the reference computes (shadow.pcss).
+LoadedScene cornellSphere() {
+    LoadedScene s = cornell();
+    s.name = "cornell_sphere";
+    Light& l = s.scene.lights.at(0);
+    l.type = LightType::Sphere;
+    l.intensity = 1.0f; // sphere lights: emitted radiance = color, the emitter's (17, 12, 4)
+    l.position.y = 548.7f - l.radius - 1.0f; // hanging 1 mm below the ceiling, not through it
+    return s;
+}
+
 // Analytic scenes, in metres: a 20 m floor at y = 0 centred on the origin, plus walls.
 constexpr float kHalf = 10.0f;
 constexpr float kWallHeight = 5.0f;
@@ -149,6 +161,7 @@ CameraSpec view(glm::vec3 eye, glm::vec3 target) {
 const std::map<std::string, std::function<LoadedScene()>>& registry() {
     static const std::map<std::string, std::function<LoadedScene()>> scenes = {
         {"cornell", cornell},
+        {"cornell_sphere", cornellSphere},
         {"plane", [] { return analytic("plane", [](MeshBuilder& b) { b.quad(floorQuad()); }, view({0, 3, 6}, {0, 0, 0})); }},
         {"wall", [] {
              return analytic("wall", [](MeshBuilder& b) { b.quad(floorQuad()).quad(backWall()); },

@@ -233,9 +233,10 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     validateScene(scene);
     if (settings.shadows) {
         validateShadowMask(settings.shadowFilter, "GBufferSettings::shadowFilter");
-        if (isMomentFilter(settings.shadowFilter.filter))
+        const ShadowFilter filter = settings.shadowFilter.filter;
+        if (filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf)
             throw Error(ErrorCode::InvalidArgument, "GBufferSettings::shadowFilter: the G-buffer looks shadows up with "
-                                                    "Hard or Pcf; the moment filters are ShadowMaps::mask's");
+                                                    "Hard or Pcf; the moment filters and PCSS are ShadowMaps::mask's");
         requireMapsFor(*settings.shadows, camera, "GBufferSettings::shadows");
         for (const ShadowMapInfo& m : settings.shadows->maps)
             if (m.light >= scene.lights.size())

@@ -38,6 +38,9 @@ const std::array<glm::vec2, SHADOW_POISSON_TAPS>& poissonDisc() {
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
     requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");
+    if (!(s.pcssBlockerFraction > 0.0f && s.pcssBlockerFraction < 1.0f))
+        throw Error(ErrorCode::InvalidArgument,
+                    owner + "::pcssBlockerFraction must be in (0, 1), got " + std::to_string(s.pcssBlockerFraction));
     if (!(s.constantBias >= 0.0f) || std::isinf(s.constantBias))
         throw Error(ErrorCode::InvalidArgument,
                     owner + "::constantBias must be in [0, inf) world units, got " + std::to_string(s.constantBias));
@@ -81,7 +84,7 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     const Light& light = info.source;
     const glm::vec3 position(view * glm::dvec4(glm::dvec3(light.position), 1.0));
     const glm::vec3 direction = glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0)));
-    if (light.type == LightType::Point) {
+    if (light.type == LightType::Point || light.type == LightType::Sphere) {
         p.light = glm::vec4(position, SHADOW_LIGHT_POINT);
     } else if (light.type == LightType::Spot) {
         p.light = glm::vec4(position, SHADOW_LIGHT_SPOT);
@@ -93,7 +96,9 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
     p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, info.sliceStart);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
-    p.pcf = glm::ivec4(s.pcfKernel == PcfKernel::PoissonDisc ? SHADOW_PCF_POISSON : SHADOW_PCF_GRID, 0, 0, 0);
+    const float lightRadius = light.type == LightType::Directional ? 0.0f : light.radius;
+    p.pcf = glm::vec4(s.pcfKernel == PcfKernel::PoissonDisc ? SHADOW_PCF_POISSON : SHADOW_PCF_GRID, lightRadius,
+                      (1.0f - s.pcssBlockerFraction) / s.pcssBlockerFraction, 0.0f);
     const std::array<glm::vec2, SHADOW_POISSON_TAPS>& disc = poissonDisc();
     for (std::size_t i = 0; i < disc.size(); i += 2) p.poisson[i / 2] = glm::vec4(disc[i], disc[i + 1]);
     return p;
@@ -108,11 +113,12 @@ int shadowFilterCode(ShadowFilter filter) {
     case ShadowFilter::Evsm2: return SHADOW_FILTER_EVSM2;
     case ShadowFilter::Evsm4: return SHADOW_FILTER_EVSM4;
     case ShadowFilter::Msm: return SHADOW_FILTER_MSM;
+    case ShadowFilter::Pcss: return SHADOW_FILTER_PCSS;
     }
     return SHADOW_FILTER_HARD;
 }
 
-bool isMomentFilter(ShadowFilter filter) { return shadowFilterCode(filter) >= SHADOW_FILTER_VSM; }
+bool isMomentFilter(ShadowFilter filter) { return SHADOW_FILTER_MOMENTS(shadowFilterCode(filter)); }
 
 std::string shadowFilterDefine(ShadowFilter filter) { return "FILTER=" + std::to_string(shadowFilterCode(filter)); }
 

@@ -52,7 +52,7 @@ glm::vec4 depthMapping(const Camera& c) {
 } // namespace
 
 bool hasShadowMaps(const Light& l) {
-    return l.castsShadows && (l.type == LightType::Spot || l.type == LightType::Directional || l.type == LightType::Point);
+    return l.castsShadows && l.type != LightType::Rect;
 }
 
 const ShadowMapInfo* ShadowMapSet::find(std::size_t light) const {
@@ -96,7 +96,8 @@ struct ShadowMaps::Impl {
             info.source = l;
             info.type = l.type;
             info.firstLayer = static_cast<int>(cameras.size());
-            if (l.type == LightType::Point && s.pointMapping == PointShadowMapping::DualParaboloid) {
+            const bool point = l.type == LightType::Point || l.type == LightType::Sphere; // mapped from its centre
+            if (point && s.pointMapping == PointShadowMapping::DualParaboloid) {
                 for (int h = 0; h < 2; ++h) {
                     const auto k = static_cast<std::size_t>(h);
                     const ParaboloidMap pm = paraboloidHemisphere(l, h, bounds, s.resolution);
@@ -107,7 +108,7 @@ struct ShadowMaps::Impl {
                 }
                 info.layers = 2;
                 info.paraboloid = true;
-            } else if (l.type == LightType::Point) {
+            } else if (point) {
                 // Room for the widest PCF kernel (8 texels each side, plus the bilinear one).
                 const int margin = std::min(9, s.resolution / 8);
                 for (int face = 0; face < 6; ++face)
@@ -254,8 +255,8 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     const ShadowMapInfo* info = maps.find(light);
     if (!info)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: light " + std::to_string(light) +
-                                                    " has no shadow map (only shadow-casting point, spot and "
-                                                    "directional lights have one)");
+                                                    " has no shadow map (only shadow-casting point, spot, "
+                                                    "directional and sphere lights have one)");
     if (maps.depth != d.depth.get() || maps.layers != d.depthLayers)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps must be this module's latest render()");
     requireMapsFor(maps, g.camera, "ShadowMaps::mask");
@@ -266,6 +267,10 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     bindScreenInputs(ctx, view, false);
     d.binding.bind(ctx, d.depth.get(), {shadowRecord(*info, g.camera, settings, d.depthResolution)}, settings.filter);
     if (isMomentFilter(settings.filter)) d.prepareMoments(*info, settings);
+    if (settings.filter == ShadowFilter::Pcss) { // the blocker search reads depths, not comparisons
+        ctx.state.bindTexture(ctx, SHADOW_DEPTH_READ_UNIT, d.depth.get());
+        ctx.state.bindSampler(ctx, SHADOW_DEPTH_READ_UNIT, ctx.nearestClampSampler());
+    }
     // After the moments' own pass: passes are timed one after another, never nested.
     PassScope pass(ctx, "shadow.mask");
     const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");

@@ -1,5 +1,5 @@
-// "shadow.hard" .. "shadow.msm" (a spot or directional light), "shadow.cube" and
-// "shadow.paraboloid" (a point light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
+// "shadow.hard" .. "shadow.msm" (a spot or directional light), "shadow.cube",
+// "shadow.paraboloid" and "shadow.pcss" (a point or sphere light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
 // against the reference's hard shadow.
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
@@ -13,12 +13,13 @@ namespace {
 
 const std::vector<SettingInfo> kSettings = {
     {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)"},
-    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm", "shadow.cube, shadow.paraboloid: the lookup (default hard)"},
+    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm|pcss", "shadow.cube, shadow.paraboloid: the lookup (default hard)"},
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
     {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
     {"pcf_kernel", "", "grid|poisson", "shadow.pcf: a grid, or 16 taps of a rotated Poisson disc"},
+    {"pcss_blocker_fraction", "", "(0, 1)", "shadow.pcss: nearest blockers searched, fraction of the receiver's distance"},
     {"constant_bias", "world units", "[0, inf)", "receiver moved toward the light"},
     {"slope_bias", "texels", "[0, 16]", "times tan(theta), toward the light"},
     {"normal_offset", "texels", "[0, 16]", "receiver moved along its normal"},
@@ -34,8 +35,10 @@ const std::vector<SettingInfo> kSettings = {
     {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
 };
 
-// The lights a technique maps: point lights (cube) or spot and directional ones.
-bool mapped(const Light& l, bool point) { return hasShadowMaps(l) && (l.type == LightType::Point) == point; }
+// The lights a technique maps: point and sphere lights (cube, paraboloid) or spot and directional ones.
+bool mapped(const Light& l, bool point) {
+    return hasShadowMaps(l) && (l.type == LightType::Point || l.type == LightType::Sphere) == point;
+}
 
 std::optional<std::size_t> firstMappedLight(const Scene& scene, bool point) {
     for (std::size_t i = 0; i < scene.lights.size(); ++i)
@@ -60,8 +63,10 @@ public:
             mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},
                                                                 {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
                                                                 {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
-                                                                {"msm", ShadowFilter::Msm}});
+                                                                {"msm", ShadowFilter::Msm}, {"pcss", ShadowFilter::Pcss}});
         else if (key == "pcf_radius") mask_.pcfRadius = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
+        else if (key == "pcss_blocker_fraction")
+            mask_.pcssBlockerFraction = static_cast<float>(parseNumber(key, value, 1e-3, 0.999, ""));
         else if (key == "pcf_kernel")
             mask_.pcfKernel = parseChoice<PcfKernel>(key, value, {{"grid", PcfKernel::Grid}, {"poisson", PcfKernel::PoissonDisc}});
         else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
@@ -86,7 +91,7 @@ public:
         if (light_ ? *light_ < scene.lights.size() && mapped(scene.lights[*light_], point_)
                    : firstMappedLight(scene, point_).has_value())
             return {};
-        const std::string kind = point_ ? "point" : "spot or directional";
+        const std::string kind = point_ ? "point or sphere" : "spot or directional";
         return light_ ? "light " + std::to_string(*light_) + " is not a shadow-casting " + kind + " light"
                       : "no shadow-casting " + kind + " light";
     }
@@ -168,7 +173,7 @@ std::vector<Preset> presets(bool pcf) {
 
 TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
                               bool point = false, PointShadowMapping mapping = PointShadowMapping::Cube) {
-    const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf;
+    const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf && filter != ShadowFilter::Pcss;
     return {name, description, {"shadow"}, kSettings, moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
             [filter, point, mapping](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point, mapping); }};
 }
@@ -187,6 +192,9 @@ const TechniqueRegistrar msm(shadowTechnique("shadow.msm", "Moment shadow map: f
                                              ShadowFilter::Msm));
 const TechniqueRegistrar cube(shadowTechnique("shadow.cube", "Point light: six perspective maps (hard unless filter=pcf)",
                                               ShadowFilter::Hard, true));
+const TechniqueRegistrar pcss(shadowTechnique("shadow.pcss",
+                                              "Percentage-closer soft shadows of a point or sphere light of Light::radius (cube maps)",
+                                              ShadowFilter::Pcss, true));
 const TechniqueRegistrar paraboloid(shadowTechnique("shadow.paraboloid",
                                                     "Point light: two paraboloid maps with per-pixel depth (hard unless filter=pcf)",
                                                     ShadowFilter::Hard, true, PointShadowMapping::DualParaboloid));
