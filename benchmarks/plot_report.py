@@ -175,14 +175,19 @@ def shadow_section(rows):
              "fraction of the area light that arrives (1024 samples): there PCSS meets its own target and the hard "
              "point-light masks show what a hard lookup misses. Times are all the "
              "technique's passes: the G-buffer, the maps, for the moment filters the moments and their blur, and "
-             "the mask.", "",
-             "| scene | technique | preset | time ms | RMSE | false shadow | false light |",
-             "|---|---|---|---|---|---|---|"]
+             "the mask. `umbra leak` is the largest mask value over the pixels whose reference is 0 (the whole light "
+             "hidden) with every pixel within 3 pixels also 0, so that blur across the shadow's edge does not count "
+             "(empty: no such pixel). `memory` is what the G-buffer and the shadow-map module hold after the timed "
+             "frames (maps, moments, the mask, buffers), MiB.", "",
+             "| scene | technique | preset | time ms | RMSE | false shadow | false light | umbra leak | memory MiB |",
+             "|---|---|---|---|---|---|---|---|---|"]
     order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
     for r in sorted(srows, key=lambda r: (r["scene"], r["technique"], order.get(r["preset"], 9))):
-        fs, fl = r.get("false_shadow", ""), r.get("false_light", "")
+        fs, fl, leak = r.get("false_shadow", ""), r.get("false_light", ""), r.get("umbra_leak", "")
+        memory = r.get("memory_bytes", "")
         lines.append(f'| {r["scene"]} | {r["technique"]} | {r["preset"]} | {fmt(r["gpu_ms"])} | {fmt(r["rmse"])} | '
-                     f'{fmt(fs) if fs != "" else ""} | {fmt(fl) if fl != "" else ""} |')
+                     f'{fmt(fs) if fs != "" else ""} | {fmt(fl) if fl != "" else ""} | {fmt(leak) if leak != "" else ""} | '
+                     f'{fmt(memory / 2**20) if memory != "" else ""} |')
     return lines + [""]
 
 

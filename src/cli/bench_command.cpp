@@ -42,7 +42,8 @@ struct BenchOptions {
 const char* const kColumns[] = {"scene",    "technique", "preset",   "width",    "height",         "quantity",
                                 "clock",    "gpu_ms",    "cpu_ms",   "rmse",     "relmse",         "ssim",
                                 "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
-                                "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light"};
+                                "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light",
+                                "umbra_leak", "memory_bytes"};
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break, as
 // RFC 4180 has it ("llvmpipe (LLVM 15.0.6, 256 bits)").
@@ -83,6 +84,27 @@ Misclassified misclassified(const Image& value, const Image& expected, const Ima
     }
     if (pixels == 0) return {};
     return {double(falseShadow) / double(pixels), double(falseLight) / double(pixels)};
+}
+
+// The largest value a shadow mask keeps deep in the umbra: over the masked pixels whose
+// reference is 0 with every masked pixel within kUmbraMargin pixels also 0, so that a
+// filter's blur across the shadow's edge does not count. Negative: no such pixel.
+constexpr int kUmbraMargin = 3;
+double umbraLeak(const Image& value, const Image& expected, const Image& mask) {
+    const int w = value.width, h = value.height;
+    const auto at = [w](const Image& image, int x, int y) { return image.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)]; };
+    double leak = -1.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            bool deep = at(mask, x, y) > 0.0f && at(expected, x, y) == 0.0f;
+            for (int dy = -kUmbraMargin; dy <= kUmbraMargin && deep; ++dy)
+                for (int dx = -kUmbraMargin; dx <= kUmbraMargin && deep; ++dx) {
+                    const int u = std::clamp(x + dx, 0, w - 1), v = std::clamp(y + dy, 0, h - 1);
+                    deep = !(at(mask, u, v) > 0.0f) || at(expected, u, v) == 0.0f;
+                }
+            if (deep) leak = std::max(leak, double(at(value, x, y)));
+        }
+    return leak;
 }
 
 double median(std::vector<double> v) {
@@ -132,6 +154,7 @@ Image gbufferMask(const GBufferSamples& s) {
 struct Row {
     nlohmann::ordered_json fields;
     nlohmann::json passes;
+    nlohmann::ordered_json memory; //!< bytes per module after the timed frames
 };
 
 class Bench {
@@ -207,6 +230,7 @@ public:
             csv << "\n";
             nlohmann::json j = row.fields;
             j["passes"] = row.passes;
+            j["memory"] = row.memory;
             rows.push_back(j);
         }
         nlohmann::json doc = {{"rows", rows}, {"reference_performance", perf_}};
@@ -292,7 +316,19 @@ private:
                           {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
                           {"frames", o_.frames},     {"renderer", ctx.info().renderer},
-                          {"false_shadow", ""},      {"false_light", ""}};
+                          {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""}};
+            std::size_t memoryBytes = 0;
+            nlohmann::ordered_json memory = nlohmann::ordered_json::object();
+            for (const auto& [module, bytes] : run->memory()) {
+                memory[module] = bytes;
+                memoryBytes += bytes;
+            }
+            row.fields["memory_bytes"] = memoryBytes;
+            row.memory = memory;
+            if (m.shadowMask) {
+                const double leak = umbraLeak(m.value, expected, mask);
+                if (leak >= 0.0) row.fields["umbra_leak"] = leak;
+            }
             if (m.classify) {
                 const Misclassified wrong = misclassified(m.value, expected, mask);
                 row.fields["false_shadow"] = wrong.falseShadow;

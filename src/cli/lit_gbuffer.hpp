@@ -25,6 +25,10 @@ public:
 
     GBuffer& gbuffer() { return gbuffer_; }
     const GBufferView& view() const { return view_; }
+    //! GPU memory of the G-buffer and of the shadow maps, bytes.
+    std::vector<std::pair<std::string, std::size_t>> memory() const {
+        return {{"gbuffer", gbuffer_.memoryBytes()}, {"shadow_maps", shadows_.memoryBytes()}};
+    }
 
 private:
     GBuffer gbuffer_;

@@ -108,6 +108,10 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    std::vector<std::pair<std::string, std::size_t>> memory() const override {
+        return {{"gbuffer", gbuffer_.memoryBytes()}, {"ao", ao_.memoryBytes()}, {"voxelizer", voxelizer_.memoryBytes()}};
+    }
+
     std::vector<Measurement> measurements() override {
         std::vector<Measurement> m;
         const double radius = settings_.radius;

@@ -87,6 +87,12 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    std::vector<std::pair<std::string, std::size_t>> memory() const override {
+        auto m = lit_.memory();
+        m.insert(m.end(), {{"ao", ao_.memoryBytes()}, {"gi", gi_.memoryBytes()}, {"compose", composer_.memoryBytes()}});
+        return m;
+    }
+
     // No ground truth for the composite yet: its parts are measured by their own techniques.
     std::vector<Measurement> measurements() override { return {}; }
 

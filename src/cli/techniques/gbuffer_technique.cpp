@@ -53,6 +53,8 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    std::vector<std::pair<std::string, std::size_t>> memory() const override { return lit_.memory(); }
+
     // Positions and face normals against primary-ray hits (the reconstruction and
     // rasterization error); the direct radiance (shadowed through shadow maps unless
     // shadows=0) against direct light with visibility (what the shadow maps and the

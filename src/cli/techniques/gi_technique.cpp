@@ -79,6 +79,12 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    std::vector<std::pair<std::string, std::size_t>> memory() const override {
+        auto m = lit_.memory();
+        m.insert(m.end(), {{"gi", gi_.memoryBytes()}, {"voxelizer", voxelizer_.memoryBytes()}});
+        return m;
+    }
+
     std::vector<Measurement> measurements() override {
         // The G-buffer's direct light has no shadows yet: "indirect" is the error against the
         // true one-bounce light, "indirect_unshadowed" against the same gathering of the

@@ -124,6 +124,10 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    std::vector<std::pair<std::string, std::size_t>> memory() const override {
+        return {{"gbuffer", gbuffer_.memoryBytes()}, {"shadow_maps", shadows_.memoryBytes()}};
+    }
+
     std::vector<Measurement> measurements() override {
         Measurement m{"shadow", readTexture(ctx_, result_), reference::Shadow{usedLight_}};
         m.shadowMask = true;
