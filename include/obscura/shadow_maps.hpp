@@ -202,6 +202,16 @@ public:
     //! for settings out of range, an invalid scene or camera.
     const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings);
 
+    //! As above, but directional cascades split the view distances that `depth`'s pixels
+    //! hold (its nearest and farthest geometry: pass "shadow.depth_range", a GPU min/max and
+    //! an 8-byte read-back, which waits for the G-buffer) instead of the range over which the
+    //! scene's bounds are visible; meshes the bounds miss (MeshRefs) count too. `depth` must
+    //! be a view of `camera`: a depth pre-pass, or the last frame's G-buffer while the camera
+    //! has not moved. Without geometry in it, the bounds' range is used. Throws as above, and
+    //! Error{InvalidArgument} for a view of another camera or without depth.
+    const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings,
+                               const GBufferView& depth);
+
     //! The mask of Scene::lights[light] at the G-buffer's samples (pass "shadow.mask"),
     //! GL_R16F at the G-buffer's size. `maps` must come from render() with the G-buffer's
     //! camera. Throws Error{InvalidArgument} for settings out of range, a light without

@@ -18,6 +18,7 @@ using mat4 = glm::mat4;
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip (paraboloid: -> the map's frame)
 #define SHADOW_LOC_PARABOLOID_DEPTH 1 // paraboloid depth pass: (a, b, 2 / resolution), window depth b / distance - a
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
+#define SHADOW_RANGE_SSBO 5  // depth_range.comp.glsl: nearest and farthest view distance, float bits
 #define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (bound with its sampler by every reader)
 #define SHADOW_MOMENTS_UNIT 10 // sampler2DArray of the moment filters, linear
 #define SHADOW_DEPTH_READ_UNIT 11 // the maps as plain sampler2DArray (moments pass, PCSS blocker search)

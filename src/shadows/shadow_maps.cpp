@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <string>
 
 namespace obscura {
@@ -72,11 +74,13 @@ struct ShadowMaps::Impl {
     FrameUniforms frame;
     ShadowBinding binding;
     Texture moments, momentsTemp; // rgba32f arrays with the maps' layers, for the moment filters
+    Buffer rangeBuffer;           // depth_range.comp.glsl's result
     SizedTexture maskTexture;
     ShadowMapSet set;
 
     // The maps' layers, and what the mask pass needs to know of them.
-    std::vector<MapLayer> plan(const Scene& scene, const Camera& camera, const ShadowMapSettings& s) {
+    std::vector<MapLayer> plan(const Scene& scene, const Camera& camera, const ShadowMapSettings& s,
+                               const std::optional<DistanceRange>& depthRange) {
         const Bounds bounds = sceneBounds(scene);
         std::vector<MapLayer> cameras;
         const auto addCamera = [&](ShadowMapInfo& info, std::size_t k, const LightCamera& lc) {
@@ -118,7 +122,7 @@ struct ShadowMaps::Impl {
                 addCamera(info, 0, spotCamera(l, bounds, s.resolution));
                 info.layers = 1;
             } else {
-                const DistanceRange range = visibleDistances(camera, bounds);
+                const DistanceRange range = depthRange ? *depthRange : visibleDistances(camera, bounds);
                 const std::vector<double> ends = cascadeSplits(range.nearest, range.farthest, s.cascades, s.splitLambda);
                 double from = range.nearest;
                 info.sliceStart = static_cast<float>(range.nearest);
@@ -175,6 +179,34 @@ struct ShadowMaps::Impl {
         ctx.state.bindSampler(ctx, SHADOW_MOMENTS_UNIT, ctx.linearClampSampler());
     }
 
+    // The nearest and farthest view distance of the view's geometry pixels, if it has any.
+    std::optional<DistanceRange> measureDepthRange(const GBufferView& g, const Camera& camera) {
+        auto& gl = ctx.gl;
+        if (!(g.camera.view == camera.view && g.camera.projection == camera.projection && g.camera.clipDepth == camera.clipDepth))
+            throw Error(ErrorCode::InvalidArgument, "ShadowMaps::render: the depth view is of another camera");
+        const GBufferView view = checkScreenInputs(ctx, g, false, "ShadowMaps::render");
+        StateScope scope(ctx);
+        PassScope pass(ctx, "shadow.depth_range");
+        const GLuint init[2] = {0x7f800000u, 0u}; // +inf, 0
+        if (!rangeBuffer) rangeBuffer = createBuffer(ctx, sizeof init, nullptr, GL_DYNAMIC_STORAGE_BIT, "shadow.depth_range");
+        gl.NamedBufferSubData(rangeBuffer.get(), 0, sizeof init, init);
+        ctx.state.bindStorageBuffer(ctx, SHADOW_RANGE_SSBO, rangeBuffer.get());
+        frame.bind(ctx, view.camera, view.width, view.height);
+        bindScreenInputs(ctx, view, false);
+        gl.UseProgram(ctx.shaders->program({"shadows/depth_range.comp.glsl"}));
+        dispatchCompute2D(ctx, view.width, view.height, SHADOW_WORKGROUP);
+        gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        GLuint bits[2] = {0u, 0u};
+        gl.GetNamedBufferSubData(rangeBuffer.get(), 0, sizeof bits, bits);
+        if (bits[1] == 0u) return std::nullopt; // no geometry
+        float nearest = 0.0f, farthest = 0.0f;
+        std::memcpy(&nearest, &bits[0], sizeof nearest);
+        std::memcpy(&farthest, &bits[1], sizeof farthest);
+        const ProjectionInfo info = analyzeProjection(camera);
+        // A single depth (one flat wall facing the camera) still needs a slice of some width.
+        return DistanceRange{nearest, std::max(double(farthest), nearest * (1.0 + 1e-3) + info.nearPlane * 1e-3)};
+    }
+
     void ensureDepth(int resolution, int layers) {
         if (depth && resolution == depthResolution && layers == depthLayers) return;
         depth = createTexture2DArray(ctx, GL_DEPTH_COMPONENT32F, resolution, resolution, layers, "shadow.maps");
@@ -184,6 +216,9 @@ struct ShadowMaps::Impl {
         momentsTemp.reset();
         if (!fbo) fbo = createFramebuffer(ctx, "shadow.maps");
     }
+
+    const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings,
+                               const std::optional<DistanceRange>& depthRange);
 
     void drawMaps(const Scene& scene, const std::vector<MapLayer>& cameras) {
         auto& gl = ctx.gl;
@@ -227,11 +262,28 @@ ShadowMaps::ShadowMaps(Context& context) : impl_(std::make_unique<Impl>(context.
 ShadowMaps::~ShadowMaps() = default;
 
 const ShadowMapSet& ShadowMaps::render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings) {
+    return impl_->render(scene, camera, settings, std::nullopt);
+}
+
+const ShadowMapSet& ShadowMaps::render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings,
+                                       const GBufferView& depth) {
     auto& d = *impl_;
     validateSettings(settings, d.ctx.info.maxTextureSize);
     analyzeProjection(camera);
+    // Only cascades use the range: without a shadowed directional light, nothing to measure.
+    const bool cascaded = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+        return hasShadowMaps(l) && l.type == LightType::Directional;
+    });
+    return d.render(scene, camera, settings, cascaded ? d.measureDepthRange(depth, camera) : std::nullopt);
+}
+
+const ShadowMapSet& ShadowMaps::Impl::render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings,
+                                             const std::optional<DistanceRange>& depthRange) {
+    auto& d = *this;
+    validateSettings(settings, d.ctx.info.maxTextureSize);
+    analyzeProjection(camera);
     validateScene(scene);
-    const std::vector<MapLayer> cameras = d.plan(scene, camera, settings);
+    const std::vector<MapLayer> cameras = d.plan(scene, camera, settings, depthRange);
     d.set.camera = camera;
     d.set.resolution = settings.resolution;
     d.set.layers = static_cast<int>(cameras.size());
@@ -289,7 +341,8 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t moments = d.moments ? 2u * 16u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                                 std::size_t(d.depthLayers)
                                           : 0;
-    return maps + moments + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes();
+    return maps + moments + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes() +
+           (d.rangeBuffer ? 2 * sizeof(GLuint) : 0);
 }
 
 } // namespace obscura

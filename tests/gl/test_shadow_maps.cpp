@@ -361,6 +361,72 @@ TEST_CASE("A directional light's cascaded shadows of a plate match the reference
     }
 }
 
+TEST_CASE("Cascades fitted to the depth buffer span the visible distances and match the reference", "[shadows][reference]") {
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    const Scene scene = plateScene(sun);
+    constexpr int W = 96, H = 72;
+    // Looking down at the plate: the visible floor ends a few metres away, while the scene's
+    // 40 m floor is visible (by its bounds) out to ~25 m.
+    ShadowFixture f(Camera::perspective({{0.0f, 4.0f, 2.0f}, {0, 0, -0.5f}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    double nearest = INFINITY, farthest = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            if (f.positions.at(x, y, 3) != 0.0f) {
+                nearest = std::min(nearest, -double(f.positions.at(x, y, 2)));
+                farthest = std::max(farthest, -double(f.positions.at(x, y, 2)));
+            }
+    ShadowMapSettings maps;
+    maps.resolution = 1024;
+    maps.cascades = 3;
+    // The texel of the cascade a view distance falls in.
+    const auto texelAt = [](const ShadowMapInfo& m, double distance) {
+        std::size_t c = 0;
+        while (c + 1 < std::size_t(m.layers) && distance > m.sliceEnd[c]) ++c;
+        return m.texelSize[c];
+    };
+    const ShadowMapInfo byBounds = *f.shadows.render(scene, f.camera, maps).find(0);
+    const float boundsEnd = byBounds.sliceEnd[2];
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, maps, f.view);
+    const ShadowMapInfo& info = *set.find(0);
+    // The reduction reads the same depth the positions were reconstructed from: the range
+    // agrees to float rounding of the reconstruction (relative 1e-5).
+    CAPTURE(nearest, farthest, info.sliceStart, info.sliceEnd[2], boundsEnd);
+    CHECK(std::abs(info.sliceStart - nearest) <= 1e-5 * nearest);
+    CHECK(std::abs(info.sliceEnd[2] - farthest) <= 1e-5 * farthest);
+    CHECK(farthest < 0.5 * boundsEnd);
+    // The bounds' split spends cascades on distances with no geometry: where there is some,
+    // the depth's cascades are finer (at the middle of the range) or no coarser.
+    CHECK(texelAt(info, 0.5 * (nearest + farthest)) < texelAt(byBounds, 0.5 * (nearest + farthest)));
+    CHECK(texelAt(info, nearest) <= texelAt(byBounds, nearest) * 1.001f);
+    CHECK(texelAt(info, farthest) <= texelAt(byBounds, farthest) * 1.001f);
+    const reference::Reference truth = f.truth(scene);
+    const glm::dvec2 offset = glm::dvec2(sun.direction.x, sun.direction.z) * (kHeight / -sun.direction.y);
+    const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, offset, kPlate); };
+    ShadowMaskSettings s;
+    s.filter = ShadowFilter::Hard;
+    const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+    // The band of the cascaded test: 3 texels of the pixel's cascade or the next one.
+    const auto band = [&](const glm::dvec3& p) {
+        const double distance = -(glm::dmat4(f.camera.view) * glm::dvec4(p, 1.0)).z;
+        std::size_t c = 0;
+        while (c + 1 < std::size_t(info.layers) && distance > info.sliceEnd[c]) ++c;
+        return 3.0 * info.texelSize[std::min(c + 1, std::size_t(info.layers) - 1)] / 0.9;
+    };
+    CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+    // A scene without a shadowed directional light measures nothing.
+    Light spot = sun;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    CHECK(f.shadows.render(plateScene(spot), f.camera, maps, f.view).find(0)->layers == 1);
+    Camera moved = f.camera;
+    moved.view[3][0] += 0.1f;
+    CHECK_THROWS_WITH(f.shadows.render(scene, moved, maps, f.view), Catch::Contains("another camera"));
+}
+
 TEST_CASE("The G-buffer's direct light is shadowed by the maps of its lights", "[shadows][gbuffer][reference]") {
     Light light;
     light.type = LightType::Point;

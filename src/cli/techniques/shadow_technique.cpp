@@ -17,6 +17,7 @@ const std::vector<SettingInfo> kSettings = {
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
+    {"depth_bounds", "", "0|1", "cascades split the G-buffer's depth range (default 1) or the scene bounds' (0)"},
     {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
     {"pcf_kernel", "", "grid|poisson", "shadow.pcf: a grid, or 16 taps of a rotated Poisson disc"},
     {"pcss_blocker_fraction", "", "(0, 1)", "shadow.pcss: nearest blockers searched, fraction of the receiver's distance"},
@@ -59,6 +60,7 @@ public:
         else if (key == "resolution") maps_.resolution = static_cast<int>(parseNumber(key, value, 16, 8192, "texels"));
         else if (key == "cascades") maps_.cascades = static_cast<int>(parseNumber(key, value, 1, kMaxShadowCascades, ""));
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
+        else if (key == "depth_bounds") depthBounds_ = parseBool(key, value);
         else if (key == "filter")
             mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},
                                                                 {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
@@ -102,7 +104,8 @@ public:
         if (!why.empty()) throw Error(ErrorCode::InvalidArgument, "shadow: " + why);
         usedLight_ = light_ ? *light_ : *firstMappedLight(scene, point_);
         view_ = gbuffer_.render(scene, frame.camera, {frame.width, frame.height, false, {}});
-        const ShadowMapSet& maps = shadows_.render(scene, frame.camera, maps_);
+        const ShadowMapSet& maps =
+            depthBounds_ ? shadows_.render(scene, frame.camera, maps_, view_) : shadows_.render(scene, frame.camera, maps_);
         result_ = shadows_.mask(view_, maps, usedLight_, mask_);
     }
 
@@ -142,6 +145,7 @@ private:
     ShadowMapSettings maps_;
     ShadowMaskSettings mask_;
     bool point_;
+    bool depthBounds_ = true;
     std::optional<std::size_t> light_;
     std::size_t usedLight_ = 0;
     GBufferView view_;
