@@ -96,6 +96,9 @@ struct ShadowMapSettings {
     int cascades = 3;          //!< maps per directional light, [1, kMaxShadowCascades]
     float splitLambda = 0.75f; //!< PSSM weight of the logarithmic split (0: uniform), [0, 1]
     PointShadowMapping pointMapping = PointShadowMapping::Cube;
+    //! Also render reflective shadow maps (ShadowMapSet::flux, normal, position) of the spot
+    //! and directional lights' maps, in the same draws as their depth.
+    bool reflective = false;
 };
 
 //! The maps of one light.
@@ -130,6 +133,16 @@ OBSCURA_API bool hasShadowMaps(const Light& light);
 //! What ShadowMaps::render produced; valid until its next render.
 struct ShadowMapSet {
     unsigned depth = 0; //!< GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F; 0 when no light casts shadows
+    //! Reflective shadow maps (ShadowMapSettings::reflective; else 0), GL_TEXTURE_2D_ARRAY with
+    //! the layers of `depth`, filled for spot and directional lights' layers (point lights'
+    //! stay 0). Per texel, of the surface the light sees through it:
+    //!   flux      GL_RGBA16F: the flux it reflects, W (RGB): albedo times the power through
+    //!             the texel (directional: irradiance x texel area; spot: intensity x cone x
+    //!             the texel's solid angle), the material's albedo factor (not its texture);
+    //!   normal    GL_RGBA16F: its geometric (triangle) normal, world space, facing the light;
+    //!   position  GL_RGBA32F: its world position, world units.
+    //! Alpha is 1 where a surface was seen, 0 elsewhere.
+    unsigned flux = 0, normal = 0, position = 0;
     int resolution = 0; //!< texels per side
     int layers = 0;
     std::vector<ShadowMapInfo> maps;

@@ -25,3 +25,13 @@ vec3 clampRadiance(vec3 radiance) {
     radiance = mix(radiance, vec3(0.0), isnan(radiance));
     return clamp(radiance, vec3(0.0), vec3(kHalfMax));
 }
+
+// A spot light's cone (the reference's spotCone, src/reference/estimators.hpp): smooth from
+// cos(outer) to cos(inner); a hard edge when they coincide (smoothstep is undefined for equal
+// edges).
+float spotCone(float c, float cosInner, float cosOuter) {
+    float width = cosInner - cosOuter;
+    if (!(width > 0.0)) return c >= cosOuter ? 1.0 : 0.0;
+    float t = clamp((c - cosOuter) / width, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}

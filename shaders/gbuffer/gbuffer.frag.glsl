@@ -44,15 +44,6 @@ layout(std430, binding = GBUFFER_LIGHTS_SSBO_BINDING) readonly buffer Lights {
     LightData lights[];
 };
 
-// Smooth cone from cos(outer) to cos(inner); a hard edge when they coincide (smoothstep
-// is undefined for equal edges).
-float spotCone(float c, float cosInner, float cosOuter) {
-    float width = cosInner - cosOuter;
-    if (!(width > 0.0)) return c >= cosOuter ? 1.0 : 0.0;
-    float t = clamp((c - cosOuter) / width, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 #ifdef RECT_LIGHTS
 // Compiled in only for scenes with rect lights (llvmpipe runs both sides of a branch under
 // a mask). No local arrays: indexed ones cost llvmpipe about 15x the whole pass.

@@ -17,6 +17,12 @@ using mat4 = glm::mat4;
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip (paraboloid: -> the map's frame)
 #define SHADOW_LOC_PARABOLOID_DEPTH 1 // paraboloid depth pass: (a, b, 2 / resolution), window depth b / distance - a
+#define SHADOW_LOC_RSM_MODEL 2  // reflective pass: model -> world
+#define SHADOW_LOC_RSM_ALBEDO 3 // the mesh's material albedo
+#define SHADOW_LOC_RSM_LIGHT 4  // spot position or directional direction (world), w: SHADOW_LIGHT_*
+#define SHADOW_LOC_RSM_POWER 5  // color * intensity, w: texel side (see shadow_rsm.frag.glsl)
+#define SHADOW_LOC_RSM_SPOT 6   // spot axis (world, unit)
+#define SHADOW_LOC_RSM_CONE 7   // spot cos(inner), cos(outer)
 #define SHADOW_LIGHTS_SSBO 4 // ShadowParams per mapped light (shadow_sample.glsl)
 #define SHADOW_RANGE_SSBO 5  // depth_range.comp.glsl: nearest and farthest view distance, float bits
 #define SHADOW_MAP_UNIT 9     // sampler2DArrayShadow, one layer per map (bound with its sampler by every reader)

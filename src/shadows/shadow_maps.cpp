@@ -41,6 +41,8 @@ struct MapLayer {
     glm::dmat4 transform{1.0};
     bool paraboloid = false;
     glm::vec2 depthAB{0.0f};
+    const Light* reflective = nullptr; //!< the light, when this layer gets a reflective shadow map
+    float texelSize = 0.0f;            //!< ShadowMapInfo::texelSize of the layer
 };
 
 // Window depth (clip control zero-to-one: z_ndc) back to distance along the map's axis:
@@ -75,6 +77,7 @@ struct ShadowMaps::Impl {
     ShadowBinding binding;
     Texture moments, momentsTemp; // rgba32f arrays with the maps' layers, for the moment filters
     Buffer rangeBuffer;           // depth_range.comp.glsl's result
+    Texture flux, normal, position; // reflective shadow maps (ShadowMapSettings::reflective)
     SizedTexture maskTexture;
     ShadowMapSet set;
 
@@ -84,7 +87,9 @@ struct ShadowMaps::Impl {
         const Bounds bounds = sceneBounds(scene);
         std::vector<MapLayer> cameras;
         const auto addCamera = [&](ShadowMapInfo& info, std::size_t k, const LightCamera& lc) {
-            cameras.push_back({worldToClip(lc.camera), false, {}});
+            const Light& l = scene.lights[info.light];
+            const bool rsm = s.reflective && (l.type == LightType::Spot || l.type == LightType::Directional);
+            cameras.push_back({worldToClip(lc.camera), false, {}, rsm ? &l : nullptr, static_cast<float>(lc.texelSize)});
             info.worldToClip[k] = glm::mat4(cameras.back().transform);
             info.texelSize[k] = static_cast<float>(lc.texelSize);
             info.depthMapping[k] = depthMapping(lc.camera);
@@ -105,7 +110,7 @@ struct ShadowMaps::Impl {
                 for (int h = 0; h < 2; ++h) {
                     const auto k = static_cast<std::size_t>(h);
                     const ParaboloidMap pm = paraboloidHemisphere(l, h, bounds, s.resolution);
-                    cameras.push_back({pm.worldToMap, true, glm::vec2(pm.depthMapping)});
+                    cameras.push_back({pm.worldToMap, true, glm::vec2(pm.depthMapping), nullptr, 0.0f});
                     info.worldToClip[k] = glm::mat4(pm.worldToMap);
                     info.texelSize[k] = static_cast<float>(pm.texelSize);
                     info.depthMapping[k] = glm::vec4(pm.depthMapping);
@@ -214,11 +219,66 @@ struct ShadowMaps::Impl {
         depthLayers = layers;
         moments.reset(); // reallocated at the maps' size when a moment filter asks
         momentsTemp.reset();
+        flux.reset(); // reallocated when reflective maps are asked for
+        normal.reset();
+        position.reset();
         if (!fbo) fbo = createFramebuffer(ctx, "shadow.maps");
     }
 
     const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings,
                                const std::optional<DistanceRange>& depthRange);
+
+    void ensureReflective() {
+        if (flux) return;
+        flux = createTexture2DArray(ctx, GL_RGBA16F, depthResolution, depthResolution, depthLayers, "shadow.rsm_flux");
+        normal = createTexture2DArray(ctx, GL_RGBA16F, depthResolution, depthResolution, depthLayers, "shadow.rsm_normal");
+        position = createTexture2DArray(ctx, GL_RGBA32F, depthResolution, depthResolution, depthLayers, "shadow.rsm_position");
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        for (const Texture* t : {&flux, &normal, &position}) ctx.gl.ClearTexImage(t->get(), 0, GL_RGBA, GL_FLOAT, zero);
+    }
+
+    // Binds layer `layer` of the reflective maps as colour attachments 0..2 and clears them.
+    void attachReflective(GLint layer) {
+        auto& gl = ctx.gl;
+        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        gl.NamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT0, flux.get(), 0, layer);
+        gl.NamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT1, normal.get(), 0, layer);
+        gl.NamedFramebufferTextureLayer(fbo.get(), GL_COLOR_ATTACHMENT2, position.get(), 0, layer);
+        gl.NamedFramebufferDrawBuffers(fbo.get(), 3, buffers);
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        for (GLint i = 0; i < 3; ++i) gl.ClearNamedFramebufferfv(fbo.get(), GL_COLOR, i, zero);
+    }
+
+    // The depth and reflective maps of one spot or directional layer in one set of draws.
+    void drawReflective(const Scene& scene, const MapLayer& target, const std::vector<DrawableMesh>& hostMeshes) {
+        auto& gl = ctx.gl;
+        const GLuint program = ctx.shaders->program({"shadows/shadow_rsm.vert.glsl", "shadows/shadow_rsm.frag.glsl"});
+        gl.UseProgram(program);
+        const Light& l = *target.reflective;
+        const bool spot = l.type == LightType::Spot;
+        const glm::vec3 axis = glm::normalize(l.direction);
+        const glm::vec3 where = spot ? l.position : axis;
+        gl.ProgramUniform4f(program, SHADOW_LOC_RSM_LIGHT, where.x, where.y, where.z, spot ? SHADOW_LIGHT_SPOT : SHADOW_LIGHT_DIRECTIONAL);
+        const glm::vec3 power = l.color * l.intensity;
+        gl.ProgramUniform4f(program, SHADOW_LOC_RSM_POWER, power.x, power.y, power.z, target.texelSize);
+        gl.ProgramUniform4f(program, SHADOW_LOC_RSM_SPOT, axis.x, axis.y, axis.z, 0.0f);
+        gl.ProgramUniform2f(program, SHADOW_LOC_RSM_CONE, std::cos(l.innerAngle), std::cos(l.outerAngle));
+        const auto draw = [&](const DrawableMesh& mesh, const glm::mat4& model, std::uint32_t material) {
+            const glm::mat4 m(target.transform * glm::dmat4(model));
+            gl.ProgramUniformMatrix4fv(program, SHADOW_LOC_MODEL_LIGHT_CLIP, 1, GL_FALSE, glm::value_ptr(m));
+            gl.ProgramUniformMatrix4fv(program, SHADOW_LOC_RSM_MODEL, 1, GL_FALSE, glm::value_ptr(model));
+            const glm::vec3 albedo = scene.materials.at(material).albedo;
+            gl.ProgramUniform3f(program, SHADOW_LOC_RSM_ALBEDO, albedo.x, albedo.y, albedo.z);
+            drawMesh(ctx, mesh);
+        };
+        for (const Mesh& mesh : scene.meshes) {
+            const DrawableMesh d = meshes.cpuMesh(mesh.data);
+            if (d.count > 0) draw(d, mesh.model, mesh.material);
+        }
+        for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) draw(hostMeshes[i], scene.meshRefs[i].model, scene.meshRefs[i].material);
+        gl.NamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
+        for (GLenum a : {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2}) gl.NamedFramebufferTexture(fbo.get(), a, 0, 0);
+    }
 
     void drawMaps(const Scene& scene, const std::vector<MapLayer>& cameras) {
         auto& gl = ctx.gl;
@@ -234,6 +294,11 @@ struct ShadowMaps::Impl {
             gl.NamedFramebufferTextureLayer(fbo.get(), GL_DEPTH_ATTACHMENT, depth.get(), 0, static_cast<GLint>(layer));
             gl.ClearNamedFramebufferfv(fbo.get(), GL_DEPTH, 0, &clearDepth);
             const MapLayer& target = cameras[layer];
+            if (target.reflective) {
+                attachReflective(static_cast<GLint>(layer));
+                drawReflective(scene, target, hostMeshes);
+                continue;
+            }
             const GLuint program = target.paraboloid ? ctx.shaders->program({"shadows/shadow_paraboloid.vert.glsl",
                                                                               "shadows/shadow_paraboloid.geom.glsl",
                                                                               "shadows/shadow_paraboloid.frag.glsl"})
@@ -288,13 +353,19 @@ const ShadowMapSet& ShadowMaps::Impl::render(const Scene& scene, const Camera& c
     d.set.resolution = settings.resolution;
     d.set.layers = static_cast<int>(cameras.size());
     d.set.depth = 0;
+    d.set.flux = d.set.normal = d.set.position = 0;
     if (cameras.empty()) return d.set; // no shadowed light: no pass, no memory
     StateScope scope(d.ctx);
     PassScope pass(d.ctx, "shadow.maps");
     d.meshes.collectGarbage();
     d.ensureDepth(settings.resolution, static_cast<int>(cameras.size()));
+    const bool reflective = std::any_of(cameras.begin(), cameras.end(), [](const MapLayer& m) { return m.reflective != nullptr; });
+    if (reflective) d.ensureReflective();
     d.drawMaps(scene, cameras);
     d.set.depth = d.depth.get();
+    d.set.flux = reflective ? d.flux.get() : 0;
+    d.set.normal = reflective ? d.normal.get() : 0;
+    d.set.position = reflective ? d.position.get() : 0;
     barrierForReaders(d.ctx);
     return d.set;
 }
@@ -341,7 +412,10 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t moments = d.moments ? 2u * 16u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                                 std::size_t(d.depthLayers)
                                           : 0;
-    return maps + moments + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes() +
+    const std::size_t reflective = d.flux ? (8u + 8u + 16u) * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
+                                                std::size_t(d.depthLayers)
+                                          : 0;
+    return maps + moments + reflective + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes() +
            (d.rangeBuffer ? 2 * sizeof(GLuint) : 0);
 }
 

@@ -427,6 +427,90 @@ TEST_CASE("Cascades fitted to the depth buffer span the visible distances and ma
     CHECK_THROWS_WITH(f.shadows.render(scene, moved, maps, f.view), Catch::Contains("another camera"));
 }
 
+namespace {
+
+// One layer of a GL_TEXTURE_2D_ARRAY of RGBA, read back as floats.
+std::vector<float> readLayer(unsigned texture, int resolution, int layer) {
+    std::vector<float> texels(std::size_t(resolution) * std::size_t(resolution) * 4u);
+    glGetTextureSubImage(texture, 0, 0, 0, layer, resolution, resolution, 1, GL_RGBA, GL_FLOAT,
+                         static_cast<GLsizei>(texels.size() * sizeof(float)), texels.data());
+    return texels;
+}
+
+// Sum of the RGB channel c over the texels whose alpha is 1, and how many have alpha 1.
+std::pair<double, std::size_t> sumSeen(const std::vector<float>& texels, int c) {
+    double sum = 0.0;
+    std::size_t seen = 0;
+    for (std::size_t i = 0; i < texels.size(); i += 4)
+        if (texels[i + 3] == 1.0f) {
+            sum += texels[i + std::size_t(c)];
+            ++seen;
+        }
+    return {sum, seen};
+}
+
+} // namespace
+
+TEST_CASE("Reflective shadow maps hold the reflected flux, normal and position of what the light sees", "[shadows][rsm]") {
+    constexpr int W = 48, H = 36, R = 256;
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0.0f, -1.0f, 0.0f};
+    sun.intensity = 2.0f;
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 3.0f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.intensity = 5.0f;
+    spot.innerAngle = spot.outerAngle = 0.6f; // a hard cone: its solid angle is 2 pi (1 - cos 0.6)
+    Scene scene = plateScene(sun);
+    scene.lights.push_back(spot);
+    const double albedo = scene.materials[0].albedo.x;
+    ShadowFixture f(Camera::perspective({{0.0f, 4.0f, 2.0f}, {0, 0, -0.5f}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    f.render(scene);
+    ShadowMapSettings s;
+    s.resolution = R;
+    s.cascades = 1;
+    CHECK(f.shadows.render(scene, f.camera, s, f.view).flux == 0); // only when asked for
+    s.reflective = true;
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, s, f.view);
+    REQUIRE(set.flux != 0);
+    const ShadowMapInfo& sunMaps = *set.find(0);
+    const ShadowMapInfo& spotMaps = *set.find(1);
+    // The sun's cascade lies within the 40 m floor, so every texel sees the floor or the plate
+    // and the power through it, E s^2, comes back times the albedo: the sum is rho E (R s)^2.
+    // The 16F flux rounds each texel by at most 2^-11 relative, so the sum too.
+    const auto [sunFlux, sunSeen] = sumSeen(readLayer(set.flux, R, sunMaps.firstLayer), 0);
+    REQUIRE(sunSeen == std::size_t(R) * R);
+    const double side = double(sunMaps.texelSize[0]) * R;
+    CHECK(std::abs(sunFlux - albedo * sun.intensity * side * side) <= 4.9e-4 * sunFlux);
+    // The spot: the cone's solid angle times I times rho. The sum counts whole texels whose
+    // centre lies in the cone: along its edge (2 pi r texels, r = R / 2 on the map) each is
+    // off by at most half its solid angle, a relative 1 / r of the pi r^2 inside (plus 16F).
+    const auto [spotFlux, spotSeen] = sumSeen(readLayer(set.flux, R, spotMaps.firstLayer), 0);
+    const double cone = 2.0 * 3.14159265358979 * (1.0 - std::cos(0.6));
+    CAPTURE(spotFlux, albedo * spot.intensity * cone, spotSeen);
+    CHECK(std::abs(spotFlux - albedo * spot.intensity * cone) <= (2.0 / R + 4.9e-4) * spotFlux);
+    // Positions on the floor (y = 0) or the plate (y = 1), normals straight up (toward both lights).
+    for (const int layer : {sunMaps.firstLayer, spotMaps.firstLayer}) {
+        const std::vector<float> position = readLayer(set.position, R, layer), normal = readLayer(set.normal, R, layer);
+        int bad = 0, seen = 0;
+        for (std::size_t i = 0; i < position.size(); i += 4) {
+            if (position[i + 3] != 1.0f) continue;
+            ++seen;
+            const float y = position[i + 1];
+            bad += (std::abs(y) <= 1e-5f || std::abs(y - 1.0f) <= 1e-5f) && std::abs(normal[i + 1] - 1.0f) <= 1e-3f &&
+                           normal[i + 3] == 1.0f
+                       ? 0
+                       : 1;
+        }
+        CAPTURE(layer);
+        CHECK(seen > R * R / 2);
+        CHECK(bad == 0);
+    }
+    CHECK(f.shadows.memoryBytes() >= std::size_t(R) * R * 2 * (4 + 8 + 8 + 16));
+}
+
 TEST_CASE("The G-buffer's direct light is shadowed by the maps of its lights", "[shadows][gbuffer][reference]") {
     Light light;
     light.type = LightType::Point;

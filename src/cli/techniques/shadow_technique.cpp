@@ -17,6 +17,7 @@ const std::vector<SettingInfo> kSettings = {
     {"resolution", "texels", "[16, 8192]", "side of every map"},
     {"cascades", "", "[1, 4]", "maps per directional light"},
     {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
+    {"reflective", "", "0|1", "also render reflective shadow maps of spot and directional lights (timed in shadow.maps)"},
     {"depth_bounds", "", "0|1", "cascades split the G-buffer's depth range (default 1) or the scene bounds' (0)"},
     {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
     {"pcf_kernel", "", "grid|poisson", "shadow.pcf: a grid, or 16 taps of a rotated Poisson disc"},
@@ -61,6 +62,7 @@ public:
         else if (key == "cascades") maps_.cascades = static_cast<int>(parseNumber(key, value, 1, kMaxShadowCascades, ""));
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "depth_bounds") depthBounds_ = parseBool(key, value);
+        else if (key == "reflective") maps_.reflective = parseBool(key, value);
         else if (key == "filter")
             mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},
                                                                 {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
