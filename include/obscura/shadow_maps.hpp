@@ -151,6 +151,17 @@ struct ShadowMapSet {
     const ShadowMapInfo* find(std::size_t light) const;
 };
 
+//! How the moment filters store their moments.
+enum class ShadowMomentPrecision {
+    Float32, //!< RGBA32F
+    //! 8 bytes a texel: RGBA16F for Vsm, Esm, Evsm (Evsm's exponents clamped to
+    //! ln(65504) / 2 = 5.54 so that e^(2c) stays finite), and for Msm 16-bit UNORM in Peters
+    //! and Klein's optimized basis with their 64-bit bias (6e-5 toward uniform moments).
+    //! Half floats round t and t^2 by 2^-11 relative, so Vsm's variance floor wants to be
+    //! ~1e-4 rather than 1e-6 for the same light bleeding.
+    Bits16,
+};
+
 enum class PcfKernel {
     Grid,        //!< (2 pcfRadius + 1)^2 taps one texel apart
     PoissonDisc, //!< 16 taps, a rotated Poisson disc of radius pcfRadius + 0.5 texels
@@ -186,10 +197,12 @@ struct ShadowMaskSettings {
     // Moment filters (Vsm .. Msm): the maps' distances t in [0, 1] (near to far plane) become
     // moments in a 32F array, blurred by a separable Gaussian, sampled bilinearly.
     int momentBlur = 2;               //!< Gaussian radius, texels (sigma = radius / 2), [0, 8]
+    ShadowMomentPrecision momentPrecision = ShadowMomentPrecision::Float32;
     float minVariance = 1e-6f;        //!< Vsm, Evsm: variance floor, units of t^2 (warped: scaled), [0, 1]
     float lightBleedReduction = 0.2f; //!< Vsm, Evsm: Chebyshev bounds below this count as 0, [0, 1)
     //! Esm: exponent c, [0, 80] (log-space filtering keeps e^(c t) out of the float range);
-    //! Evsm: the positive warp's c+, clamped to 42 so that e^(2 c+) stays finite in 32F.
+    //! Evsm: the positive warp's c+, clamped to 42 so that e^(2 c+) stays finite in 32F
+    //! (5.54 with Bits16).
     float exponent = 40.0f;
     float negativeExponent = 5.0f;    //!< Evsm4: the negative warp's c-, [0, 42]
     //! ShadowMaps::mask only: a screen-space ray this long toward the light (ScreenVisibility's

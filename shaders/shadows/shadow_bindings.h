@@ -81,6 +81,25 @@ struct ShadowParams {
     vec4 poisson[SHADOW_POISSON_TAPS / 2]; // the Poisson disc's points in the unit disc, two per vec4
 };
 
+#ifndef __cplusplus
+// Storage of the moment filters' maps: 32F, or with ShadowMomentPrecision::Bits16 half floats
+// (MOMENTS_HALF: VSM, ESM, EVSM) or 16-bit UNORM in an optimized basis (MOMENTS_UNORM: MSM).
+#if defined(MOMENTS_UNORM)
+#define SHADOW_MOMENT_FORMAT rgba16
+#elif defined(MOMENTS_HALF)
+#define SHADOW_MOMENT_FORMAT rgba16f
+#else
+#define SHADOW_MOMENT_FORMAT rgba32f
+#endif
+// EVSM's largest exponent: e^(2 c) must stay finite in the moments' storage (32F: 3.4e38,
+// 16F: 65504, so c <= ln(65504) / 2 = 5.54).
+#ifdef MOMENTS_HALF
+#define SHADOW_EVSM_MAX_EXPONENT 5.54
+#else
+#define SHADOW_EVSM_MAX_EXPONENT 42.0
+#endif
+#endif
+
 #ifdef __cplusplus
 static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 7 * 16 + SHADOW_POISSON_TAPS * 8, "ShadowParams must match std140");
 } // namespace obscura::shader

@@ -8,6 +8,9 @@
 //! variant: FILTER=4
 //! variant: FILTER=5
 //! variant: FILTER=6
+//! variant: FILTER=7
+//! variant: FILTER=5 MOMENTS_HALF
+//! variant: FILTER=6 MOMENTS_UNORM
 #include "../visibility/screen_march.glsl"
 #include "shadow_sample.glsl"
 

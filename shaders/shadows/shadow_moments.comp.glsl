@@ -5,6 +5,8 @@
 //! variant: FILTER=4
 //! variant: FILTER=5
 //! variant: FILTER=6
+//! variant: FILTER=4 MOMENTS_HALF
+//! variant: FILTER=6 MOMENTS_UNORM
 #include "shadow_bindings.h"
 #ifndef FILTER
 #define FILTER SHADOW_FILTER_VSM // a moment filter: the pass exists only for them
@@ -13,7 +15,7 @@
 
 layout(local_size_x = SHADOW_WORKGROUP, local_size_y = SHADOW_WORKGROUP) in;
 layout(binding = SHADOW_DEPTH_READ_UNIT) uniform sampler2DArray depthMaps;
-layout(binding = SHADOW_MOMENTS_IMAGE, rgba32f) writeonly uniform image2DArray momentsOut;
+layout(binding = SHADOW_MOMENTS_IMAGE, SHADOW_MOMENT_FORMAT) writeonly uniform image2DArray momentsOut;
 layout(location = SHADOW_LOC_LAYER_RANGE) uniform ivec2 layers; // first layer of the light, maps
 
 void main() {

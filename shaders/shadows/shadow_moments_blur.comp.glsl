@@ -3,6 +3,8 @@
 // the largest tap so that no exponential overflows.
 //! variant: FILTER=2
 //! variant: FILTER=3
+//! variant: FILTER=3 MOMENTS_HALF
+//! variant: FILTER=2 MOMENTS_UNORM
 #include "shadow_bindings.h"
 
 #ifndef FILTER
@@ -10,8 +12,8 @@
 #endif
 
 layout(local_size_x = SHADOW_WORKGROUP, local_size_y = SHADOW_WORKGROUP) in;
-layout(binding = SHADOW_MOMENTS_READ_IMAGE, rgba32f) readonly uniform image2DArray momentsIn;
-layout(binding = SHADOW_MOMENTS_IMAGE, rgba32f) writeonly uniform image2DArray momentsOut;
+layout(binding = SHADOW_MOMENTS_READ_IMAGE, SHADOW_MOMENT_FORMAT) readonly uniform image2DArray momentsIn;
+layout(binding = SHADOW_MOMENTS_IMAGE, SHADOW_MOMENT_FORMAT) writeonly uniform image2DArray momentsOut;
 layout(location = SHADOW_LOC_FILTER_PARAMS) uniform ivec2 blur;  // radius, direction (0: x, 1: y)
 layout(location = SHADOW_LOC_LAYER_RANGE) uniform ivec2 layers; // first layer, maps
 

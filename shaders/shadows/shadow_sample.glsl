@@ -29,12 +29,27 @@ float shadowLinear(int k, int c, float d) {
     return clamp((distance - m.z) / (m.w - m.z), 0.0, 1.0);
 }
 
-// The exponential warps of EVSM: t' = 2 t - 1 in [-1, 1], exponents clamped for 32F.
+// The exponential warps of EVSM: t' = 2 t - 1 in [-1, 1], exponents clamped for the storage.
 vec2 shadowWarp(int k, float t) {
-    const vec2 c = clamp(shadowLights[k].moments.zw, vec2(0.0), vec2(42.0));
+    const vec2 c = clamp(shadowLights[k].moments.zw, vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT));
     const float w = 2.0 * t - 1.0;
     return vec2(exp(c.x * w), -exp(-c.y * w));
 }
+
+#ifdef MOMENTS_UNORM
+// Peters and Klein 2015's basis for 16-bit moments: the four moments of t in [0, 1], so
+// transformed (and offset), fill [0, 1] with little quantization error; the blur is linear,
+// so it may run on the transformed moments. (The paper's published constants.)
+const mat4 shadowMsmEncode = mat4(-2.07224649, 13.7948857237, 0.105877704, 9.7924062118,      //
+                                  32.23703778, -59.4683975703, -1.9077466311, -33.7652110555, //
+                                  -68.571074599, 82.0359750338, 9.3496555107, 47.9456096605,  //
+                                  39.3703274134, -35.364903257, -6.6543490743, -23.9728048165);
+const mat4 shadowMsmDecode = mat4(0.2227744146, 0.1549679261, 0.1451988946, 0.163127443,     //
+                                  0.0771972861, 0.1394629426, 0.2120202157, 0.2591432266,    //
+                                  0.7926986636, 0.7963415838, 0.7258694464, 0.6539092497,    //
+                                  0.0319417555, -0.1722823173, -0.2758014811, -0.3376131734);
+const float shadowMsmOffset = 0.035955884801;
+#endif
 
 // What the moment filters store for distance t (before prefiltering).
 vec4 shadowMomentsOf(float t, int k) {
@@ -43,6 +58,8 @@ vec4 shadowMomentsOf(float t, int k) {
 #elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
     const vec2 w = shadowWarp(k, t);
     return vec4(w.x, w.x * w.x, w.y, w.y * w.y);
+#elif FILTER == SHADOW_FILTER_MSM && defined(MOMENTS_UNORM)
+    return shadowMsmEncode * vec4(t, t * t, t * t * t, t * t * t * t) + vec4(shadowMsmOffset, 0.0, 0.0, 0.0);
 #elif FILTER == SHADOW_FILTER_MSM
     return vec4(t, t * t, t * t * t, t * t * t * t);
 #else
@@ -63,7 +80,12 @@ float shadowChebyshev(vec2 m, float t, float minVariance, float bleed) {
 // from four moments, biased toward those of a uniform distribution for stability (3e-5 for
 // 32F moments).
 float shadowHamburger(vec4 b, float t) {
+#ifdef MOMENTS_UNORM
+    // Back from the 16-bit basis; the paper's bias for 64-bit moments.
+    b = mix(shadowMsmDecode * (b - vec4(shadowMsmOffset, 0.0, 0.0, 0.0)), vec4(0.5), 6e-5);
+#else
     b = mix(b, vec4(0.5, 0.5, 0.5, 0.5), 3e-5);
+#endif
     const float l32d22 = -b.x * b.y + b.z;
     const float d22 = -b.x * b.x + b.y;
     const float squaredVariance = -b.y * b.y + b.w;
@@ -226,7 +248,7 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const float lit = clamp(exp(m.x - clamp(settings.z, 0.0, 80.0) * t), 0.0, 1.0);
 #elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
     // The variance floor in warped units: scaled by the warp's slope at t.
-    const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(settings.zw, vec2(0.0), vec2(42.0)) * w;
+    const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(settings.zw, vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT)) * w;
     // (bounded: c+ = 42 at t = 1 with a floor near 1 would overflow)
     float lit = shadowChebyshev(m.xy, w.x, min(settings.x * c2.x * c2.x, 1e30), settings.y);
 #if FILTER == SHADOW_FILTER_EVSM4

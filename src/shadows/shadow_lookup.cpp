@@ -122,6 +122,18 @@ bool isMomentFilter(ShadowFilter filter) { return SHADOW_FILTER_MOMENTS(shadowFi
 
 std::string shadowFilterDefine(ShadowFilter filter) { return "FILTER=" + std::to_string(shadowFilterCode(filter)); }
 
+std::vector<std::string> shadowMaskDefines(const ShadowMaskSettings& s) {
+    std::vector<std::string> defines{shadowFilterDefine(s.filter)};
+    if (isMomentFilter(s.filter) && s.momentPrecision == ShadowMomentPrecision::Bits16)
+        defines.push_back(s.filter == ShadowFilter::Msm ? "MOMENTS_UNORM" : "MOMENTS_HALF");
+    return defines;
+}
+
+GLenum shadowMomentFormat(const ShadowMaskSettings& s) {
+    if (s.momentPrecision == ShadowMomentPrecision::Float32) return GL_RGBA32F;
+    return s.filter == ShadowFilter::Msm ? GL_RGBA16 : GL_RGBA16F;
+}
+
 void ShadowBinding::bind(ContextImpl& ctx, GLuint maps, const std::vector<shader::ShadowParams>& records,
                          ShadowFilter filter) {
     if (!records_ || capacity_ < records.size()) {

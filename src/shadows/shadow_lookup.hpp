@@ -27,6 +27,11 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
 //! The shader's code of the filter (SHADOW_FILTER_*) and its define (FILTER=...).
 int shadowFilterCode(ShadowFilter filter);
 std::string shadowFilterDefine(ShadowFilter filter);
+//! The mask and moment passes' defines: the filter's, and for a moment filter its storage
+//! (MOMENTS_HALF, MOMENTS_UNORM; see shadow_bindings.h).
+std::vector<std::string> shadowMaskDefines(const ShadowMaskSettings& s);
+//! The moment maps' GL format for `s` (a moment filter).
+GLenum shadowMomentFormat(const ShadowMaskSettings& s);
 //! Vsm, Esm, Evsm2, Evsm4, Msm: looked up in prefiltered moments, not in the depth maps.
 bool isMomentFilter(ShadowFilter filter);
 

@@ -75,7 +75,8 @@ struct ShadowMaps::Impl {
     Framebuffer fbo;
     FrameUniforms frame;
     ShadowBinding binding;
-    Texture moments, momentsTemp; // rgba32f arrays with the maps' layers, for the moment filters
+    Texture moments, momentsTemp; // arrays with the maps' layers, for the moment filters
+    GLenum momentsFormat = GL_NONE; // theirs (shadowMomentFormat)
     Buffer rangeBuffer;           // depth_range.comp.glsl's result
     Texture flux, normal, position; // reflective shadow maps (ShadowMapSettings::reflective)
     SizedTexture maskTexture;
@@ -149,24 +150,26 @@ struct ShadowMaps::Impl {
     void prepareMoments(const ShadowMapInfo& info, const ShadowMaskSettings& s) {
         auto& gl = ctx.gl;
         PassScope pass(ctx, "shadow.moments");
-        if (!moments) {
-            moments = createTexture2DArray(ctx, GL_RGBA32F, depthResolution, depthResolution, depthLayers, "shadow.moments");
-            momentsTemp = createTexture2DArray(ctx, GL_RGBA32F, depthResolution, depthResolution, depthLayers, "shadow.moments_temp");
+        const GLenum format = shadowMomentFormat(s);
+        if (!moments || momentsFormat != format) {
+            moments = createTexture2DArray(ctx, format, depthResolution, depthResolution, depthLayers, "shadow.moments");
+            momentsTemp = createTexture2DArray(ctx, format, depthResolution, depthResolution, depthLayers, "shadow.moments_temp");
+            momentsFormat = format;
         }
-        const Defines filter{shadowFilterDefine(s.filter)};
+        const Defines filter = shadowMaskDefines(s);
         GLuint program = ctx.shaders->program({"shadows/shadow_moments.comp.glsl"}, filter);
         gl.UseProgram(program);
         gl.ProgramUniform2i(program, SHADOW_LOC_LAYER_RANGE, info.firstLayer, info.layers);
         ctx.state.bindTexture(ctx, SHADOW_DEPTH_READ_UNIT, depth.get());
         ctx.state.bindSampler(ctx, SHADOW_DEPTH_READ_UNIT, ctx.nearestClampSampler());
-        ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, moments.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, moments.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, format);
         const GLuint groups = static_cast<GLuint>((depthResolution + SHADOW_WORKGROUP - 1) / SHADOW_WORKGROUP);
         gl.DispatchCompute(groups, groups, static_cast<GLuint>(info.layers));
         if (s.momentBlur > 0) {
             // ESM's log-space moment has its own blur; the others are plain averages.
-            program = ctx.shaders->program({"shadows/shadow_moments_blur.comp.glsl"},
-                                           {"FILTER=" + std::to_string(s.filter == ShadowFilter::Esm ? SHADOW_FILTER_ESM
-                                                                                                     : SHADOW_FILTER_VSM)});
+            Defines blur = filter; // the storage's define after the filter's
+            blur[0] = "FILTER=" + std::to_string(s.filter == ShadowFilter::Esm ? SHADOW_FILTER_ESM : SHADOW_FILTER_VSM);
+            program = ctx.shaders->program({"shadows/shadow_moments_blur.comp.glsl"}, blur);
             gl.UseProgram(program);
             gl.ProgramUniform2i(program, SHADOW_LOC_LAYER_RANGE, info.firstLayer, info.layers);
             for (int direction = 0; direction < 2; ++direction) {
@@ -174,8 +177,8 @@ struct ShadowMaps::Impl {
                 const GLuint to = direction == 0 ? momentsTemp.get() : moments.get();
                 gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
                 gl.ProgramUniform2i(program, SHADOW_LOC_FILTER_PARAMS, s.momentBlur, direction);
-                ctx.state.bindImage(ctx, SHADOW_MOMENTS_READ_IMAGE, from, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-                ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, to, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+                ctx.state.bindImage(ctx, SHADOW_MOMENTS_READ_IMAGE, from, 0, GL_TRUE, 0, GL_READ_ONLY, format);
+                ctx.state.bindImage(ctx, SHADOW_MOMENTS_IMAGE, to, 0, GL_TRUE, 0, GL_WRITE_ONLY, format);
                 gl.DispatchCompute(groups, groups, static_cast<GLuint>(info.layers));
             }
         }
@@ -218,6 +221,7 @@ struct ShadowMaps::Impl {
         depthResolution = resolution;
         depthLayers = layers;
         moments.reset(); // reallocated at the maps' size when a moment filter asks
+        momentsFormat = GL_NONE;
         momentsTemp.reset();
         flux.reset(); // reallocated when reflective maps are asked for
         normal.reset();
@@ -397,7 +401,7 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     // After the moments' own pass: passes are timed one after another, never nested.
     PassScope pass(ctx, "shadow.mask");
     const GLuint out = d.maskTexture.ensure(ctx, GL_R16F, view.width, view.height, "shadow.mask");
-    ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"}, {shadowFilterDefine(settings.filter)}));
+    ctx.gl.UseProgram(ctx.shaders->program({"shadows/shadow_mask.comp.glsl"}, shadowMaskDefines(settings)));
     ctx.state.bindImage(ctx, SHADOW_MASK_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     dispatchCompute2D(ctx, view.width, view.height, SHADOW_WORKGROUP);
     barrierForReaders(ctx);
@@ -409,7 +413,8 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t maps = d.depth ? 4u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                            std::size_t(d.depthLayers)
                                      : 0;
-    const std::size_t moments = d.moments ? 2u * 16u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
+    const std::size_t momentBytes = d.momentsFormat == GL_RGBA32F ? 16u : 8u;
+    const std::size_t moments = d.moments ? 2u * momentBytes * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                                 std::size_t(d.depthLayers)
                                           : 0;
     const std::size_t reflective = d.flux ? (8u + 8u + 16u) * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *

@@ -234,12 +234,18 @@ TEST_CASE("Moment filters light the lit side fully and leak at most their bound 
     // The map's distances run along the spot's axis from its near to its far plane; the
     // plate is 1 m nearer than the floor under it: dt = 1 / (far - near) apart.
     const double dt = 1.0 / (info.depthMapping[0].w - info.depthMapping[0].z);
+    for (const ShadowMomentPrecision precision : {ShadowMomentPrecision::Float32, ShadowMomentPrecision::Bits16})
     for (const ShadowFilter filter : {ShadowFilter::Vsm, ShadowFilter::Esm, ShadowFilter::Evsm2, ShadowFilter::Evsm4, ShadowFilter::Msm}) {
         ShadowMaskSettings s;
         s.filter = filter;
+        s.momentPrecision = precision;
+        const bool half = precision == ShadowMomentPrecision::Bits16;
         const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
         // In the umbra: VSM and EVSM's Chebyshev bound is at most minVariance / dt^2 (in warped
-        // units likewise), far below the light-bleeding cut, so exactly 0; ESM leaks
+        // units likewise), far below the light-bleeding cut, so exactly 0. With 16 bits the
+        // rounding of the moments (2^-11 relative) adds at most 3 2^-11 t^2 to the variance:
+        // VSM's bound stays below 1.5e-3 / dt^2 (dt ~ 1/3 here: 0.013), EVSM's (c <= 5.54) below
+        // 1.5e-3 / (e^(2 c dt) - 1)^2, both under the cut: still exactly 0. ESM leaks
         // e^(-c dt). MSM's leak through its bias toward uniform moments (3e-5) has no closed
         // form here: 1e-3 is not derived, it is 50x the 1.9e-5 measured, and far below a
         // visible leak.
@@ -266,7 +272,7 @@ TEST_CASE("Moment filters light the lit side fully and leak at most their bound 
                     worstLeak = std::max(worstLeak, v);
                 }
             }
-        INFO("filter " << static_cast<int>(filter) << ": " << lit << " lit pixels, the darkest " << worstLit << "; " << umbra
+        INFO("filter " << static_cast<int>(filter) << (half ? " (16 bit)" : "") << ": " << lit << " lit pixels, the darkest " << worstLit << "; " << umbra
                        << " umbra pixels, the brightest " << worstLeak << " (bound " << leak << ")");
         CHECK(lit > W * H / 3);
         CHECK(umbra > 20);
@@ -623,13 +629,15 @@ TEST_CASE("Point and spot lights inside geometry or on a vertex and extreme expo
             f.render(scene);
             const ShadowMapSet& set = f.shadows.render(scene, f.camera, {128, 1, 0.5f, mapping});
             for (const ShadowFilter filter : kAllFilters)
-                for (const float exponent : {0.0f, 42.0f, 80.0f}) {
+                for (const float exponent : {0.0f, 42.0f, 80.0f})
+                for (const ShadowMomentPrecision precision : {ShadowMomentPrecision::Float32, ShadowMomentPrecision::Bits16}) {
                     ShadowMaskSettings s;
                     s.filter = filter;
+                    s.momentPrecision = precision; // 16F EVSM at c = 42: clamped to 5.54
                     s.exponent = exponent; // ESM up to 80; EVSM at and beyond its 32F clamp (42)
                     s.negativeExponent = std::min(exponent, 42.0f);
                     CAPTURE(position.x, position.y, position.z, static_cast<int>(type), static_cast<int>(mapping),
-                            static_cast<int>(filter), exponent);
+                            static_cast<int>(filter), exponent, static_cast<int>(precision));
                     CHECK(badValues(readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s))) == 0);
                 }
             GBufferSettings lit{W, H, true, {}};

@@ -28,6 +28,7 @@ const std::vector<SettingInfo> kSettings = {
     {"cascade_blend", "", "[0, 0.5]", "fraction of each cascade blended into the next"},
     {"receiver_plane", "", "0|1", "PCF: receiver-plane depth bias (default 1)"},
     {"moment_blur", "texels", "[0, 8]", "moment filters: Gaussian prefilter radius"},
+    {"moment_precision", "bits", "32|16", "moment filters: RGBA32F, or 16F (MSM: 16-bit UNORM, optimized basis)"},
     {"min_variance", "t^2", "[0, 1]", "VSM, EVSM: variance floor"},
     {"light_bleed_reduction", "", "[0, 1)", "VSM, EVSM: Chebyshev bounds below it count as 0"},
     {"exponent", "", "[0, 80]", "ESM: c; EVSM: c+ (clamped to 42)"},
@@ -77,6 +78,9 @@ public:
         else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "receiver_plane") mask_.receiverPlane = parseBool(key, value);
+        else if (key == "moment_precision")
+            mask_.momentPrecision = parseChoice<ShadowMomentPrecision>(
+                key, value, {{"32", ShadowMomentPrecision::Float32}, {"16", ShadowMomentPrecision::Bits16}});
         else if (key == "moment_blur") mask_.momentBlur = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
         else if (key == "min_variance") mask_.minVariance = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "light_bleed_reduction")
@@ -158,6 +162,7 @@ private:
 std::vector<Preset> momentPresets() {
     return {{"low", {{"resolution", "256"}, {"cascades", "1"}, {"moment_blur", "1"}}},
             {"medium", {{"resolution", "512"}, {"cascades", "2"}, {"moment_blur", "2"}}},
+            {"medium_16bit", {{"resolution", "512"}, {"cascades", "2"}, {"moment_blur", "2"}, {"moment_precision", "16"}}},
             {"high", {{"resolution", "1024"}, {"cascades", "2"}, {"moment_blur", "2"}}},
             {"ultra", {{"resolution", "1024"}, {"cascades", "4"}, {"moment_blur", "3"}}}};
 }
