@@ -178,16 +178,18 @@ def shadow_section(rows):
              "the mask. `umbra leak` is the largest mask value over the pixels whose reference is 0 (the whole light "
              "hidden) with every pixel within 3 pixels also 0, so that blur across the shadow's edge does not count "
              "(empty: no such pixel). `memory` is what the G-buffer and the shadow-map module hold after the timed "
-             "frames (maps, moments, the mask, buffers), MiB.", "",
-             "| scene | technique | preset | time ms | RMSE | false shadow | false light | umbra leak | memory MiB |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "frames (maps, moments, the mask, buffers), MiB. `shimmer` (directional lights): the mean absolute change "
+             "of the mask at the same receivers when the cascades are fitted to the camera moved by k/8 of a texel "
+             "(k = 1..8), against the unmoved fit; 0 means the snapped cascades do not shimmer.", "",
+             "| scene | technique | preset | time ms | RMSE | false shadow | false light | umbra leak | memory MiB | shimmer |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
     for r in sorted(srows, key=lambda r: (r["scene"], r["technique"], order.get(r["preset"], 9))):
         fs, fl, leak = r.get("false_shadow", ""), r.get("false_light", ""), r.get("umbra_leak", "")
-        memory = r.get("memory_bytes", "")
+        memory, shimmer = r.get("memory_bytes", ""), r.get("shimmer", "")
         lines.append(f'| {r["scene"]} | {r["technique"]} | {r["preset"]} | {fmt(r["gpu_ms"])} | {fmt(r["rmse"])} | '
                      f'{fmt(fs) if fs != "" else ""} | {fmt(fl) if fl != "" else ""} | {fmt(leak) if leak != "" else ""} | '
-                     f'{fmt(memory / 2**20) if memory != "" else ""} |')
+                     f'{fmt(memory / 2**20) if memory != "" else ""} | {fmt(shimmer) if shimmer != "" else ""} |')
     return lines + [""]
 
 

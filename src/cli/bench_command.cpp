@@ -43,7 +43,7 @@ const char* const kColumns[] = {"scene",    "technique", "preset",   "width",   
                                 "clock",    "gpu_ms",    "cpu_ms",   "rmse",     "relmse",         "ssim",
                                 "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
                                 "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light",
-                                "umbra_leak", "memory_bytes"};
+                                "umbra_leak", "memory_bytes", "shimmer"};
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break, as
 // RFC 4180 has it ("llvmpipe (LLVM 15.0.6, 256 bits)").
@@ -316,7 +316,8 @@ private:
                           {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
                           {"frames", o_.frames},     {"renderer", ctx.info().renderer},
-                          {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""}};
+                          {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""},     {"shimmer", ""}};
+            if (m.shimmer) row.fields["shimmer"] = *m.shimmer;
             std::size_t memoryBytes = 0;
             nlohmann::ordered_json memory = nlohmann::ordered_json::object();
             for (const auto& [module, bytes] : run->memory()) {

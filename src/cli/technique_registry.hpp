@@ -52,6 +52,9 @@ struct Measurement {
     //! With shadowMask: also count the pixels the technique classifies wrongly (value < 0.5
     //! against a lit reference: false shadow; >= 0.5 against a shadowed one: false light).
     bool classify = false;
+    //! Cascaded shadows: the mean absolute change of the mask at fixed receivers when the
+    //! camera moves by fractions of a texel (see shadow_technique.cpp); empty otherwise.
+    std::optional<double> shimmer{};
 };
 
 //! The G-buffer samples a technique worked on (view-space positions with alpha = geometry,

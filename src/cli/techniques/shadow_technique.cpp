@@ -6,6 +6,9 @@
 #include "obscura/shadow_maps.hpp"
 #include "technique_registry.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
 #include <optional>
 
 namespace obscura::cli {
@@ -109,10 +112,10 @@ public:
         const std::string why = unsupported(scene);
         if (!why.empty()) throw Error(ErrorCode::InvalidArgument, "shadow: " + why);
         usedLight_ = light_ ? *light_ : *firstMappedLight(scene, point_);
+        scene_ = &scene;
+        camera_ = frame.camera;
         view_ = gbuffer_.render(scene, frame.camera, {frame.width, frame.height, false, {}});
-        const ShadowMapSet& maps =
-            depthBounds_ ? shadows_.render(scene, frame.camera, maps_, view_) : shadows_.render(scene, frame.camera, maps_);
-        result_ = shadows_.mask(view_, maps, usedLight_, mask_);
+        renderMask();
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
@@ -141,13 +144,55 @@ public:
         Measurement m{"shadow", readTexture(ctx_, result_), reference::Shadow{usedLight_}};
         m.shadowMask = true;
         m.classify = mask_.filter == ShadowFilter::Hard;
+        if (scene_->lights[usedLight_].type == LightType::Directional) {
+            m.shimmer = shimmer();
+            renderMask(); // back to the frame's own maps and mask
+        }
         return {m};
     }
 
 private:
+    void renderMask() {
+        const ShadowMapSet& maps =
+            depthBounds_ ? shadows_.render(*scene_, camera_, maps_, view_) : shadows_.render(*scene_, camera_, maps_);
+        result_ = shadows_.mask(view_, maps, usedLight_, mask_);
+    }
+
+    // Shimmer: the G-buffer stays (the receivers do not move) while the cascades are fitted
+    // to the camera moved by k/8 of the first cascade's texel along its right-up diagonal,
+    // k = 1..8; the mean absolute change of the mask over the geometry pixels against the
+    // unmoved fit, averaged over k. The moved maps are looked up from the unmoved G-buffer
+    // (their camera field set to it, which mask() checks). Scene-bounds fitting throughout:
+    // a depth range would need a view from the moved camera.
+    double shimmer() {
+        const Image geometry = readSamples(ctx_, gbuffer_, view_).viewPositions;
+        const ShadowMapSet& base = shadows_.render(*scene_, camera_, maps_);
+        const float texel = base.find(usedLight_)->texelSize[0];
+        const Image still = readTexture(ctx_, shadows_.mask(view_, base, usedLight_, mask_));
+        const glm::mat4 toWorld = glm::inverse(camera_.view);
+        const glm::vec3 diagonal = glm::normalize(glm::vec3(toWorld[0]) + glm::vec3(toWorld[1]));
+        double change = 0.0;
+        std::size_t samples = 0;
+        for (int k = 1; k <= 8; ++k) {
+            Camera moved = camera_;
+            moved.view = camera_.view * glm::translate(glm::mat4(1.0f), -diagonal * (texel * float(k) / 8.0f));
+            ShadowMapSet maps = shadows_.render(*scene_, moved, maps_);
+            maps.camera = camera_;
+            const Image mask = readTexture(ctx_, shadows_.mask(view_, maps, usedLight_, mask_));
+            for (std::size_t i = 0; i < mask.pixels.size(); ++i)
+                if (geometry.pixels[4 * i + 3] != 0.0f) {
+                    change += std::abs(double(mask.pixels[i]) - double(still.pixels[i]));
+                    ++samples;
+                }
+        }
+        return samples ? change / double(samples) : 0.0;
+    }
+
     Context& ctx_;
     GBuffer gbuffer_;
     ShadowMaps shadows_;
+    const Scene* scene_ = nullptr;
+    Camera camera_;
     ShadowMapSettings maps_;
     ShadowMaskSettings mask_;
     bool point_;
