@@ -231,10 +231,22 @@ std::vector<Preset> presets(bool pcf) {
     return p;
 }
 
+// shadow.cube also runs the filters on its maps ("medium_<filter>"), so that on a sphere
+// light (cornell_sphere) every filtered mask meets the area-light reference.
+std::vector<Preset> cubePresets() {
+    std::vector<Preset> p = presets(false);
+    p.push_back({"medium_pcf", {{"resolution", "1024"}, {"filter", "pcf"}, {"pcf_radius", "2"}}});
+    for (const char* filter : {"vsm", "esm", "evsm4", "msm"})
+        p.push_back({std::string("medium_") + filter, {{"resolution", "512"}, {"filter", filter}, {"moment_blur", "2"}}});
+    return p;
+}
+
 TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
                               bool point = false, PointShadowMapping mapping = PointShadowMapping::Cube) {
     const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf && filter != ShadowFilter::Pcss;
-    return {name, description, {"shadow"}, kSettings, moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
+    const bool cube = point && filter == ShadowFilter::Hard && mapping == PointShadowMapping::Cube;
+    return {name, description, {"shadow"}, kSettings,
+            cube ? cubePresets() : moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
             [filter, point, mapping](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point, mapping); }};
 }
 
