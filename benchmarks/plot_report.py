@@ -179,7 +179,7 @@ def shadow_section(rows):
              "the mask. `umbra leak` is the largest mask value over the pixels whose reference is 0 (the whole light "
              "hidden) with every pixel within 3 pixels also 0, so that blur across the shadow's edge does not count "
              "(empty: no such pixel). `memory` is what the G-buffer and the shadow-map module hold after the timed "
-             "frames (maps, moments, the mask, buffers), MiB. `shimmer` (directional lights): the mean absolute change "
+             "frames (maps, moments, the mask, buffers), MiB; bench.json's `memory` splits it by pass. `shimmer` (directional lights): the mean absolute change "
              "of the mask at the same receivers when the cascades are fitted to the camera moved by k/8 of a texel "
              "(k = 1..8), against the unmoved fit; 0 means the snapped cascades do not shimmer.", "",
              "| scene | technique | preset | time ms | RMSE | false shadow | false light | umbra leak | memory MiB | shimmer |",

@@ -75,6 +75,8 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace obscura {
@@ -247,6 +249,11 @@ public:
 
     //! GPU memory held right now, bytes.
     std::size_t memoryBytes() const;
+    //! The same, split by the pass that writes it: "shadow.maps" (depth maps, reflective maps,
+    //! the meshes' buffers), "shadow.moments" (the moment maps and their blur temporary),
+    //! "shadow.mask" (the mask, its parameters), "shadow.depth_range" (its result). Sums to
+    //! memoryBytes().
+    std::vector<std::pair<std::string, std::size_t>> memoryByPass() const;
 
 private:
     struct Impl;

@@ -409,6 +409,12 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
 }
 
 std::size_t ShadowMaps::memoryBytes() const {
+    std::size_t total = 0;
+    for (const auto& [pass, bytes] : memoryByPass()) total += bytes;
+    return total;
+}
+
+std::vector<std::pair<std::string, std::size_t>> ShadowMaps::memoryByPass() const {
     const auto& d = *impl_;
     const std::size_t maps = d.depth ? 4u * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                            std::size_t(d.depthLayers)
@@ -420,8 +426,10 @@ std::size_t ShadowMaps::memoryBytes() const {
     const std::size_t reflective = d.flux ? (8u + 8u + 16u) * std::size_t(d.depthResolution) * std::size_t(d.depthResolution) *
                                                 std::size_t(d.depthLayers)
                                           : 0;
-    return maps + moments + reflective + d.meshes.memoryBytes() + d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes() +
-           (d.rangeBuffer ? 2 * sizeof(GLuint) : 0);
+    return {{"shadow.maps", maps + reflective + d.meshes.memoryBytes()},
+            {"shadow.moments", moments},
+            {"shadow.mask", d.maskTexture.bytes() + d.frame.memoryBytes() + d.binding.memoryBytes()},
+            {"shadow.depth_range", d.rangeBuffer ? 2 * sizeof(GLuint) : 0}};
 }
 
 } // namespace obscura

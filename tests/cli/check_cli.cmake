@@ -82,11 +82,12 @@ foreach(i RANGE ${last})
     endif()
     set(sawShadow TRUE)
   endif()
-  # Memory: at least the maps (six 32F layers for a cube, two for paraboloids, of at least
-  # the smallest preset's 512^2 texels); a hard mask keeps nothing of the light deep in the umbra.
+  # Memory by pass: the maps pass holds at least the maps (six 32F layers for a cube, two for
+  # paraboloids, of at least the smallest preset's 512^2 texels); a hard mask keeps nothing of
+  # the light deep in the umbra.
   if(technique STREQUAL "shadow.cube" OR technique STREQUAL "shadow.paraboloid")
     string(JSON memory GET "${bench}" rows ${i} memory_bytes)
-    string(JSON mapBytes GET "${bench}" rows ${i} memory shadow_maps)
+    string(JSON mapBytes GET "${bench}" rows ${i} memory shadow.maps)
     set(layers 6)
     if(technique STREQUAL "shadow.paraboloid")
       set(layers 2)

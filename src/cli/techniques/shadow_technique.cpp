@@ -136,8 +136,11 @@ public:
         return readSamples(ctx_, gbuffer_, view_);
     }
 
+    // By pass: the G-buffer's, then the shadow passes' (ShadowMaps::memoryByPass).
     std::vector<std::pair<std::string, std::size_t>> memory() const override {
-        return {{"gbuffer", gbuffer_.memoryBytes()}, {"shadow_maps", shadows_.memoryBytes()}};
+        std::vector<std::pair<std::string, std::size_t>> m = {{"gbuffer.render", gbuffer_.memoryBytes()}};
+        for (const auto& pass : shadows_.memoryByPass()) m.push_back(pass);
+        return m;
     }
 
     std::vector<Measurement> measurements() override {
