@@ -19,14 +19,20 @@ layout(binding = SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMaps;
 #if FILTER == SHADOW_FILTER_PCSS
 layout(binding = SHADOW_DEPTH_READ_UNIT) uniform sampler2DArray shadowDepths;
 #endif
+// Distance from the light (along the map's axis for cube faces and spots) of window depth d
+// in map c (ShadowMapInfo::depthMapping).
+float shadowDistance(int k, int c, float d) {
+    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
+    return shadowLights[k].cascades[c].info.w > 0.5 ? m.y / max(d + m.x, 1e-30) : (m.y - d) / m.x;
+}
+
 #if SHADOW_FILTER_MOMENTS(FILTER)
 layout(binding = SHADOW_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
 
 // Window depth d of map c of light k as the distance t in [0, 1] from its near to its far plane.
 float shadowLinear(int k, int c, float d) {
-    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
-    const float distance = shadowLights[k].cascades[c].info.w > 0.5 ? m.y / (d + m.x) : (m.y - d) / m.x;
-    return clamp((distance - m.z) / (m.w - m.z), 0.0, 1.0);
+    const vec4 m = shadowLights[k].cascades[c].depth;
+    return clamp((shadowDistance(k, c, d) - m.z) / (m.w - m.z), 0.0, 1.0);
 }
 
 // The exponential warps of EVSM: t' = 2 t - 1 in [-1, 1], exponents clamped for the storage.
@@ -177,17 +183,15 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
     return abs(det) > 0.0 && allFinite(vec3(g, 0.0)) ? clamp(g, vec2(-limit), vec2(limit)) : vec2(0.0);
 }
 
-// Distance from the light (along the map's axis for cube faces and spots) of window depth d
-// in map c (ShadowMapInfo::depthMapping).
-float shadowDistance(int k, int c, float d) {
-    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
-    return shadowLights[k].cascades[c].info.w > 0.5 ? m.y / max(d + m.x, 1e-30) : (m.y - d) / m.x;
-}
-
-// The Poisson disc scaled to `radius` map units, rotated per pixel by interleaved gradient
-// noise on the map coordinate (stable for a receiver that does not move in the map).
-mat2 shadowPoissonFrame(int k, vec4 centre, float radius) {
-    const vec2 at = centre.xy * float(shadowLights[k].counts.w);
+// The Poisson disc scaled to `radius` map units, rotated per receiver by interleaved
+// gradient noise on its texel position in map c. For a cascade that position is counted from
+// where the world origin lands in the map: snapping moves a cascade by whole texels as the
+// camera moves, and a static receiver must keep its rotation (else the mask shimmers).
+// Spot and point maps do not move with the camera.
+mat2 shadowPoissonFrame(int k, int c, vec4 centre, float radius) {
+    const bool cascade = shadowLights[k].cascades[c].info.w < 0.5;
+    const vec2 origin = cascade ? shadowMapCoord(k, frame.view[3].xyz, c).xy : vec2(0.0);
+    const vec2 at = (centre.xy - origin) * float(shadowLights[k].counts.w);
     const float angle = 6.2831853 * fract(52.9829189 * fract(dot(at, vec2(0.06711056, 0.00583715))));
     return radius * mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
 }
@@ -214,7 +218,7 @@ float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, 
     const float texel = 1.0 / float(shadowLights[k].counts.w);
     const float lightTexels = shadowLights[k].pcf.y / max(receiverTexel, 1e-30); // R in texels at the receiver
     const float searchTexels = clamp(shadowLights[k].pcf.z * lightTexels, 1.0, float(SHADOW_PCSS_MAX_RADIUS));
-    const mat2 search = shadowPoissonFrame(k, centre, searchTexels * texel);
+    const mat2 search = shadowPoissonFrame(k, c, centre, searchTexels * texel);
     float depthSum = 0.0, blockers = 0.0;
     for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
         const vec4 pair = shadowLights[k].poisson[i];
@@ -229,7 +233,7 @@ float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, 
     const float zb = shadowDistance(k, c, depthSum / max(blockers, 1.0)), zr = shadowDistance(k, c, centre.z);
     const float halfWidth = shadowLights[k].pcf.y * max(zr - zb, 0.0) / max(zb, 1e-30); // world units
     const float radius = clamp(halfWidth / max(receiverTexel, 1e-30), 0.5, float(SHADOW_PCSS_MAX_RADIUS));
-    const float lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, centre, radius * texel));
+    const float lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, c, centre, radius * texel));
     return blockers > 0.0 ? lit : 1.0;
 }
 #endif
@@ -282,7 +286,7 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
 #endif
     if (poisson) {
         // The Poisson disc covers the grid's square: radius pcfRadius + 0.5 texels.
-        lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, centre, (float(r) + 0.5) * texel));
+        lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, c, centre, (float(r) + 0.5) * texel));
     } else {
         for (int y = -r; y <= r; ++y)
             for (int x = -r; x <= r; ++x) {

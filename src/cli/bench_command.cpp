@@ -92,17 +92,16 @@ Misclassified misclassified(const Image& value, const Image& expected, const Ima
 constexpr int kUmbraMargin = 3;
 double umbraLeak(const Image& value, const Image& expected, const Image& mask) {
     const int w = value.width, h = value.height;
-    const auto at = [w](const Image& image, int x, int y) { return image.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)]; };
     double leak = -1.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            bool deep = at(mask, x, y) > 0.0f && at(expected, x, y) == 0.0f;
+            bool deep = mask.at(x, y, 0) > 0.0f && expected.at(x, y, 0) == 0.0f;
             for (int dy = -kUmbraMargin; dy <= kUmbraMargin && deep; ++dy)
                 for (int dx = -kUmbraMargin; dx <= kUmbraMargin && deep; ++dx) {
                     const int u = std::clamp(x + dx, 0, w - 1), v = std::clamp(y + dy, 0, h - 1);
-                    deep = !(at(mask, u, v) > 0.0f) || at(expected, u, v) == 0.0f;
+                    deep = !(mask.at(u, v, 0) > 0.0f) || expected.at(u, v, 0) == 0.0f;
                 }
-            if (deep) leak = std::max(leak, double(at(value, x, y)));
+            if (deep) leak = std::max(leak, double(value.at(x, y, 0)));
         }
     return leak;
 }
@@ -154,7 +153,7 @@ Image gbufferMask(const GBufferSamples& s) {
 struct Row {
     nlohmann::ordered_json fields;
     nlohmann::json passes;
-    nlohmann::ordered_json memory; //!< bytes per module after the timed frames
+    nlohmann::ordered_json memory; //!< bytes per module (shadow techniques: per pass) after the timed frames
 };
 
 class Bench {

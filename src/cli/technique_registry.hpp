@@ -79,7 +79,8 @@ public:
     virtual GBufferSamples samples() = 0;
     //! Why the technique cannot run on `scene` (the tools skip it and say so), or empty.
     virtual std::string unsupported(const Scene&) const { return {}; }
-    //! After run(): the GPU memory each module it uses holds, bytes (e.g. {"gbuffer", ...}).
+    //! After run(): the GPU memory each module (or, where a module says, each pass) holds,
+    //! bytes (e.g. {"gbuffer", ...}, {"shadow.maps", ...}).
     virtual std::vector<std::pair<std::string, std::size_t>> memory() const = 0;
 };
 

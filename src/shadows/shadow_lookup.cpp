@@ -5,6 +5,7 @@
 #include "obscura/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -29,12 +30,13 @@ std::array<glm::vec2, SHADOW_POISSON_TAPS> makePoissonDisc() {
     return points;
 }
 
-} // namespace
-
+// The disc of PcfKernel::PoissonDisc (unit radius), made once.
 const std::array<glm::vec2, SHADOW_POISSON_TAPS>& poissonDisc() {
     static const std::array<glm::vec2, SHADOW_POISSON_TAPS> disc = makePoissonDisc();
     return disc;
 }
+
+} // namespace
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
     requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");

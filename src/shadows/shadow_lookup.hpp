@@ -5,14 +5,10 @@
 #include "obscura/shadow_maps.hpp"
 #include "shaders/shadows/shadow_bindings.h"
 
-#include <array>
 #include <string>
 #include <vector>
 
 namespace obscura::detail {
-
-//! The Poisson disc of PcfKernel::PoissonDisc (see shadow_lookup.cpp), unit radius.
-const std::array<glm::vec2, SHADOW_POISSON_TAPS>& poissonDisc();
 
 //! Throws Error{InvalidArgument} naming `owner` for settings out of range.
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner);
