@@ -1,6 +1,6 @@
 // Ambient occlusion / obscurance at the AO resolution: one invocation per AO pixel, at the
-// top-left G-buffer pixel of its block. Also writes the guide (view normal, view z) that
-// the blur and the upsampling weigh with.
+// top-left G-buffer pixel of its block. When the result is filtered, also writes the guide
+// (view normal, view z) that the blur and the upsampling weigh with.
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=1
 //! variant: METHOD=0 SCREEN_MARCH=2
@@ -176,7 +176,7 @@ void main() {
     if (isBackground(depth) || normalTexel.a == 0.0) {
         imageStore(aoOut, pixel, vec4(1.0));
         if (aoBent()) imageStore(bentOut, pixel, vec4(0.0));
-        imageStore(guideOut, pixel, vec4(0.0));
+        if (aoGuide()) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
@@ -185,5 +185,5 @@ void main() {
     const float value = e.count > 0.0 ? clamp(e.sum / e.count, 0.0, 1.0) : 1.0;
     imageStore(aoOut, pixel, vec4(value));
     if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));
-    imageStore(guideOut, pixel, vec4(normal, p.z));
+    if (aoGuide()) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

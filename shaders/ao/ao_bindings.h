@@ -30,6 +30,7 @@ using mat4 = glm::mat4;
 
 #define AO_FLAG_COSINE 1
 #define AO_FLAG_BENT 2
+#define AO_FLAG_GUIDE 4 // write the guide: the result is blurred or upsampled
 
 #define AO_WORKGROUP 8
 

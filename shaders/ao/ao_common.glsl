@@ -7,6 +7,7 @@ layout(std140, binding = AO_PARAMS_UBO_BINDING) uniform AoBlock {
 
 bool aoCosine() { return (ao.counts.z & AO_FLAG_COSINE) != 0; }
 bool aoBent() { return (ao.counts.z & AO_FLAG_BENT) != 0; }
+bool aoGuide() { return (ao.counts.z & AO_FLAG_GUIDE) != 0; }
 ivec2 aoSize() { return ao.sizes.xy; }
 int aoScale() { return ao.sizes.z; }
 

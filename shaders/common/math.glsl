@@ -7,6 +7,7 @@
 // very bright value saturates instead of turning into Inf.
 const float kHalfMax = 65504.0;
 const float kFloatMax = 3.402823466e38;
+const float kLog2E = 1.44269504088896341; // log2(e): exp(x) = exp2(x kLog2E)
 
 bool allFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 

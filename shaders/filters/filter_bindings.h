@@ -12,16 +12,19 @@ using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
 #endif
 
+// The low-resolution images are read with imageLoad, not texelFetch: the same texels, and on
+// llvmpipe (Mesa 22.3) a small fraction of the cost. Measured there at 512x512, 21 loads of
+// RGBA32F per pixel: 1.3 ms with imageLoad against 5.0 ms with texelFetch (glFinish wall
+// clock). GPUs read both through the same texture path.
 #define FILTER_PARAMS_UBO_BINDING 3
-#define FILTER_GUIDE_UNIT 7
-#define FILTER_VALUE_UNIT 8
-#define FILTER_DIRECTION_UNIT 9
-#define FILTER_VALUE_IMAGE 0
-#define FILTER_DIRECTION_IMAGE 1
+#define FILTER_VALUE_IMAGE 0         // written: the value (r16f, or rgba16f with RGB)
+#define FILTER_DIRECTION_IMAGE 1     // written: the direction (rgba16f), with DIRECTION
+#define FILTER_GUIDE_IN_IMAGE 2      // read: the guide (rgba32f)
+#define FILTER_VALUE_IN_IMAGE 3      // read: the value
+#define FILTER_DIRECTION_IN_IMAGE 4  // read: the direction, with DIRECTION
 
 #define FILTER_LOC_STEP 0 // blur: ivec2 pixel step of this pass
 
-#define FILTER_FLAG_DIRECTION 1 // a second image of unit vectors, renormalized after filtering
 #define FILTER_FLAG_UNIT_RANGE 2 // values are clamped to [0, 1]
 
 #define FILTER_WORKGROUP 8

@@ -77,12 +77,12 @@ void main() {
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
     if (isBackground(depth) || normalTexel.a == 0.0) {
         imageStore(giOut, pixel, vec4(0.0));
-        imageStore(guideOut, pixel, vec4(0.0));
+        if (gi.counts.z != 0) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const vec3 albedo = texelFetch(albedoTexture, full, 0).rgb;
     imageStore(giOut, pixel, vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0));
-    imageStore(guideOut, pixel, vec4(normal, p.z));
+    if (gi.counts.z != 0) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

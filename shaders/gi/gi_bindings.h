@@ -26,7 +26,7 @@ using mat4 = glm::mat4;
 
 struct GiParams {
     vec4 shape;       // x: radius, y: thickness, z: voxel start offset (view units), w: unused
-    ivec4 counts;     // x: rays, y: steps, z, w: unused
+    ivec4 counts;     // x: rays, y: steps, z: 1 = write the guide (the result is filtered), w: unused
     ivec4 sizes;      // x, y: GI resolution; z: scale (1, 2, 4); w: unused
     mat4 viewToVoxel; // Hybrid: view space to voxel coordinates
 };

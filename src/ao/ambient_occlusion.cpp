@@ -55,6 +55,8 @@ void validateSettings(const AmbientOcclusionSettings& s) {
     if (s.method == AoMethod::Voxel) requireVoxelGrid(s.voxels, s.voxelTraversal, "AmbientOcclusionSettings");
 }
 
+bool filtered(const AmbientOcclusionSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
+
 int falloffCode(ObscuranceFalloff f) {
     switch (f) {
     case ObscuranceFalloff::Linear: return AO_FALLOFF_LINEAR;
@@ -81,7 +83,9 @@ struct AmbientOcclusion::Impl {
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
         shader::AoParams p{};
         p.shape = glm::vec4(s.radius, s.thickness > 0.0f ? s.thickness : s.radius, 0.0f, 0.0f);
-        p.counts = glm::ivec4(s.rays, s.steps, (s.cosineWeighted ? AO_FLAG_COSINE : 0) | (s.bentNormals ? AO_FLAG_BENT : 0),
+        p.counts = glm::ivec4(s.rays, s.steps,
+                              (s.cosineWeighted ? AO_FLAG_COSINE : 0) | (s.bentNormals ? AO_FLAG_BENT : 0) |
+                                  (filtered(s) ? AO_FLAG_GUIDE : 0),
                               falloffCode(s.falloff));
         p.sizes = glm::ivec4(size, scale, 0);
         p.viewToVoxel = glm::mat4(1.0f);
@@ -123,7 +127,8 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;
     if (march == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, peeled, "ao.hiz");
     const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
-    const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide");
+    // The guide is only for the filters: a full-resolution result without blur needs none.
+    const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide") : 0;
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
     {
         PassScope pass(ctx, passName(s.method));
@@ -136,7 +141,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
-        d.bindWrite(AO_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
+        if (guide) d.bindWrite(AO_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
         if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, bent, GL_RGBA16F);
         dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP);
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -15,16 +15,25 @@ namespace {
 GLenum valueFormat(const FilterImages& images) { return images.rgb ? GL_RGBA16F : GL_R16F; }
 
 std::vector<std::string> variant(const FilterImages& images) {
-    return images.rgb ? std::vector<std::string>{"RGB"} : std::vector<std::string>{};
+    std::vector<std::string> defines;
+    if (images.rgb) defines.push_back("RGB");
+    if (images.direction) defines.push_back("DIRECTION");
+    return defines;
 }
 
-void bindRead(ContextImpl& ctx, int unit, GLuint texture) {
-    ctx.state.bindTexture(ctx, unit, texture);
-    ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
+void bindImage(ContextImpl& ctx, int unit, GLuint texture, GLenum access, GLenum format) {
+    ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, access, format);
 }
 
-void bindWrite(ContextImpl& ctx, int unit, GLuint texture, GLenum format) {
-    ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+// The value (and direction) images of one filter step: read from `in`, written to `out`.
+void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GLuint directionIn, GLuint valueOut,
+                GLuint directionOut) {
+    const GLenum format = valueFormat(images);
+    bindImage(ctx, FILTER_VALUE_IN_IMAGE, valueIn, GL_READ_ONLY, format);
+    bindImage(ctx, FILTER_VALUE_IMAGE, valueOut, GL_WRITE_ONLY, format);
+    if (!images.direction) return;
+    bindImage(ctx, FILTER_DIRECTION_IN_IMAGE, directionIn, GL_READ_ONLY, GL_RGBA16F);
+    bindImage(ctx, FILTER_DIRECTION_IMAGE, directionOut, GL_WRITE_ONLY, GL_RGBA16F);
 }
 
 } // namespace
@@ -40,11 +49,11 @@ void GuidedFilters::upload(ContextImpl& ctx, const FilterImages& images, const G
     shader::FilterParams p{};
     p.sizes = glm::ivec4(images.size, images.scale, s.taps);
     p.weights = glm::vec4(s.depthSigma, s.normalPower, s.background, 0.0f);
-    p.flags = glm::ivec4((images.direction ? FILTER_FLAG_DIRECTION : 0) | (s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0), 0, 0, 0);
+    p.flags = glm::ivec4(s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0, 0, 0, 0);
     if (!params_) params_ = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.params");
     ctx.gl.NamedBufferSubData(params_.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, FILTER_PARAMS_UBO_BINDING, params_.get());
-    bindRead(ctx, FILTER_GUIDE_UNIT, images.guide);
+    bindImage(ctx, FILTER_GUIDE_IN_IMAGE, images.guide, GL_READ_ONLY, GL_RGBA32F);
 }
 
 void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName) {
@@ -59,12 +68,8 @@ void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const Gui
     ctx.gl.UseProgram(program);
     for (int d = 0; d < 2; ++d) { // horizontal into the temporaries, vertical back
         const bool horizontal = d == 0;
-        bindRead(ctx, FILTER_VALUE_UNIT, horizontal ? images.value : valueTemp);
-        bindWrite(ctx, FILTER_VALUE_IMAGE, horizontal ? valueTemp : images.value, format);
-        if (images.direction) {
-            bindRead(ctx, FILTER_DIRECTION_UNIT, horizontal ? images.direction : directionTemp);
-            bindWrite(ctx, FILTER_DIRECTION_IMAGE, horizontal ? directionTemp : images.direction, GL_RGBA16F);
-        }
+        if (horizontal) bindImages(ctx, images, images.value, images.direction, valueTemp, directionTemp);
+        else bindImages(ctx, images, valueTemp, directionTemp, images.value, images.direction);
         ctx.gl.ProgramUniform2i(program, FILTER_LOC_STEP, horizontal ? 1 : 0, horizontal ? 0 : 1);
         dispatchCompute2D(ctx, images.size.x, images.size.y, FILTER_WORKGROUP);
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -76,12 +81,7 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
     PassScope pass(ctx, passName);
     upload(ctx, images, s);
     ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, variant(images)));
-    bindRead(ctx, FILTER_VALUE_UNIT, images.value);
-    bindWrite(ctx, FILTER_VALUE_IMAGE, fullValue, valueFormat(images));
-    if (images.direction) {
-        bindRead(ctx, FILTER_DIRECTION_UNIT, images.direction);
-        bindWrite(ctx, FILTER_DIRECTION_IMAGE, fullDirection, GL_RGBA16F);
-    }
+    bindImages(ctx, images, images.value, images.direction, fullValue, fullDirection);
     // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
     dispatchCompute2D(ctx, (fullSize.x + 1) / 2, (fullSize.y + 1) / 2, FILTER_WORKGROUP);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -31,6 +31,10 @@ struct FilterImages {
     int scale = 1;        //!< to the full resolution
 };
 
+//! Whether a result at 1 / `scale` of the G-buffer's resolution with `taps` of blur is
+//! blurred or upsampled, and so needs a guide image from its integrator.
+inline bool filtersRun(int scale, int taps) { return scale > 1 || taps > 0; }
+
 //! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
 

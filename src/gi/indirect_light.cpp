@@ -38,6 +38,8 @@ void validateSettings(const IndirectLightSettings& s) {
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
 }
 
+bool filtered(const IndirectLightSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
+
 } // namespace
 
 struct IndirectLight::Impl {
@@ -64,7 +66,7 @@ struct IndirectLight::Impl {
     void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
         shader::GiParams p{};
         p.shape = glm::vec4(s.radius, s.thickness > 0.0f ? s.thickness : s.radius, 0.0f, 0.0f);
-        p.counts = glm::ivec4(s.rays, s.steps, 0, 0);
+        p.counts = glm::ivec4(s.rays, s.steps, filtered(s) ? 1 : 0, 0);
         p.sizes = glm::ivec4(size, scale, 0);
         p.viewToVoxel = glm::mat4(1.0f);
         if (s.method == GiMethod::Hybrid) {
@@ -112,7 +114,8 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
     ctx.bindNoiseTexture();
     const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
-    const GLuint guide = d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide");
+    // The guide is only for the filters: a full-resolution result without blur needs none.
+    const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide") : 0;
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
         std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
@@ -124,7 +127,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
-        d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
+        if (guide) d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
         dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP);
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }

@@ -1,0 +1,314 @@
+// The geometry-aware blur and the joint bilateral upsampling (shaders/filters/) against a
+// CPU model of what they document, on values the test controls: ao.comp.glsl is replaced
+// (Context::addShaderSource) by itself with the estimate swapped for a hash of the pixel,
+// k / 256 for the AO (exact in half floats) and a hashed unit vector for the bent normal.
+// Everything else is the module's own code: its guide, the blur's two passes through half
+// float temporaries, the upsampling, the background handling and the image edges.
+#include "gl_fixture.hpp"
+
+#include "obscura/assets.hpp"
+#include "obscura/obscura.hpp"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace obscura;
+
+namespace {
+
+// The hash both sides compute: GLSL's uint arithmetic is C++'s std::uint32_t arithmetic.
+const char* kHashGlsl = R"(
+uint filterTestHash(ivec2 q, uint salt) {
+    uint h = (uint(q.x) * 73856093u) ^ (uint(q.y) * 19349663u) ^ (salt * 83492791u);
+    h ^= h >> 13; h *= 0x5bd1e995u; h ^= h >> 15;
+    return h & 255u;
+}
+float filterTestValue(ivec2 q, uint salt) { return float(filterTestHash(q, salt)) / 256.0; }
+vec3 filterTestDirection(ivec2 q) {
+    return normalize(vec3(filterTestValue(q, 1u) - 0.5, filterTestValue(q, 2u) - 0.5, 0.75));
+}
+)";
+
+std::uint32_t hashOf(int x, int y, std::uint32_t salt) {
+    std::uint32_t h = (std::uint32_t(x) * 73856093u) ^ (std::uint32_t(y) * 19349663u) ^ (salt * 83492791u);
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return h & 255u;
+}
+float valueOf(int x, int y, std::uint32_t salt) { return float(hashOf(x, y, salt)) / 256.0f; }
+glm::vec3 directionOf(int x, int y) {
+    return glm::normalize(glm::vec3(valueOf(x, y, 1) - 0.5f, valueOf(x, y, 2) - 0.5f, 0.75f));
+}
+
+// readTexture's row 0 is the image's top; the shaders' pixel (0, 0) is GL's bottom row. The
+// model works in GL's rows, as the low resolution's blocks do (odd heights differ).
+Image glRows(Image image) {
+    const std::size_t row = std::size_t(image.width) * image.channels;
+    for (int y = 0; y < image.height / 2; ++y)
+        std::swap_ranges(image.pixels.begin() + y * row, image.pixels.begin() + (y + 1) * row,
+                         image.pixels.begin() + (image.height - 1 - y) * row);
+    return image;
+}
+
+float toHalf(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
+glm::vec3 toHalf(glm::vec3 v) { return {toHalf(v.x), toHalf(v.y), toHalf(v.z)}; }
+glm::vec4 toHalf(glm::vec4 v) { return {toHalf(glm::vec3(v)), toHalf(v.w)}; }
+
+// Every shader file of the source tree, with `call` in `file` replaced by `replacement`.
+void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement) {
+    namespace fs = std::filesystem;
+    const fs::path root = OBSCURA_SHADER_DIR;
+    bool replaced = false;
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path());
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string source = text.str();
+        const std::string path = fs::relative(entry.path(), root).generic_string();
+        if (path == file) {
+            const auto at = source.find(call);
+            REQUIRE(at != std::string::npos);
+            source.replace(at, call.size(), replacement);
+            source.insert(source.find("void main()"), kHashGlsl);
+            replaced = true;
+        }
+        ctx.addShaderSource(path, source);
+    }
+    REQUIRE(replaced);
+}
+
+// What the filters weigh with (filter_common.glsl): a low-resolution pixel's guide, or a
+// G-buffer pixel's normal and view z; z = 0 is the background.
+struct Guide {
+    glm::dvec3 n{0.0};
+    double z = 0.0;
+};
+
+// The filters' settings and inputs: `channels` of the value are compared (AO 1, GI 4).
+struct Model {
+    int width, height, scale, taps;
+    double depthSigma, normalPower;
+    bool unitRange;
+    float background; // the value of background pixels
+    Image positions, normals;
+
+    int lowWidth() const { return (width + scale - 1) / scale; }
+    int lowHeight() const { return (height + scale - 1) / scale; }
+
+    bool isBackground(int x, int y) const { return positions.at(x, y, 3) == 0.0f || normals.at(x, y, 3) == 0.0f; }
+    glm::dvec3 normalAt(int x, int y) const { return {normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)}; }
+
+    // The integrator's guide: its G-buffer sample at i * scale, normal renormalized.
+    Guide lowGuide(int i, int j) const {
+        const int x = std::min(i * scale, width - 1), y = std::min(j * scale, height - 1);
+        if (isBackground(x, y)) return {};
+        return {glm::normalize(normalAt(x, y)), positions.at(x, y, 2)};
+    }
+
+    double weight(const Guide& a, const Guide& b) const {
+        const double dz = (b.z - a.z) / (depthSigma * std::abs(a.z));
+        const double c = glm::dot(a.n, b.n);
+        return std::exp(-0.5 * dz * dz) * (normalPower > 0.0 ? std::pow(std::max(c, 0.0), normalPower) : 1.0);
+    }
+
+    glm::vec4 finish(glm::dvec4 v) const {
+        return toHalf(glm::vec4(unitRange ? glm::clamp(v, glm::dvec4(0.0), glm::dvec4(1.0)) : v));
+    }
+};
+
+// The low-resolution value and direction, as the integrator writes them.
+struct LowImages {
+    std::vector<glm::vec4> value;
+    std::vector<glm::vec3> direction;
+};
+
+// One separable pass: taps along `step`, background pixels left as they are.
+LowImages blurPass(const Model& m, const LowImages& in, glm::ivec2 step) {
+    LowImages out = in;
+    const int w = m.lowWidth(), h = m.lowHeight();
+    const double sigma = std::max(0.5 * m.taps, 0.5);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const Guide c = m.lowGuide(i, j);
+            if (c.z == 0.0) continue;
+            const std::size_t centre = std::size_t(j) * w + i;
+            glm::dvec4 sum = in.value[centre];
+            glm::dvec3 direction = in.direction[centre];
+            double total = 1.0;
+            for (int k = -m.taps; k <= m.taps; ++k) {
+                const glm::ivec2 q = glm::ivec2(i, j) + k * step;
+                if (k == 0 || q.x < 0 || q.y < 0 || q.x >= w || q.y >= h) continue;
+                const Guide g = m.lowGuide(q.x, q.y);
+                if (g.z == 0.0) continue;
+                const double wk = std::exp(-0.5 * k * k / (sigma * sigma)) * m.weight(c, g);
+                const std::size_t at = std::size_t(q.y) * w + q.x;
+                sum += wk * glm::dvec4(in.value[at]);
+                direction += wk * glm::dvec3(in.direction[at]);
+                total += wk;
+            }
+            out.value[centre] = m.finish(sum / total);
+            out.direction[centre] = toHalf(glm::vec3(glm::normalize(direction)));
+        }
+    return out;
+}
+
+struct Expected {
+    std::vector<glm::vec4> value, direction;
+};
+
+Expected upsample(const Model& m, const LowImages& low) {
+    Expected e;
+    const int w = m.lowWidth(), h = m.lowHeight();
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            if (m.isBackground(x, y)) {
+                e.value.push_back(glm::vec4(m.background));
+                e.direction.push_back(glm::vec4(0.0f));
+                continue;
+            }
+            const Guide target{m.normalAt(x, y), m.positions.at(x, y, 2)};
+            const glm::ivec2 base(x / m.scale, y / m.scale);
+            const glm::dvec2 f = glm::dvec2(x - base.x * m.scale, y - base.y * m.scale) / double(m.scale);
+            glm::dvec4 sum(0.0), nearest(m.background);
+            glm::dvec3 direction(0.0), nearestDirection = target.n;
+            double total = 0.0, nearestDz = 1e30;
+            for (int c = 0; c < 4; ++c) {
+                const glm::ivec2 corner(c & 1, c >> 1);
+                const glm::ivec2 q = glm::min(base + corner, glm::ivec2(w - 1, h - 1));
+                const Guide g = m.lowGuide(q.x, q.y);
+                if (g.z == 0.0) continue;
+                const std::size_t at = std::size_t(q.y) * w + q.x;
+                const double bilinear = (corner.x ? f.x : 1.0 - f.x) * (corner.y ? f.y : 1.0 - f.y);
+                const double wc = bilinear * m.weight(target, g);
+                sum += wc * glm::dvec4(low.value[at]);
+                direction += wc * glm::dvec3(low.direction[at]);
+                total += wc;
+                if (std::abs(g.z - target.z) < nearestDz) {
+                    nearestDz = std::abs(g.z - target.z);
+                    nearest = low.value[at];
+                    nearestDirection = low.direction[at];
+                }
+            }
+            const bool weighted = total > 1e-6;
+            e.value.push_back(m.finish(weighted ? sum / total : nearest));
+            e.direction.push_back(glm::vec4(toHalf(glm::vec3(glm::normalize(weighted ? direction : nearestDirection))), 1.0f));
+        }
+    return e;
+}
+
+// The largest difference over the first `channels` channels of `gpu` (GL rows) and `model`.
+double worstDifference(const Image& gpu, const std::vector<glm::vec4>& model, int channels) {
+    double worst = 0.0;
+    for (int y = 0; y < gpu.height; ++y)
+        for (int x = 0; x < gpu.width; ++x)
+            for (int c = 0; c < channels; ++c)
+                worst = std::max(worst, double(std::abs(gpu.at(x, y, c) - model[std::size_t(y) * gpu.width + x][c])));
+    return worst;
+}
+
+// GL leaves float-to-half rounding to the implementation (llvmpipe's stores come out up to
+// one ulp below the model's round-to-nearest), so each rounded step may differ from the model
+// by one ulp, 2^-11 for values in [-1, 1]: the horizontal pass, the vertical pass and the
+// output, 3 ulps in all (the bent normal is rounded once more, where the AO pass stores it).
+// The weights' float error (about 1e-6 relative) adds at most 1e-5 to a weighted mean.
+constexpr double kUlp = 1.0 / 2048.0;
+constexpr double kTolerance = 3.0 * kUlp + 1e-5, kDirectionTolerance = 4.0 * kUlp + 1e-5;
+
+// The Cornell box seen from outside its open side: the background, its edge and the box's
+// edges in view; odd sizes, so the low resolution's last row and column are partly outside.
+constexpr int kWidth = 45, kHeight = 37;
+
+struct FilterFixture {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    GBufferView view;
+    Image positions, normals;
+
+    void render() {
+        const assets::LoadedScene cornell = assets::builtinScene("cornell");
+        const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(45.0f),
+                                                  float(kWidth) / float(kHeight), 10.0f, 5000.0f);
+        view = gbuffer.render(cornell.scene, camera, {kWidth, kHeight, true, {}});
+        positions = glRows(readTexture(ctx, gbuffer.positions(view)));
+        normals = glRows(readTexture(ctx, view.normal));
+        int background = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) background += positions.at(x, y, 3) == 0.0f;
+        REQUIRE(background > 0);
+        REQUIRE(background < kWidth * kHeight / 2);
+    }
+
+    Model model(int scale, int taps, bool unitRange, float background) const {
+        return {kWidth, kHeight, scale, taps, 0.05, 16.0, unitRange, background, positions, normals};
+    }
+};
+
+} // namespace
+
+TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent normals compute the documented "
+          "guided filters", "[filters][ao]") {
+    FilterFixture f;
+    overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel);",
+                   "const Estimate e = Estimate(filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);");
+    f.render();
+    AmbientOcclusion ao(f.ctx);
+    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
+        for (const int taps : {0, 1, 3}) {
+            CAPTURE(static_cast<int>(resolution), taps);
+            AmbientOcclusionSettings s;
+            s.resolution = resolution;
+            s.blurRadius = taps;
+            s.bentNormals = true;
+            const AmbientOcclusionView out = ao.run(f.view, s);
+            const Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
+            LowImages low;
+            for (int j = 0; j < m.lowHeight(); ++j)
+                for (int i = 0; i < m.lowWidth(); ++i) {
+                    const bool background = m.lowGuide(i, j).z == 0.0;
+                    low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
+                    low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
+                }
+            if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+            const Expected expected = upsample(m, low);
+            CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected.value, 1) <= kTolerance);
+            CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected.direction, 4) <= kDirectionTolerance);
+        }
+}
+
+TEST_CASE("The half and quarter resolution blur and upsampling of indirect light compute the documented guided "
+          "filters", "[filters][gi]") {
+    FilterFixture f;
+    overrideShader(f.ctx, "gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
+                   "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)");
+    f.render();
+    IndirectLight gi(f.ctx);
+    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
+        for (const int taps : {0, 2}) {
+            CAPTURE(static_cast<int>(resolution), taps);
+            IndirectLightSettings s;
+            s.resolution = resolution;
+            s.blurRadius = taps;
+            const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
+            const Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
+            LowImages low;
+            for (int j = 0; j < m.lowHeight(); ++j)
+                for (int i = 0; i < m.lowWidth(); ++i) {
+                    const bool background = m.lowGuide(i, j).z == 0.0;
+                    low.value.push_back(background ? glm::vec4(0.0f)
+                                                   : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
+                    low.direction.push_back(glm::vec3(0.0f));
+                }
+            if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+            CHECK(worstDifference(radiance, upsample(m, low).value, 4) <= kTolerance);
+        }
+}
