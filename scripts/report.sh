@@ -24,11 +24,12 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene cornell_sphere --techniques 'shadow.*' --size 128x128 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/soft_shadows"
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
-# pass, dominates: presets medium and medium_half on the Cornell box and the finest model.
+# pass, dominates: presets medium and high, each at full and half resolution, on the Cornell
+# box and the finest model.
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-  --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 \
+  --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" --out "$OBSCURA_ROOT/docs"

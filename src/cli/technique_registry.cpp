@@ -2,6 +2,8 @@
 
 #include "obscura/error.hpp"
 
+#include <algorithm>
+
 namespace obscura::cli {
 namespace {
 std::map<std::string, TechniqueInfo>& registry() {
@@ -60,6 +62,23 @@ ScreenThickness parseScreenThickness(const std::string& key, const std::string& 
 
 GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view) {
     return {readTexture(ctx, gbuffer.positions(view)), readTexture(ctx, view.normal)};
+}
+
+std::vector<Preset> integratorPresets() {
+    const std::vector<std::pair<std::string, std::string>> half = {{"resolution", "half"}, {"blur_radius", "3"}};
+    std::vector<Preset> presets = {
+        {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
+        {"medium", {{"rays", "16"}, {"steps", "8"}}},
+        {"high", {{"rays", "64"}, {"steps", "16"}}},
+        {"ultra", {{"rays", "256"}, {"steps", "32"}}},
+    };
+    for (const char* name : {"high", "medium"}) {
+        const auto full = std::find_if(presets.begin(), presets.end(), [&](const Preset& p) { return p.name == name; });
+        Preset halved{full->name + "_half", full->settings};
+        halved.settings.insert(halved.settings.end(), half.begin(), half.end());
+        presets.insert(full + 1, halved);
+    }
+    return presets;
 }
 
 double defaultRadius(const Scene& scene) {

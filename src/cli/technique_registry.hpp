@@ -90,6 +90,11 @@ struct Preset {
     std::vector<std::pair<std::string, std::string>> settings;
 };
 
+//! The quality presets of the ray-based integrators (AO, obscurance, indirect light): low,
+//! medium, high and ultra by rays and steps, and "<preset>_half" for medium and high: the same
+//! rays and steps at half resolution with a 3-tap blur, for the resolution trade-off.
+std::vector<Preset> integratorPresets();
+
 struct TechniqueInfo {
     std::string name;                  //!< "<module>.<method>", or "gbuffer"
     std::string description;

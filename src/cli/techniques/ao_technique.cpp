@@ -144,27 +144,11 @@ private:
     AmbientOcclusionView result_;
 };
 
-using Settings = std::vector<std::pair<std::string, std::string>>;
-
-// Quality presets shared by the ray-based methods; "medium_half" is "medium" at half
-// resolution with a blur, for the resolution trade-off.
-std::vector<Preset> presets(const Settings& extra = {}) {
-    std::vector<Preset> p = {
-        {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
-        {"medium", {{"rays", "16"}, {"steps", "8"}}},
-        {"medium_half", {{"rays", "16"}, {"steps", "8"}, {"resolution", "half"}, {"blur_radius", "3"}}},
-        {"high", {{"rays", "64"}, {"steps", "16"}}},
-        {"ultra", {{"rays", "256"}, {"steps", "32"}}},
-    };
-    for (auto& preset : p) preset.settings.insert(preset.settings.end(), extra.begin(), extra.end());
-    return p;
-}
-
 TechniqueInfo aoTechnique(const std::string& name, const std::string& description, AoMethod method,
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
     std::vector<std::string> outputs = {"ao"};
     if (method != AoMethod::Horizon) outputs.push_back("bent_normal");
-    return {name, description, outputs, kSettings, presets(),
+    return {name, description, outputs, kSettings, integratorPresets(),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }
 

@@ -108,18 +108,8 @@ private:
     IndirectLightView result_;
 };
 
-std::vector<Preset> presets() {
-    return {
-        {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
-        {"medium", {{"rays", "16"}, {"steps", "8"}}},
-        {"medium_half", {{"rays", "16"}, {"steps", "8"}, {"resolution", "half"}, {"blur_radius", "3"}}},
-        {"high", {{"rays", "64"}, {"steps", "16"}}},
-        {"ultra", {{"rays", "256"}, {"steps", "32"}}},
-    };
-}
-
 TechniqueInfo giTechnique(const std::string& name, const std::string& description, GiMethod method) {
-    return {name, description, {"indirect"}, kSettings, presets(),
+    return {name, description, {"indirect"}, kSettings, integratorPresets(),
             [method](Context& ctx) { return std::make_unique<GiRun>(ctx, method); }};
 }
 
