@@ -18,10 +18,11 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --size 128x128 --frames 20 --spp 1024 --reference-performance \
   --voxels --voxel-scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
-# Soft shadows: the Cornell box's sphere light, whose reference is the fraction of the area
-# light that arrives (shadow.pcss, and the hard point-light masks beside it).
+# Soft shadows: the Cornell box's emitter as a sphere light and as a rect light, whose
+# reference is the fraction of the area light that arrives (shadow.pcss, and the hard and
+# filtered masks from the same light's centre beside it).
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
-  --scene cornell_sphere --techniques 'shadow.*' --size 128x128 --frames 20 --spp 1024 \
+  --scene cornell_sphere --scene cornell_rect --techniques 'shadow.*' --size 128x128 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/soft_shadows"
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
 # pass, dominates: presets medium and high, each at full and half resolution, on the Cornell

@@ -6,6 +6,7 @@
 //   obscura_example_shadows --scene /usr/share/assimp/models/PLY/Wuson.ply --filter evsm4 --window --frames 0
 //   --view lit: the composed direct light, shadowed per fragment (hard and pcf)
 //   --point-maps paraboloid: point lights as two paraboloid maps instead of a cube
+//   --pcf-kernel optimized|poisson: PCF's grid from fewer taps, or a rotated Poisson disc
 #include "app.hpp"
 #include "obscura/obscura.hpp"
 
@@ -21,9 +22,12 @@ namespace {
 
 const char* const kFilters[] = {"hard", "pcf", "vsm", "esm", "evsm2", "evsm4", "msm", "pcss"}; // ShadowFilter order
 constexpr int kFilterCount = 8;
+const char* const kKernels[] = {"grid", "optimized", "poisson"}; // PcfKernel order
+constexpr int kKernelCount = 3;
 
 struct ShadowControls {
     int filter = 1;
+    int kernel = 0;
     int resolution = 1024;
     int cascades = 3;
     bool paraboloid = false;
@@ -39,6 +43,7 @@ struct ShadowControls {
         changed |= ImGui::SliderInt("cascades", &cascades, 1, kMaxShadowCascades);
         changed |= ImGui::Checkbox("point: dual paraboloid", &paraboloid);
         changed |= ImGui::SliderInt("pcf radius", &mask.pcfRadius, 0, 8);
+        changed |= ImGui::Combo("pcf kernel", &kernel, kKernels, kKernelCount);
         changed |= ImGui::SliderFloat("normal offset", &mask.normalOffset, 0.0f, 16.0f);
         changed |= ImGui::SliderFloat("slope bias", &mask.slopeBias, 0.0f, 16.0f);
         changed |= ImGui::SliderInt("moment blur", &mask.momentBlur, 0, 8);
@@ -60,11 +65,12 @@ int main(int argc, char** argv) {
     examples::AppOptions options;
     examples::addAppOptions(parser, options);
     ShadowControls controls;
-    std::string filterName = "pcf", viewName = "mask", pointMaps = "cube";
+    std::string filterName = "pcf", viewName = "mask", pointMaps = "cube", kernelName = "grid";
     parser.add_option("--filter", filterName, "hard|pcf|vsm|esm|evsm2|evsm4|msm|pcss")->capture_default_str();
     parser.add_option("--resolution", controls.resolution, "Shadow map side, texels [16, 8192]")->capture_default_str();
     parser.add_option("--cascades", controls.cascades, "Directional lights: maps [1, 4]")->capture_default_str();
     parser.add_option("--pcf-radius", controls.mask.pcfRadius, "PCF taps each side [0, 8]")->capture_default_str();
+    parser.add_option("--pcf-kernel", kernelName, "grid|optimized|poisson")->capture_default_str();
     parser.add_option("--normal-offset", controls.mask.normalOffset, "Texels [0, 16]")->capture_default_str();
     parser.add_option("--contact", controls.mask.contactLength, "Contact-shadow ray, world units (0: off)")->capture_default_str();
     parser.add_option("--point-maps", pointMaps, "Point lights: cube or paraboloid")->capture_default_str();
@@ -74,6 +80,9 @@ int main(int argc, char** argv) {
         const auto* known = std::find(std::begin(kFilters), std::end(kFilters), filterName);
         if (known == std::end(kFilters)) throw Error(ErrorCode::Parse, "--filter: expected hard, pcf, vsm, esm, evsm2, evsm4, msm or pcss");
         controls.filter = static_cast<int>(known - std::begin(kFilters));
+        const auto* kernel = std::find(std::begin(kKernels), std::end(kKernels), kernelName);
+        if (kernel == std::end(kKernels)) throw Error(ErrorCode::Parse, "--pcf-kernel: expected grid, optimized or poisson");
+        controls.kernel = static_cast<int>(kernel - std::begin(kKernels));
         if (viewName != "mask" && viewName != "lit") throw Error(ErrorCode::Parse, "--view: expected mask or lit");
         controls.lit = viewName == "lit";
         if (pointMaps != "cube" && pointMaps != "paraboloid") throw Error(ErrorCode::Parse, "--point-maps: expected cube or paraboloid");
@@ -82,7 +91,7 @@ int main(int argc, char** argv) {
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const Scene& scene = example.loaded.scene;
         const std::optional<std::size_t> light = firstShadowedLight(scene);
-        if (!light) throw Error(ErrorCode::InvalidArgument, "the scene has no shadow-casting point, spot, directional or sphere light");
+        if (!light) throw Error(ErrorCode::InvalidArgument, "the scene has no shadow-casting light");
         app.setPanel([&] { controls.drawPanel(); });
         TextureImage shown;
         {
@@ -93,6 +102,7 @@ int main(int argc, char** argv) {
             shown = app.presentUntilDone(controls.changed, [&] {
                 ShadowMaskSettings mask = controls.mask;
                 mask.filter = static_cast<ShadowFilter>(controls.filter);
+                mask.pcfKernel = static_cast<PcfKernel>(controls.kernel);
                 const PointShadowMapping point = controls.paraboloid ? PointShadowMapping::DualParaboloid : PointShadowMapping::Cube;
                 const ShadowMapSet& maps = shadows.render(scene, example.camera, {controls.resolution, controls.cascades, 0.75f, point});
                 GBufferSettings g{app.width(), app.height(), true, {}};

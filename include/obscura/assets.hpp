@@ -33,7 +33,8 @@ struct LoadedScene {
     float unitsPerMetre = 1.0f; //!< e.g. 1000 for the Cornell box (millimetres)
 };
 
-//! "cornell", "plane", "wall", "corner", "box_room".
+//! "cornell" (its emitter as a point light), "cornell_sphere" and "cornell_rect" (as a sphere
+//! or rect light), "plane", "wall", "corner", "box_room".
 OBSCURA_API std::vector<std::string> builtinSceneNames();
 //! Throws Error{InvalidArgument} listing the names for an unknown one.
 OBSCURA_API LoadedScene builtinScene(const std::string& name);

@@ -37,8 +37,10 @@
 //                spans (L + r_z L) 2 / resolution world units at distance L: twice as fine
 //                at the rim as on the axis. PCF kernels that cross the disc's rim read the
 //                empty margin around it (lit).
-// Sphere lights are mapped like point lights, from their centre (for Pcss). Rect lights, and
-// lights with castsShadows off, get no map: mask() refuses them.
+// Sphere lights are mapped like point lights, from their centre (for Pcss). Rect lights get
+// one paraboloid map from their centre, its axis along Light::direction (x along the
+// tangent), over the side they emit toward; receivers behind their plane are 0 (unlit).
+// Lights with castsShadows off get no map: mask() refuses them.
 //
 // Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
 // receiver lit, in [0, 1] (1 = lit), GL_R16F (values rounded by at most 2^-12). The
@@ -50,7 +52,14 @@
 //   Hard  one comparison: the texel the receiver falls in;
 //   Pcf   (2 pcfRadius + 1)^2 comparisons one texel apart, each bilinearly weighted over
 //         its four texels (hardware comparison with linear filtering), each against the
-//         receiver's plane extended to the tap (receiverPlane). With PcfKernel::PoissonDisc
+//         receiver's plane extended to the tap (receiverPlane). With PcfKernel::OptimizedGrid
+//         the same texel weights from (pcfRadius + 1)^2 comparisons (Castaño's optimized
+//         PCF, as in The Witness): per axis the grid weighs the 2 pcfRadius + 2 texels it
+//         touches (1 - f, 1, ..., 1, f) / (2 pcfRadius + 1), f the receiver's position past
+//         the texel centre below it; one comparison serves each pair of neighbouring texels,
+//         placed where its bilinear weights split the pair's total as the grid does. Without
+//         receiverPlane it equals Grid up to the filtering's sub-texel precision (8 bits on
+//         most GPUs); with it, each comparison uses the plane at its own position. With PcfKernel::PoissonDisc
 //         instead: 16 bilinear comparisons at a Poisson disc's points (minimum distance
 //         0.3 of the disc's radius) scaled to pcfRadius + 0.5 texels and rotated per pixel
 //         (interleaved gradient noise on the map coordinate), which trades the grid's
@@ -58,7 +67,9 @@
 //   Vsm, Esm, Evsm2, Evsm4, Msm   from prefiltered moments of the maps' distances (see the
 //         settings); ShadowMaps::mask only (the G-buffer's lookups are Hard or Pcf).
 //   Pcss  percentage-closer soft shadows (Fernando 2005) for a light of radius R
-//         (Light::radius; 0 for directional lights, which then get a half-texel kernel):
+//         (Light::radius; for a rect light sqrt(w h / pi), the disc of its area, whatever
+//         the receiver's angle to it; 0 for directional lights, which then get a half-texel
+//         kernel):
 //         the mean distance z_b of the blockers among 16 Poisson-disc depth reads (a
 //         blocker: nearer the light than the receiver's plane; see pcssBlockerFraction for
 //         the disc), then a 16-tap Poisson PCF of radius R (z_r - z_b) / z_b world units at
@@ -109,8 +120,8 @@ struct ShadowMapInfo {
     Light source;                   //!< that light, as the maps were rendered for it
     LightType type = LightType::Spot;
     int firstLayer = 0;             //!< of ShadowMapSet::depth
-    int layers = 0;                 //!< 1 (spot), the cascades (directional), 6 (cube) or 2 (paraboloid)
-    bool paraboloid = false;        //!< a point light's dual-paraboloid maps
+    int layers = 0;                 //!< 1 (spot, rect), the cascades (directional), 6 (cube) or 2 (paraboloid)
+    bool paraboloid = false;        //!< a point light's dual-paraboloid maps, or a rect light's one
     //! World -> clip space of each map (reversed-Z, clip control zero-to-one); paraboloid
     //! maps: world -> the map's frame (rigid; the light at the origin, the map's axis +z).
     std::array<glm::mat4, kMaxShadowMapsPerLight> worldToClip{};
@@ -128,8 +139,7 @@ struct ShadowMapInfo {
     std::array<glm::vec4, kMaxShadowMapsPerLight> depthMapping{};
 };
 
-//! Whether ShadowMaps::render gives `light` maps: a shadow-casting point, spot, directional
-//! or sphere light.
+//! Whether ShadowMaps::render gives `light` maps: any light with castsShadows.
 OBSCURA_API bool hasShadowMaps(const Light& light);
 
 //! What ShadowMaps::render produced; valid until its next render.
@@ -165,8 +175,9 @@ enum class ShadowMomentPrecision {
 };
 
 enum class PcfKernel {
-    Grid,        //!< (2 pcfRadius + 1)^2 taps one texel apart
-    PoissonDisc, //!< 16 taps, a rotated Poisson disc of radius pcfRadius + 0.5 texels
+    Grid,          //!< (2 pcfRadius + 1)^2 taps one texel apart
+    OptimizedGrid, //!< the Grid's texel weights from (pcfRadius + 1)^2 taps
+    PoissonDisc,   //!< 16 taps, a rotated Poisson disc of radius pcfRadius + 0.5 texels
 };
 
 enum class ShadowFilter {
@@ -225,7 +236,7 @@ public:
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
-    //! Renders the maps of every shadow-casting point, spot and directional light (pass
+    //! Renders the maps of every shadow-casting light (pass
     //! "shadow.maps"); allocates nothing when there is none. Throws Error{InvalidArgument}
     //! for settings out of range, an invalid scene or camera.
     const ShadowMapSet& render(const Scene& scene, const Camera& camera, const ShadowMapSettings& settings);

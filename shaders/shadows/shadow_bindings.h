@@ -40,9 +40,11 @@ using mat4 = glm::mat4;
 #define SHADOW_LIGHT_SPOT 0
 #define SHADOW_LIGHT_DIRECTIONAL 1
 #define SHADOW_LIGHT_POINT 2
+#define SHADOW_LIGHT_RECT 3 // mapped like a point light, by one paraboloid over its front side
 
 #define SHADOW_PCF_GRID 0
 #define SHADOW_PCF_POISSON 1
+#define SHADOW_PCF_OPTIMIZED 2 // the grid's weights from (r + 1)^2 bilinear comparisons
 #define SHADOW_POISSON_TAPS 16
 #define SHADOW_PCSS_MAX_RADIUS 128 // texels: the widest PCSS search and kernel
 
@@ -70,13 +72,13 @@ struct ShadowCascade {
 struct ShadowParams {
     ShadowCascade cascades[SHADOW_MAX_MAPS];
     vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type
-    vec4 spot;  // xyz: view-space unit axis the spot points along; w: cos(outer angle)
+    vec4 spot;  // xyz: view-space unit axis the spot (rect: its normal) points along; w: cos(outer angle) (rect: 0)
     vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
     vec4 moments; // x: minimum variance, y: light-bleeding reduction, z: exponent c+, w: exponent c-
     vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness,
                   // w: directional: where the first cascade's slice begins (view distance)
     ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
-    vec4 pcf;     // x: SHADOW_PCF_GRID or SHADOW_PCF_POISSON; y: the light's radius (world units);
+    vec4 pcf;     // x: SHADOW_PCF_*; y: the light's radius (world units);
                   // z: PCSS blocker search radius in light radii at the receiver, (1 - f) / f
     vec4 poisson[SHADOW_POISSON_TAPS / 2]; // the Poisson disc's points in the unit disc, two per vec4
 };

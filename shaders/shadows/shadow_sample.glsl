@@ -117,7 +117,10 @@ float shadowHamburger(vec4 b, float t) {
 
 int shadowLightType(int k) { return int(shadowLights[k].light.w); }
 bool shadowIsSpot(int k) { return shadowLightType(k) == SHADOW_LIGHT_SPOT; }
-bool shadowIsPoint(int k) { return shadowLightType(k) == SHADOW_LIGHT_POINT; }
+// Mapped from a centre, by a cube or paraboloids: point, sphere and rect lights.
+bool shadowIsPoint(int k) { return shadowLightType(k) == SHADOW_LIGHT_POINT || shadowLightType(k) == SHADOW_LIGHT_RECT; }
+// Lit only within a cone about spot.xyz: spot lights, and rect lights' front half-space.
+bool shadowHasCone(int k) { return shadowIsSpot(k) || shadowLightType(k) == SHADOW_LIGHT_RECT; }
 bool shadowIsParaboloid(int k, int c) { return shadowLights[k].cascades[c].info.w > 1.5; }
 
 // View point p in paraboloid map c's frame (the light at the origin, the map's axis +z).
@@ -162,10 +165,10 @@ vec4 shadowMapCoord(int k, vec3 q, int c) {
 }
 
 // A point light's map for view point p: the cube face of the major axis of its direction
-// from the light, or the paraboloid whose hemisphere holds it.
+// from the light, or the paraboloid whose hemisphere holds it (a rect light has one).
 int shadowPointMap(int k, vec3 p) {
-    return shadowIsParaboloid(k, 0) ? (shadowInParaboloid(k, p, 0).z >= 0.0 ? 0 : 1)
-                                    : shadowCubeFace(shadowFromLightWorld(k, p));
+    const bool second = shadowLights[k].counts.x > 1 && shadowInParaboloid(k, p, 0).z < 0.0;
+    return shadowIsParaboloid(k, 0) ? (second ? 1 : 0) : shadowCubeFace(shadowFromLightWorld(k, p));
 }
 
 // Receiver-plane depth bias (PCF): d depth / d uv of the plane through q with normal n in
@@ -209,6 +212,34 @@ float shadowPoissonPcf(int k, vec4 centre, float layer, vec2 gradient, mat2 spin
     return lit / float(SHADOW_POISSON_TAPS);
 }
 
+// Pair i of r + 1 along one axis of the optimized grid: its share of the grid's weights
+// (1 - f, 1, ..., 1, f) over texels 2i and 2i + 1, and where between them (in texels from
+// the first) a bilinear comparison splits that share as the grid does.
+vec2 shadowTexelPair(int i, int r, float f) {
+    const float first = i == 0 ? 1.0 - f : 1.0, second = i == r ? f : 1.0;
+    return vec2(first + second, second / (first + second));
+}
+
+// The grid's (2r + 1)^2 comparisons one texel apart, as (r + 1)^2 bilinear comparisons with
+// the same weight on every texel (see PcfKernel::OptimizedGrid), each against the
+// receiver's plane at its own position.
+float shadowOptimizedPcf(int k, vec4 centre, float layer, vec2 gradient, int r) {
+    const float size = float(shadowLights[k].counts.w);
+    const vec2 texels = centre.xy * size - 0.5; // texel centres at whole numbers
+    const vec2 below = floor(texels), f = texels - below;
+    float lit = 0.0;
+    for (int j = 0; j <= r; ++j) {
+        const vec2 py = shadowTexelPair(j, r, f.y);
+        for (int i = 0; i <= r; ++i) {
+            const vec2 px = shadowTexelPair(i, r, f.x);
+            const vec2 at = below + vec2(2 * i - r, 2 * j - r) + vec2(px.y, py.y);
+            const vec2 offset = (at + 0.5) / size - centre.xy;
+            lit += px.x * py.x * texture(shadowMaps, vec4(centre.xy + offset, layer, centre.z + dot(gradient, offset)));
+        }
+    }
+    return lit / float((2 * r + 1) * (2 * r + 1));
+}
+
 #if FILTER == SHADOW_FILTER_PCSS
 // Percentage-closer soft shadows: the mean depth of the blockers (taps nearer the light than
 // the receiver's plane) within the search disc, then a Poisson PCF whose radius is the
@@ -239,7 +270,7 @@ float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, 
 #endif
 
 // Lit fraction at view point q (normal n) in map c: one comparison (Hard, nearest) or a grid
-// of bilinear comparisons one texel apart (Pcf), each against the receiver's plane at the
+// of bilinear comparisons one texel apart (Pcf; or their optimized or Poisson forms), each against the receiver's plane at the
 // tap when receiver-plane bias is on. Points behind the map's eye: unlit.
 float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const vec4 centre = shadowMapCoord(k, q, c);
@@ -281,12 +312,15 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
 #else
 #if FILTER == SHADOW_FILTER_PCF
     const bool poisson = shadowLights[k].pcf.x == float(SHADOW_PCF_POISSON);
+    const bool optimized = shadowLights[k].pcf.x == float(SHADOW_PCF_OPTIMIZED);
 #else
-    const bool poisson = false;
+    const bool poisson = false, optimized = false;
 #endif
     if (poisson) {
         // The Poisson disc covers the grid's square: radius pcfRadius + 0.5 texels.
         lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, c, centre, (float(r) + 0.5) * texel));
+    } else if (optimized) {
+        lit = shadowOptimizedPcf(k, centre, layer, gradient, r);
     } else {
         for (int y = -r; y <= r; ++y)
             for (int x = -r; x <= r; ++x) {
@@ -314,7 +348,7 @@ vec3 shadowReceiver(int k, vec3 p, vec3 n, vec3 l, float c, int m) {
 float shadowVisibility(int k, vec3 p, vec3 n) {
     const vec3 l = shadowToLight(k, p);
     const float c = dot(n, l);
-    const bool inCone = !shadowIsSpot(k) || dot(-l, shadowLights[k].spot.xyz) >= shadowLights[k].spot.w;
+    const bool inCone = !shadowHasCone(k) || dot(-l, shadowLights[k].spot.xyz) >= shadowLights[k].spot.w;
     // The cascade whose slice holds p's view distance (the last one beyond them all), or
     // the cube face p lies in.
     const float distance = -p.z;

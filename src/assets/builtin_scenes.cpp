@@ -125,6 +125,23 @@ LoadedScene cornellSphere() {
     return s;
 }
 
+// The Cornell box lit by its published emitter as a rect light (130 mm x 105 mm, facing
+// down, the emitter's radiance), just below the emitter's quad: an area light whose soft
+// shadows the reference computes (shadow.pcss).
+LoadedScene cornellRect() {
+    LoadedScene s = cornell();
+    s.name = "cornell_rect";
+    Light& l = s.scene.lights.at(0);
+    l.type = LightType::Rect;
+    l.intensity = 1.0f; // rect lights: emitted radiance = color, the emitter's (17, 12, 4)
+    l.position = {278.0f, 548.6f, 279.5f};
+    l.direction = {0.0f, -1.0f, 0.0f};
+    l.tangent = {1.0f, 0.0f, 0.0f};
+    l.size = {130.0f, 105.0f};
+    l.radius = 0.0f;
+    return s;
+}
+
 // Analytic scenes, in metres: a 20 m floor at y = 0 centred on the origin, plus walls.
 constexpr float kHalf = 10.0f;
 constexpr float kWallHeight = 5.0f;
@@ -162,6 +179,7 @@ const std::map<std::string, std::function<LoadedScene()>>& registry() {
     static const std::map<std::string, std::function<LoadedScene()>> scenes = {
         {"cornell", cornell},
         {"cornell_sphere", cornellSphere},
+        {"cornell_rect", cornellRect},
         {"plane", [] { return analytic("plane", [](MeshBuilder& b) { b.quad(floorQuad()); }, view({0, 3, 6}, {0, 0, 0})); }},
         {"wall", [] {
              return analytic("wall", [](MeshBuilder& b) { b.quad(floorQuad()).quad(backWall()); },

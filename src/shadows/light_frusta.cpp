@@ -141,10 +141,13 @@ LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int re
     return out;
 }
 
-ParaboloidMap paraboloidHemisphere(const Light& light, int hemisphere, const Bounds& bounds, int resolution) {
-    const glm::dvec3 eye(light.position);
+namespace {
+
+// The paraboloid map at `eye` along unit `axis`, its x along `side` made orthogonal to it.
+ParaboloidMap paraboloidMap(const glm::dvec3& eye, const glm::dvec3& axis, const glm::dvec3& side, const Bounds& bounds,
+                            int resolution) {
     // Rows: the map's x, y and axis z in world space (orthonormal; y = z cross x).
-    const glm::dvec3 x(1.0, 0.0, 0.0), z(0.0, hemisphere == 0 ? -1.0 : 1.0, 0.0), y = glm::cross(z, x);
+    const glm::dvec3 z = axis, x = glm::normalize(side - z * glm::dot(side, z)), y = glm::cross(z, x);
     glm::dmat4 rotation(1.0);
     for (int c = 0; c < 3; ++c) {
         rotation[c][0] = x[c];
@@ -159,6 +162,19 @@ ParaboloidMap paraboloidHemisphere(const Light& light, int hemisphere, const Bou
     out.depthMapping = glm::dvec4(near / (far - near), near * far / (far - near), near, far);
     out.texelSize = 2.0 / resolution;
     return out;
+}
+
+} // namespace
+
+ParaboloidMap paraboloidHemisphere(const Light& light, int hemisphere, const Bounds& bounds, int resolution) {
+    return paraboloidMap(glm::dvec3(light.position), {0.0, hemisphere == 0 ? -1.0 : 1.0, 0.0}, {1.0, 0.0, 0.0}, bounds,
+                         resolution);
+}
+
+ParaboloidMap rectParaboloid(const Light& light, const Bounds& bounds, int resolution) {
+    // validateScene guarantees a direction of length > 0 and a tangent not parallel to it.
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(light.direction));
+    return paraboloidMap(glm::dvec3(light.position), axis, glm::dvec3(light.tangent), bounds, resolution);
 }
 
 } // namespace obscura::detail

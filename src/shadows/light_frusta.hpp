@@ -41,13 +41,16 @@ LightCamera spotCamera(const Light& light, const Bounds& bounds, int resolution)
 //! the bounds' farthest corner.
 LightCamera pointFace(const Light& light, int face, const Bounds& bounds, int resolution, int marginTexels);
 
-//! One of a point light's two paraboloid maps (hemisphere 0 looks down -y, 1 up +y).
+//! A paraboloid map: one of a point light's two (hemisphere 0 looks down -y, 1 up +y), or a
+//! rect light's one over the side it emits toward.
 struct ParaboloidMap {
     glm::dmat4 worldToMap{1.0};   //!< rigid: the light at the origin, the map's axis +z
     glm::dvec4 depthMapping{0.0}; //!< a, b, near, far: window depth d = b / L - a at distance L
     double texelSize = 0.0;       //!< 2 / resolution: see ShadowMapInfo::texelSize
 };
 ParaboloidMap paraboloidHemisphere(const Light& light, int hemisphere, const Bounds& bounds, int resolution);
+//! A rect light's map, from its centre: axis along Light::direction, x along its tangent.
+ParaboloidMap rectParaboloid(const Light& light, const Bounds& bounds, int resolution);
 
 //! A unit vector not parallel to `direction`: the up vector of a light's view.
 glm::dvec3 lightUp(const glm::dvec3& direction);

@@ -36,6 +36,24 @@ const std::array<glm::vec2, SHADOW_POISSON_TAPS>& poissonDisc() {
     return disc;
 }
 
+// The radius R that PCSS takes for the light's size: a rect's is that of the disc of its area.
+float pcssLightRadius(const Light& light) {
+    switch (light.type) {
+    case LightType::Directional: return 0.0f;
+    case LightType::Rect: return std::sqrt(light.size.x * light.size.y / 3.14159265f);
+    default: return light.radius;
+    }
+}
+
+float pcfKernelCode(PcfKernel kernel) {
+    switch (kernel) {
+    case PcfKernel::PoissonDisc: return SHADOW_PCF_POISSON;
+    case PcfKernel::OptimizedGrid: return SHADOW_PCF_OPTIMIZED;
+    case PcfKernel::Grid: break;
+    }
+    return SHADOW_PCF_GRID;
+}
+
 } // namespace
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
@@ -88,6 +106,9 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     const glm::vec3 direction = glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0)));
     if (light.type == LightType::Point || light.type == LightType::Sphere) {
         p.light = glm::vec4(position, SHADOW_LIGHT_POINT);
+    } else if (light.type == LightType::Rect) {
+        p.light = glm::vec4(position, SHADOW_LIGHT_RECT);
+        p.spot = glm::vec4(direction, 0.0f); // its front half-space, as a cone of 90 degrees
     } else if (light.type == LightType::Spot) {
         p.light = glm::vec4(position, SHADOW_LIGHT_SPOT);
         p.spot = glm::vec4(direction, std::cos(light.outerAngle));
@@ -98,8 +119,8 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
     p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
     p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, info.sliceStart);
     p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
-    const float lightRadius = light.type == LightType::Directional ? 0.0f : light.radius;
-    p.pcf = glm::vec4(s.pcfKernel == PcfKernel::PoissonDisc ? SHADOW_PCF_POISSON : SHADOW_PCF_GRID, lightRadius,
+    const float lightRadius = pcssLightRadius(light);
+    p.pcf = glm::vec4(pcfKernelCode(s.pcfKernel), lightRadius,
                       (1.0f - s.pcssBlockerFraction) / s.pcssBlockerFraction, 0.0f);
     const std::array<glm::vec2, SHADOW_POISSON_TAPS>& disc = poissonDisc();
     for (std::size_t i = 0; i < disc.size(); i += 2) p.poisson[i / 2] = glm::vec4(disc[i], disc[i + 1]);

@@ -55,9 +55,7 @@ glm::vec4 depthMapping(const Camera& c) {
 
 } // namespace
 
-bool hasShadowMaps(const Light& l) {
-    return l.castsShadows && l.type != LightType::Rect;
-}
+bool hasShadowMaps(const Light& l) { return l.castsShadows; }
 
 const ShadowMapInfo* ShadowMapSet::find(std::size_t light) const {
     for (const ShadowMapInfo& m : maps)
@@ -107,17 +105,18 @@ struct ShadowMaps::Impl {
             info.type = l.type;
             info.firstLayer = static_cast<int>(cameras.size());
             const bool point = l.type == LightType::Point || l.type == LightType::Sphere; // mapped from its centre
-            if (point && s.pointMapping == PointShadowMapping::DualParaboloid) {
-                for (int h = 0; h < 2; ++h) {
-                    const auto k = static_cast<std::size_t>(h);
-                    const ParaboloidMap pm = paraboloidHemisphere(l, h, bounds, s.resolution);
-                    cameras.push_back({pm.worldToMap, true, glm::vec2(pm.depthMapping), nullptr, 0.0f});
-                    info.worldToClip[k] = glm::mat4(pm.worldToMap);
-                    info.texelSize[k] = static_cast<float>(pm.texelSize);
-                    info.depthMapping[k] = glm::vec4(pm.depthMapping);
-                }
-                info.layers = 2;
+            const auto addParaboloid = [&](const ParaboloidMap& pm) {
+                const auto k = static_cast<std::size_t>(info.layers++);
+                cameras.push_back({pm.worldToMap, true, glm::vec2(pm.depthMapping), nullptr, 0.0f});
+                info.worldToClip[k] = glm::mat4(pm.worldToMap);
+                info.texelSize[k] = static_cast<float>(pm.texelSize);
+                info.depthMapping[k] = glm::vec4(pm.depthMapping);
                 info.paraboloid = true;
+            };
+            if (point && s.pointMapping == PointShadowMapping::DualParaboloid) {
+                for (int h = 0; h < 2; ++h) addParaboloid(paraboloidHemisphere(l, h, bounds, s.resolution));
+            } else if (l.type == LightType::Rect) {
+                addParaboloid(rectParaboloid(l, bounds, s.resolution)); // it emits toward one side only
             } else if (point) {
                 // Room for the widest PCF kernel (8 texels each side, plus the bilinear one).
                 const int margin = std::min(9, s.resolution / 8);

@@ -23,7 +23,8 @@ const std::vector<SettingInfo> kSettings = {
     {"reflective", "", "0|1", "also render reflective shadow maps of spot and directional lights (timed in shadow.maps)"},
     {"depth_bounds", "", "0|1", "cascades split the G-buffer's depth range (default 1) or the scene bounds' (0)"},
     {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
-    {"pcf_kernel", "", "grid|poisson", "shadow.pcf: a grid, or 16 taps of a rotated Poisson disc"},
+    {"pcf_kernel", "", "grid|optimized|poisson",
+     "shadow.pcf: a grid, the grid's weights from (pcf_radius + 1)^2 taps, or 16 taps of a rotated Poisson disc"},
     {"pcss_blocker_fraction", "", "(0, 1)", "shadow.pcss: nearest blockers searched, fraction of the receiver's distance"},
     {"constant_bias", "world units", "[0, inf)", "receiver moved toward the light"},
     {"slope_bias", "texels", "[0, 16]", "times tan(theta), toward the light"},
@@ -41,9 +42,11 @@ const std::vector<SettingInfo> kSettings = {
     {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
 };
 
-// The lights a technique maps: point and sphere lights (cube, paraboloid) or spot and directional ones.
+// The lights a technique maps: those mapped from a centre (point and sphere lights: cube or
+// paraboloids; rect lights: one paraboloid, whatever the technique) or spot and directional ones.
 bool mapped(const Light& l, bool point) {
-    return hasShadowMaps(l) && (l.type == LightType::Point || l.type == LightType::Sphere) == point;
+    const bool centre = l.type == LightType::Point || l.type == LightType::Sphere || l.type == LightType::Rect;
+    return hasShadowMaps(l) && centre == point;
 }
 
 std::optional<std::size_t> firstMappedLight(const Scene& scene, bool point) {
@@ -76,7 +79,9 @@ public:
         else if (key == "pcss_blocker_fraction")
             mask_.pcssBlockerFraction = static_cast<float>(parseNumber(key, value, 1e-3, 0.999, ""));
         else if (key == "pcf_kernel")
-            mask_.pcfKernel = parseChoice<PcfKernel>(key, value, {{"grid", PcfKernel::Grid}, {"poisson", PcfKernel::PoissonDisc}});
+            mask_.pcfKernel = parseChoice<PcfKernel>(key, value, {{"grid", PcfKernel::Grid},
+                                                                {"optimized", PcfKernel::OptimizedGrid},
+                                                                {"poisson", PcfKernel::PoissonDisc}});
         else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
         else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
         else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
@@ -102,7 +107,7 @@ public:
         if (light_ ? *light_ < scene.lights.size() && mapped(scene.lights[*light_], point_)
                    : firstMappedLight(scene, point_).has_value())
             return {};
-        const std::string kind = point_ ? "point or sphere" : "spot or directional";
+        const std::string kind = point_ ? "point, sphere or rect" : "spot or directional";
         return light_ ? "light " + std::to_string(*light_) + " is not a shadow-casting " + kind + " light"
                       : "no shadow-casting " + kind + " light";
     }
@@ -228,9 +233,12 @@ std::vector<Preset> presets(bool pcf) {
     const char* radii[] = {"1", "1", "2", "3"};
     for (std::size_t i = 0; i < p.size(); ++i)
         for (auto& kv : kernel(radii[i])) p[i].settings.push_back(kv);
-    // "high" with 16 Poisson-disc taps over the same reach instead of the 5 x 5 grid.
+    // "high" with the 5 x 5 grid's weights from 9 taps, and with 16 Poisson-disc taps over
+    // the same reach.
     if (pcf)
-        p.push_back({"high_poisson", {{"resolution", "2048"}, {"cascades", "3"}, {"pcf_radius", "2"}, {"pcf_kernel", "poisson"}}});
+        for (const char* k : {"optimized", "poisson"})
+            p.push_back({std::string("high_") + k,
+                         {{"resolution", "2048"}, {"cascades", "3"}, {"pcf_radius", "2"}, {"pcf_kernel", k}}});
     return p;
 }
 
@@ -268,7 +276,7 @@ const TechniqueRegistrar msm(shadowTechnique("shadow.msm", "Moment shadow map: f
 const TechniqueRegistrar cube(shadowTechnique("shadow.cube", "Point light: six perspective maps (hard unless filter=pcf)",
                                               ShadowFilter::Hard, true));
 const TechniqueRegistrar pcss(shadowTechnique("shadow.pcss",
-                                              "Percentage-closer soft shadows of a point or sphere light of Light::radius (cube maps)",
+                                              "Percentage-closer soft shadows of a point, sphere (Light::radius) or rect light",
                                               ShadowFilter::Pcss, true));
 const TechniqueRegistrar paraboloid(shadowTechnique("shadow.paraboloid",
                                                     "Point light: two paraboloid maps with per-pixel depth (hard unless filter=pcf)",
