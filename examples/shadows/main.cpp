@@ -22,7 +22,7 @@ namespace {
 
 const char* const kFilters[] = {"hard", "pcf", "vsm", "esm", "evsm2", "evsm4", "msm", "pcss"}; // ShadowFilter order
 constexpr int kFilterCount = 8;
-const char* const kKernels[] = {"grid", "optimized", "poisson"}; // PcfKernel order
+const char* const kKernels[] = {"grid", "poisson", "optimized"}; // PcfKernel order
 constexpr int kKernelCount = 3;
 
 struct ShadowControls {

@@ -39,7 +39,11 @@
 //                empty margin around it (lit).
 // Sphere lights are mapped like point lights, from their centre (for Pcss). Rect lights get
 // one paraboloid map from their centre, its axis along Light::direction (x along the
-// tangent), over the side they emit toward; receivers behind their plane are 0 (unlit).
+// tangent), over the side they emit toward; receivers behind their plane are 0 (unlit), and
+// receivers in front of it that face away from its centre are 1 (the map from the centre
+// cannot tell what part of the light they see; the light's shading clips it to their
+// horizon). Triangles whose plane passes through a light's centre (a rect light flush with
+// its ceiling) are seen edge-on and left out of its paraboloid maps.
 // Lights with castsShadows off get no map: mask() refuses them.
 //
 // Mask: per G-buffer pixel, the fraction of the filter's depth comparisons that find the
@@ -176,8 +180,8 @@ enum class ShadowMomentPrecision {
 
 enum class PcfKernel {
     Grid,          //!< (2 pcfRadius + 1)^2 taps one texel apart
-    OptimizedGrid, //!< the Grid's texel weights from (pcfRadius + 1)^2 taps
     PoissonDisc,   //!< 16 taps, a rotated Poisson disc of radius pcfRadius + 0.5 texels
+    OptimizedGrid, //!< the Grid's texel weights from (pcfRadius + 1)^2 taps
 };
 
 enum class ShadowFilter {
@@ -188,7 +192,7 @@ enum class ShadowFilter {
     Evsm2, //!< "shadow.evsm2": exponentially warped VSM, positive warp
     Evsm4, //!< "shadow.evsm4": positive and negative warps
     Msm,   //!< "shadow.msm": four moments, Hamburger reconstruction (32F)
-    Pcss,  //!< "shadow.pcss": percentage-closer soft shadows for a light of Light::radius
+    Pcss,  //!< "shadow.pcss": percentage-closer soft shadows for a light of Light::radius (rect: its area's disc)
 };
 
 // Setting keys for tools (`--set`) are the field names in snake case.
@@ -205,7 +209,9 @@ struct ShadowMaskSettings {
     float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]
     float cascadeBlend = 0.1f; //!< fraction of each cascade's slice blended into the next, [0, 0.5]
     //! Pcf: compare each tap with the receiver's plane extended to it (receiver-plane depth
-    //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself.
+    //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself; not
+    //! where the plane is within 3.6 degrees of edge-on to the light (tan theta > 16, the
+    //! slope bias's clamp), where its gradient would move a tap by up to the whole depth range.
     bool receiverPlane = true;
     // Moment filters (Vsm .. Msm): the maps' distances t in [0, 1] (near to far plane) become
     // moments in a 32F array, blurred by a separable Gaussian, sampled bilinearly.

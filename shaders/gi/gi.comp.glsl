@@ -1,5 +1,6 @@
 // One-bounce indirect light at the GI resolution: one invocation per pixel, at the top-left
-// G-buffer pixel of its block; also writes the guide for the filters.
+// G-buffer pixel of its block; when the result is filtered, also writes the guide for the
+// filters.
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=1
 //! variant: METHOD=0 SCREEN_MARCH=2

@@ -28,8 +28,15 @@ void main() {
     const float area = length(normal);
     const bool inA = a.z >= 0.0, inB = b.z >= 0.0, inC = c.z >= 0.0;
     const int inside = int(inA) + int(inB) + int(inC);
-    if (area > 0.0 && inside > 0) { // degenerate triangles and the other hemisphere draw nothing
-        const vec4 plane = vec4(normal / area, dot(normal / area, a));
+    const vec4 plane = vec4(normal / max(area, 1e-30), dot(normal / max(area, 1e-30), a));
+    // A triangle whose plane passes through the light (within float rounding of its corners'
+    // distance) is seen edge-on: it covers no directions. Drawn, its corners would all land
+    // on the rim and its straight edges cover the map's inside with wrong depths: a rect
+    // light flush with its ceiling, a point light on a wall.
+    const float reach = max(length(a), max(length(b), length(c)));
+    const bool edgeOn = abs(plane.w) <= 1e-5 * reach;
+    // Degenerate triangles, edge-on ones and the other hemisphere draw nothing.
+    if (area > 0.0 && inside > 0 && !edgeOn) {
         if (inside == 3) {
             emitCorner(a, plane);
             emitCorner(b, plane);

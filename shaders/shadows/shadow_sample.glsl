@@ -171,6 +171,10 @@ int shadowPointMap(int k, vec3 p) {
     return shadowIsParaboloid(k, 0) ? (second ? 1 : 0) : shadowCubeFace(shadowFromLightWorld(k, p));
 }
 
+// The slope bias's largest tan(theta), and the cosine it is reached at: 1 / sqrt(1 + 16^2).
+const float kShadowMaxSlope = 16.0;
+const float kShadowMaxSlopeCosine = 0.06237828615;
+
 // Receiver-plane depth bias (PCF): d depth / d uv of the plane through q with normal n in
 // map c, from two points a texel off along the plane; 0 when the light sees the plane
 // edge-on, and bounded so that a tap one texel away moves by at most the whole depth range.
@@ -299,7 +303,13 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const float texel = 1.0 / float(shadowLights[k].counts.w);
 #if FILTER == SHADOW_FILTER_PCF || FILTER == SHADOW_FILTER_PCSS
     const int r = shadowLights[k].counts.z;
-    const vec2 gradient = shadowLights[k].counts.y != 0 ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
+    // Past the slope bias's clamp (tan theta = 16) the receiver's plane is too near edge-on to
+    // the light for its gradient to mean anything: a tap a texel away would move by up to the
+    // whole depth range (partial shadow on an unoccluded receiver). Then taps use the
+    // receiver's own depth, as Hard does.
+    const bool planeUsable = dot(n, shadowToLight(k, q)) > kShadowMaxSlopeCosine;
+    const vec2 gradient =
+        shadowLights[k].counts.y != 0 && planeUsable ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
 #else
     const int r = 0;
     const vec2 gradient = vec2(0.0);
@@ -338,7 +348,7 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
 // c = n.l > 0) for map m: moved toward the light and off the surface by the biases.
 vec3 shadowReceiver(int k, vec3 p, vec3 n, vec3 l, float c, int m) {
     const float texel = shadowTexel(k, p, m);
-    const float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / max(c, 1e-6), 16.0);
+    const float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / max(c, 1e-6), kShadowMaxSlope);
     const vec4 bias = shadowLights[k].bias;
     return p + n * (bias.z * texel) + l * (bias.x + bias.y * texel * tanTheta);
 }
@@ -358,7 +368,10 @@ float shadowVisibility(int k, vec3 p, vec3 n) {
     // the paraboloids' rim (every cube face has the same texel, so the receiver does not
     // depend on the face; a paraboloid's does a little: the map p lies in sets it).
     m = shadowIsPoint(k) && c > 0.0 ? shadowPointMap(k, shadowReceiver(k, p, n, l, c, shadowPointMap(k, p))) : m;
-    float v = 0.0;
+    // A rect light may light a receiver that faces away from its centre (part of it is above
+    // the receiver's horizon); the map from the centre cannot tell, so such receivers count
+    // as lit (what the light's own shading then clips).
+    float v = shadowLightType(k) == SHADOW_LIGHT_RECT && inCone && !(c > 0.0) ? 1.0 : 0.0;
     if (c > 0.0 && inCone) {
         v = shadowLookup(k, shadowReceiver(k, p, n, l, c, m), n, m);
         // Blend into the next cascade over the end of this slice (cascades only).

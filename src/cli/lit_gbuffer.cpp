@@ -4,7 +4,7 @@ namespace obscura::cli {
 
 const std::vector<SettingInfo>& LitGBuffer::settings() {
     static const std::vector<SettingInfo> s = {
-        {"shadows", "", "0|1", "shadow the direct light of shadow-casting point, spot and directional lights (default 1)"},
+        {"shadows", "", "0|1", "shadow the direct light of shadow-casting lights (default 1)"},
         {"shadow_resolution", "texels", "[16, 8192]", "side of every shadow map (default 1024)"},
         {"shadow_filter", "", "hard|pcf", "shadow lookups (default pcf)"},
     };

@@ -381,8 +381,8 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     const ShadowMapInfo* info = maps.find(light);
     if (!info)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: light " + std::to_string(light) +
-                                                    " has no shadow map (only shadow-casting point, spot, "
-                                                    "directional and sphere lights have one)");
+                                                    " has no shadow map (only shadow-casting lights "
+                                                    "have one)");
     if (maps.depth != d.depth.get() || maps.layers != d.depthLayers)
         throw Error(ErrorCode::InvalidArgument, "ShadowMaps::mask: the maps must be this module's latest render()");
     requireMapsFor(maps, g.camera, "ShadowMaps::mask");

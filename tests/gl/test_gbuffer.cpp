@@ -580,6 +580,15 @@ TEST_CASE("A rectangle light cut by the receiver's horizon lights like its part 
     light.size = {2.0f, 2.0f};
     scene.lights = {light};
     const Image cut = readTexture(ctx, gbuffer.render(scene, camera, {W, H, true, {}}).directRadiance);
+    // Shadowed by its map, with nothing in the way, it lights the same: the floor lies in a
+    // plane through the light's centre (edge-on to its map, so left out of it) and faces
+    // away from the centre, which the lookup must not count as shadow.
+    ShadowMaps shadows(ctx);
+    GBufferSettings shadowed{W, H, true, {}};
+    shadowed.shadows = &shadows.render(scene, camera, {});
+    REQUIRE(shadowed.shadows->find(0) != nullptr);
+    const Image unblocked = readTexture(ctx, gbuffer.render(scene, camera, shadowed).directRadiance);
+    for (std::size_t i = 0; i < cut.pixels.size(); ++i) CHECK(unblocked.pixels[i] == cut.pixels[i]);
     light.position.y = 0.5f;
     light.size.y = 1.0f;
     scene.lights = {light};

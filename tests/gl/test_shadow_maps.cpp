@@ -75,6 +75,42 @@ TEST_CASE("Spot and point light hard and PCF shadows of a plate match the refere
     }
 }
 
+TEST_CASE("A rect light flush with its ceiling shadows like a point light at its centre", "[shadows][reference]") {
+    // The light lies in the ceiling's plane (y = 3), emitting down: the ceiling is edge-on to
+    // its paraboloid map and must not cover it. Its hard mask is the visibility of its centre,
+    // so the reference is a point light there (whose rays end on the ceiling's plane).
+    Light rect;
+    rect.type = LightType::Rect;
+    rect.position = {0.0f, 3.0f, 0.0f};
+    rect.direction = {0.0f, -1.0f, 0.0f};
+    rect.size = {0.4f, 0.4f};
+    Scene scene = plateScene(rect);
+    // (It ends at z = 1, short of where the camera's highest rays cross y = 3, z = 1.48: the
+    // view shows neither side of it, whose pixels would lie in the light's plane.)
+    const auto ceiling = test::quadMesh({glm::dvec3(-4, 3, -4), {4, 3, -4}, {4, 3, 1}, {-4, 3, 1}});
+    scene.meshes.push_back({ceiling, glm::mat4(1.0f), 0, "ceiling"});
+    constexpr int W = 96, H = 72;
+    ShadowFixture f(plateCamera(W, H), W, H);
+    f.render(scene);
+    Scene point = scene;
+    point.lights[0].type = LightType::Point;
+    const reference::Reference truth = f.truth(point);
+    const ShadowMapSet& set = f.shadows.render(scene, f.camera, {512, 1, 0.5f});
+    REQUIRE(set.find(0) != nullptr);
+    const double texelPerUnit = set.find(0)->texelSize[0];
+    ShadowMaskSettings s;
+    s.filter = ShadowFilter::Hard;
+    const Image mask = readTexture(f.ctx, f.shadows.mask(f.view, set, 0, s));
+    // As the plate test's paraboloid: the shadow is the plate scaled by 3 / 2, the band 3.5
+    // texels of 2 / 512 times |v| + v.z (v: the offset in the map's frame, axis -y).
+    const auto edge = [&](const glm::dvec3& p) { return squareEdgeDistance(p.x, p.z, {0, 0}, kPlate * 1.5); };
+    const auto band = [&](const glm::dvec3& p) {
+        const glm::dvec3 v = p - glm::dvec3(rect.position);
+        return 3.5 * texelPerUnit * (glm::length(v) - v.y);
+    };
+    CHECK(checkMask(f, mask, truth, band, edge) > W * H / 3);
+}
+
 TEST_CASE("Contact shadows recover the shadow next to an occluder's base that a large bias removes", "[shadows][reference]") {
     // A thin upright wall on the floor, a spot light on its +x side; a constant bias longer
     // than the wall is thick carries receivers just behind its base through it (peter-panning).

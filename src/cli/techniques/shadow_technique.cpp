@@ -1,6 +1,7 @@
 // "shadow.hard" .. "shadow.msm" (a spot or directional light), "shadow.cube",
-// "shadow.paraboloid" and "shadow.pcss" (a point or sphere light): the ShadowMaps module's mask of one light at the scene's G-buffer samples,
-// against the reference's hard shadow.
+// "shadow.paraboloid" and "shadow.pcss" (a point, sphere or rect light): the ShadowMaps
+// module's mask of one light at the scene's G-buffer samples, against the reference's shadow
+// (hard for point, spot and directional lights, the arriving fraction for area lights).
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/shadow_maps.hpp"
