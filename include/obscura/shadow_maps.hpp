@@ -210,8 +210,9 @@ struct ShadowMaskSettings {
     float cascadeBlend = 0.1f; //!< fraction of each cascade's slice blended into the next, [0, 0.5]
     //! Pcf: compare each tap with the receiver's plane extended to it (receiver-plane depth
     //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself; not
-    //! where the plane is within 3.6 degrees of edge-on to the light (tan theta > 16, the
-    //! slope bias's clamp), where its gradient would move a tap by up to the whole depth range.
+    //! where the light sees the plane edge-on (within 1e-3 rad: a plane through it). Past
+    //! tan theta = 16 (3.6 degrees off edge-on) the slope bias is clamped, and PCF's own taps
+    //! may meet acne there; PCSS, which finds no blocker, does not.
     bool receiverPlane = true;
     // Moment filters (Vsm .. Msm): the maps' distances t in [0, 1] (near to far plane) become
     // moments in a 32F array, blurred by a separable Gaussian, sampled bilinearly.

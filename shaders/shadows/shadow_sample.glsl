@@ -171,13 +171,20 @@ int shadowPointMap(int k, vec3 p) {
     return shadowIsParaboloid(k, 0) ? (second ? 1 : 0) : shadowCubeFace(shadowFromLightWorld(k, p));
 }
 
-// The slope bias's largest tan(theta), and the cosine it is reached at: 1 / sqrt(1 + 16^2).
+// The slope bias's largest tan(theta).
 const float kShadowMaxSlope = 16.0;
-const float kShadowMaxSlopeCosine = 0.06237828615;
+// |cos| below which a receiver's plane counts as holding the light (edge-on to its maps):
+// 1e-3 rad, far above the rounding of positions reconstructed from depth.
+const float kShadowEdgeOnCosine = 1e-3;
 
 // Receiver-plane depth bias (PCF): d depth / d uv of the plane through q with normal n in
 // map c, from two points a texel off along the plane; 0 when the light sees the plane
 // edge-on, and bounded so that a tap one texel away moves by at most the whole depth range.
+// Edge-on means within rounding of it: the light within 1e-3 rad of the plane, or the two
+// points' map offsets parallel to 1e-3. A receiver whose plane holds the light (a floor
+// through a rect light's centre) would otherwise get a rounding-sized determinant, a gradient
+// at the bound, and partial shadow with nothing in the way. Only rounding: a plane a few
+// degrees off edge-on (a box's side under a ceiling light) needs its gradient for wide kernels.
 vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
     const vec3 t1 = safeNormalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)), vec3(0.0));
     const vec3 t2 = cross(n, t1);
@@ -187,7 +194,8 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
     const float det = a.x * b.y - a.y * b.x;
     const vec2 g = vec2(a.z * b.y - b.z * a.y, a.x * b.z - b.x * a.z) / det;
     const float limit = float(shadowLights[k].counts.w);
-    return abs(det) > 0.0 && allFinite(vec3(g, 0.0)) ? clamp(g, vec2(-limit), vec2(limit)) : vec2(0.0);
+    const bool edgeOn = abs(dot(n, shadowToLight(k, q))) < kShadowEdgeOnCosine || !(abs(det) > 1e-3 * length(a.xy) * length(b.xy));
+    return !edgeOn && allFinite(vec3(g, 0.0)) ? clamp(g, vec2(-limit), vec2(limit)) : vec2(0.0);
 }
 
 // The Poisson disc scaled to `radius` map units, rotated per receiver by interleaved
@@ -303,13 +311,7 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const float texel = 1.0 / float(shadowLights[k].counts.w);
 #if FILTER == SHADOW_FILTER_PCF || FILTER == SHADOW_FILTER_PCSS
     const int r = shadowLights[k].counts.z;
-    // Past the slope bias's clamp (tan theta = 16) the receiver's plane is too near edge-on to
-    // the light for its gradient to mean anything: a tap a texel away would move by up to the
-    // whole depth range (partial shadow on an unoccluded receiver). Then taps use the
-    // receiver's own depth, as Hard does.
-    const bool planeUsable = dot(n, shadowToLight(k, q)) > kShadowMaxSlopeCosine;
-    const vec2 gradient =
-        shadowLights[k].counts.y != 0 && planeUsable ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
+    const vec2 gradient = shadowLights[k].counts.y != 0 ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
 #else
     const int r = 0;
     const vec2 gradient = vec2(0.0);
@@ -370,9 +372,12 @@ float shadowVisibility(int k, vec3 p, vec3 n) {
     m = shadowIsPoint(k) && c > 0.0 ? shadowPointMap(k, shadowReceiver(k, p, n, l, c, shadowPointMap(k, p))) : m;
     // A rect light may light a receiver that faces away from its centre (part of it is above
     // the receiver's horizon); the map from the centre cannot tell, so such receivers count
-    // as lit (what the light's own shading then clips).
-    float v = shadowLightType(k) == SHADOW_LIGHT_RECT && inCone && !(c > 0.0) ? 1.0 : 0.0;
-    if (c > 0.0 && inCone) {
+    // as lit (what the light's own shading then clips). So do receivers whose plane holds
+    // the centre to within 1e-3 rad (rounding of reconstructed positions): the sign of their
+    // cosine is noise, and their biased receiver lies off the plane the map leaves out.
+    const bool facesAway = shadowLightType(k) == SHADOW_LIGHT_RECT ? !(c > kShadowEdgeOnCosine) : !(c > 0.0);
+    float v = shadowLightType(k) == SHADOW_LIGHT_RECT && inCone && facesAway ? 1.0 : 0.0;
+    if (!facesAway && inCone) {
         v = shadowLookup(k, shadowReceiver(k, p, n, l, c, m), n, m);
         // Blend into the next cascade over the end of this slice (cascades only).
         const float end = shadowLights[k].cascades[m].info.x;
