@@ -135,8 +135,8 @@ def own_ms(row):
 HALF_PAIRS = ("medium", "high")  # presets X and X_half: the same rays and steps, full and half resolution
 
 
-def resolution_section(rows):
-    """X (full resolution) against X_half (half resolution + blur), per preset pair, technique and size."""
+def resolution_rows(rows):
+    """Table lines of X (full resolution) against X_half (half resolution + blur), per preset pair, technique and size."""
     pairs = defaultdict(dict)
     for r in rows:
         base = r["preset"][:-len("_half")] if r["preset"].endswith("_half") else r["preset"]
@@ -155,6 +155,16 @@ def resolution_section(rows):
         lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(full_ms)} | {fmt(half_ms)} | '
                      f'{fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
                      f'{"yes" if ok else "**no**"} |')
+    return lines
+
+
+RESOLUTION_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | speed-up | full RMSE | half RMSE | "
+                     "RMSE ratio | goal met |",
+                     "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def resolution_section(rows):
+    lines = resolution_rows(rows)
     if not lines:
         return []
     return ["## Half resolution", "",
@@ -166,10 +176,52 @@ def resolution_section(rows):
             "least 2x faster at less than 2x the RMSE. Half resolution saves the integrator's work per pixel, but the "
             "upsampling pays again, at full resolution, what any pass pays per G-buffer pixel (reading depth and "
             "normal, writing the results), so where the integrator does little more per pixel than that, half "
-            "resolution cannot be 2x faster.", "",
-            "| scene | size | preset | technique | quantity | full ms | half ms | speed-up | full RMSE | half RMSE | "
-            "RMSE ratio | goal met |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+            "resolution cannot be 2x faster.", ""] + RESOLUTION_HEADER + lines + [""]
+
+
+def row_key(r):
+    return (os.path.basename(r["scene"]), r["technique"], r["preset"], r["quantity"], r["width"], r["height"])
+
+
+def gpu_section(gpu_rows, cpu_rows):
+    """The same bench on a GPU: its half-resolution study, and its rows beside llvmpipe's (time and error)."""
+    if not gpu_rows:
+        return []
+    renderers = sorted({r["renderer"] for r in gpu_rows})
+    clocks = sorted({r["clock"] for r in gpu_rows})
+    lines = ["## On a GPU", "",
+             f"The same code and bench on {', '.join(renderers)} (headless EGL, device platform), clock "
+             f"{', '.join(clocks)}: GPU timer queries, the median of the timed frames. These runs come from "
+             "`benchmarks/gpu/run.sh` on a machine lent to a session and are kept under `benchmarks/gpu/`; "
+             "`scripts/report.sh` does not rerun them. Their references are the same Embree integrators "
+             "rendered afresh there.", ""]
+    study = resolution_rows(gpu_rows)
+    if study:
+        lines += ["### Half resolution on the GPU", "",
+                  "As in the half-resolution section above (the techniques' own passes), timed by the GPU. There the "
+                  "blur and the upsampling cost a few hundredths of a millisecond, so the goal rests on the half-"
+                  "resolution integrator alone. At 512x512 an H100 runs every pixel at once (132 SMs x 2048 threads "
+                  "hold 270k, a frame has 262k pixels), so a pass takes about as long as its slowest threads, at any "
+                  "resolution: only 1920x1080 (256 spp references) shows what half resolution saves. Where it falls "
+                  "short there, the half-resolution pass itself does not shrink with the pixel count (2CylinderEngine: "
+                  "long, divergent rays through its dense parts, whose latency fewer threads cannot hide).", ""]
+        lines += RESOLUTION_HEADER + study + [""]
+    cpu = {row_key(r): r for r in cpu_rows}
+    matched = [(r, cpu[row_key(r)]) for r in gpu_rows if row_key(r) in cpu]
+    if matched:
+        worst = max(abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"]))
+        lines += ["### GPU beside llvmpipe", "",
+                  f"Rows measured on both, same scene, size and settings: {len(matched)}; the largest RMSE "
+                  f"difference between the two is {fmt(worst)}. Times: llvmpipe's wall clock against the GPU's "
+                  "timer queries.", "",
+                  "| scene | technique | preset | quantity | size | llvmpipe ms | GPU ms | llvmpipe RMSE | GPU RMSE |",
+                  "|---|---|---|---|---|---|---|---|---|"]
+        for g, c in sorted(matched, key=lambda m: row_key(m[0])):
+            lines.append(f'| {os.path.basename(g["scene"])} | {g["technique"]} | {g["preset"]} | {g["quantity"]} | '
+                         f'{g["width"]}x{g["height"]} | {fmt(c["gpu_ms"])} | {fmt(g["gpu_ms"])} | {fmt(c["rmse"])} | '
+                         f'{fmt(g["rmse"])} |')
+        lines.append("")
+    return lines
 
 
 def shadow_section(rows):
@@ -252,7 +304,7 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
-def write_report(rows, perf, out_dir, sources, voxel, study_rows=()):
+def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -262,7 +314,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=()):
         "Every row compares a technique's output with CPU ground truth from `obscura::reference` (Embree) on the",
         "same pixels: quantities with a reference integrator are evaluated at the technique's own G-buffer samples;",
         "`position` and `normal` are compared with primary-ray hits. Times are the median over the timed frames",
-        "after a warm-up frame. On llvmpipe (no GPU) they are glFinish-bracketed wall clock (`wall_clock_finish`),",
+        "after a warm-up (one frame on llvmpipe; half a second of frames on a GPU, whose clocks rise from idle). On llvmpipe (no GPU) they are glFinish-bracketed wall clock (`wall_clock_finish`),",
         "because GPU timer queries under-report there by about 20x; on a GPU they are timer queries",
         "(`gpu_timer_query`). Compare times only between rows with the same clock and renderer.",
         "",
@@ -310,6 +362,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=()):
     lines += resolution_section(list(rows) + list(study_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
+    lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows))
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
 
@@ -320,13 +373,17 @@ def main():
     parser.add_argument("--out", default="docs", help="directory for results.md and results/*.png")
     parser.add_argument("--resolution-study", action="append", default=[],
                         help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
+    parser.add_argument("--gpu", action="append", default=[],
+                        help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section")
     args = parser.parse_args()
     rows, perf, voxel = load(args.inputs)
     if not rows:
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
     study_rows = load(args.resolution_study)[0] if args.resolution_study else []
     sources = [os.path.basename(p) for p in args.inputs] + [f"{p} (resolution study)" for p in args.resolution_study]
-    write_report(rows, perf, args.out, sources, voxel, study_rows)
+    gpu_rows = load(args.gpu)[0] if args.gpu else []
+    sources += [f"{p} (GPU)" for p in args.gpu]
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

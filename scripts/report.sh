@@ -32,5 +32,8 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+# Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section.
+gpu=()
+for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do [ -f "$f" ] && gpu+=(--gpu "$f"); done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
-  --resolution-study "$out/resolution/bench.json" --out "$OBSCURA_ROOT/docs"
+  --resolution-study "$out/resolution/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

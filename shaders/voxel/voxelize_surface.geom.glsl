@@ -90,9 +90,10 @@ void main() {
             const double dp = side * (p[k] - bound), dq = side * (q[k] - bound);
             if (dp >= 0.0 && kept < kMaxPolygon) clipped[kept++] = p;
             if ((dp < 0.0) != (dq < 0.0) && kept < kMaxPolygon) {
-                dvec3 x = mix(p, q, dp / (dp - dq));
-                x[k] = bound; // exactly on the face
-                clipped[kept++] = x;
+                // Exactly on the face. (Not x[k] = bound: NVIDIA's 580 driver fails to link
+                // a dynamically indexed write into a dvec3, "can't find __setVectorIndex".)
+                const dvec3 x = mix(p, q, dp / (dp - dq));
+                clipped[kept++] = mix(x, dvec3(bound), equal(ivec3(k), ivec3(0, 1, 2)));
             }
         }
         count = kept;

@@ -1,7 +1,9 @@
 #include "obscura/assets.hpp"
 #include "obscura/error.hpp"
 
+#ifdef OBSCURA_WITH_OPENIMAGEIO
 #include <OpenImageIO/imageio.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +28,7 @@ float srgbDecode(float encoded) {
 
 } // namespace
 
+#ifdef OBSCURA_WITH_OPENIMAGEIO
 Image readImage(const std::filesystem::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw Error(ErrorCode::Io, "cannot read image " + path.string() + ": " + OIIO::geterror());
@@ -46,6 +49,13 @@ Image readImage(const std::filesystem::path& path) {
                 img.pixels[i] = srgbDecode(img.pixels[i]);
     return img;
 }
+#else
+// Built without OpenImageIO (a machine that only runs the bench, whose references need no
+// files): every file read or write says so.
+Image readImage(const std::filesystem::path& path) {
+    throw Error(ErrorCode::Io, "cannot read image " + path.string() + ": built without OpenImageIO");
+}
+#endif
 
 namespace {
 
@@ -57,6 +67,7 @@ void requireConsistent(const Image& image, const std::string& who, int maxChanne
                                                     std::to_string(image.height) + "x" + std::to_string(image.channels));
 }
 
+#ifdef OBSCURA_WITH_OPENIMAGEIO
 void writeWith(const std::filesystem::path& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* data) {
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     auto out = OIIO::ImageOutput::create(path.string());
@@ -64,6 +75,11 @@ void writeWith(const std::filesystem::path& path, const OIIO::ImageSpec& spec, O
     if (!out->open(path.string(), spec) || !out->write_image(type, data) || !out->close())
         throw Error(ErrorCode::Io, "cannot write " + path.string() + ": " + out->geterror());
 }
+#else
+void writeWith(const std::filesystem::path& path) {
+    throw Error(ErrorCode::Io, "cannot write " + path.string() + ": built without OpenImageIO");
+}
+#endif
 
 } // namespace
 
@@ -93,9 +109,13 @@ void writePng(const std::filesystem::path& path, const TextureImage& picture) {
     if (picture.width < 1 || picture.height < 1 ||
         picture.rgba.size() != static_cast<std::size_t>(picture.width) * static_cast<std::size_t>(picture.height) * 4)
         throw Error(ErrorCode::InvalidArgument, "writePng: inconsistent picture");
+#ifdef OBSCURA_WITH_OPENIMAGEIO
     OIIO::ImageSpec spec(picture.width, picture.height, 4, OIIO::TypeDesc::UINT8);
     spec.alpha_channel = 3;
     writeWith(path, spec, OIIO::TypeDesc::UINT8, picture.rgba.data());
+#else
+    writeWith(path);
+#endif
 }
 
 void writeImage(const std::filesystem::path& path, const Image& image, PngEncoding encoding) {
@@ -105,10 +125,14 @@ void writeImage(const std::filesystem::path& path, const Image& image, PngEncodi
     // PNG pictures have up to 4 channels; EXR files any number (references store value and halves).
     requireConsistent(image, "writeImage", ext == ".png" ? 4 : 1024);
     if (ext == ".png") return writePng(path, encodeDisplay(image, encoding));
+#ifdef OBSCURA_WITH_OPENIMAGEIO
     OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
     if (image.channels == 4) spec.alpha_channel = 3;
     spec.attribute("compression", "zip");
     writeWith(path, spec, OIIO::TypeDesc::FLOAT, image.pixels.data());
+#else
+    writeWith(path);
+#endif
 }
 
 TextureImage readTextureImage(const std::filesystem::path& path) {

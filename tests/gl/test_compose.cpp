@@ -75,8 +75,9 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
                     CAPTURE(x, y, c, expected);
                     // RGBA16F: 11-bit mantissa (and the inputs are 16-bit too: a few ulp).
                     CHECK(radiance.at(x, y, c) == Approx(expected).epsilon(4e-3).margin(1e-6));
-                    // RGBA8: rounded to 1/255 after the clamp.
-                    CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 0.5 / 255.0 + 4e-3 * expected);
+                    // RGBA8 after the clamp: the GL converts to one of the two nearest of the 255
+                    // steps (nearest preferred, not required: NVIDIA 580 is off by more than half).
+                    CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 1.0 / 255.0 + 4e-3 * expected);
                 }
     }
 }

@@ -16,8 +16,10 @@ using test::AnalyticQuad;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Relative precision of a half float (11-bit significand): half an ulp is 2^-11.
-constexpr double kHalfRelative = 1.0 / 2048.0;
+// Relative precision of half-float storage (11-bit significand): one ulp, 2^-10. Rounding to
+// nearest would give half of it, but the rounding of float to half is the implementation's
+// (NVIDIA 580 rounds toward zero: its error was 1.13 times the half-ulp bound).
+constexpr double kHalfRelative = 1.0 / 1024.0;
 
 // The "depth range" scene: a floor from 1.7 to ~110 units away, and in the upper half eight
 // camera-facing stripes at depths from 0.15 to 990 (near/far = 0.1/1000).
@@ -71,6 +73,7 @@ TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (n
     const ProjectionInfo info = analyzeProjection(camera);
 
     double worstReconstruction = 0, worstEndToEnd = 0, worstNaive = 0, farthest = 0;
+    glm::dvec4 worstPixel(0.0); // x, y, stored depth, true distance
     int geometry = 0;
     const glm::mat4 inverseProjection = glm::inverse(camera.projection);
     for (int y = 0; y < H; ++y)
@@ -99,6 +102,7 @@ TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (n
             const double dzdd = std::abs(viewPositionFromDepth(camera, ndc, d + 1e-7).z - reference.z) / 1e-7;
             const double quantization = 4.0 * floatUlp(d) * dzdd / std::abs(zTrue);
             const double endToEnd = relativeError(gpu, *truth);
+            if (endToEnd > worstEndToEnd) worstPixel = {x, y, d, -zTrue};
             worstEndToEnd = std::max(worstEndToEnd, endToEnd);
             farthest = std::max(farthest, -zTrue);
             CHECK(endToEnd < 1e-5 + quantization);
@@ -110,7 +114,8 @@ TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (n
             worstNaive = std::max(worstNaive, relativeError(glm::dvec3(glm::vec3(v) / v.w), reference));
         }
     INFO("worst reconstruction " << worstReconstruction << ", end to end " << worstEndToEnd << ", naive float "
-                                 << worstNaive << ", farthest " << farthest);
+                                 << worstNaive << ", farthest " << farthest << "; worst pixel " << worstPixel.x << ","
+                                 << worstPixel.y << " stored depth " << worstPixel.z << " at distance " << worstPixel.w);
     CHECK(geometry > W * H / 2);
     CHECK(farthest > 900.0);
     // The test can tell a careful reconstruction from a naive one: with standard depth the
@@ -243,9 +248,9 @@ TEST_CASE("Direct radiance follows Lambert's law for directional point and spot 
                 const double expected = albedo[c] / kPi * e * light.color[c];
                 INFO("light " << lightKind << " pixel " << x << "," << y << " channel " << c << ": got "
                               << direct.at(x, y, c) << ", expected " << expected);
-                // Half-float storage: half an ulp relative (2^-11) for normal values, and 2^-25
+                // Half-float storage: an ulp relative (2^-10) for normal values, and 2^-24
                 // absolute in the subnormal range below 2^-14; twice that for float arithmetic.
-                CHECK(std::abs(direct.at(x, y, c) - expected) <= 2 * (kHalfRelative * expected + std::ldexp(1.0, -25)));
+                CHECK(std::abs(direct.at(x, y, c) - expected) <= 2 * (kHalfRelative * expected + std::ldexp(1.0, -24)));
             }
         }
 }
