@@ -35,6 +35,7 @@ struct BenchOptions {
     std::string out = "out/bench";
     bool referencePerformance = false;
     bool voxels = false;
+    std::vector<std::string> overrides; //!< KEY=VALUE after each preset's own settings
     VoxelBenchOptions voxel;
     std::string voxelResolutions = "128,512", voxelTargets = "1,4,8";
 };
@@ -268,6 +269,11 @@ private:
                       const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset) {
         auto run = info.create(ctx);
         for (const auto& [key, value] : preset.settings) run->set(key, value);
+        for (const std::string& kv : o_.overrides) {
+            const auto eq = kv.find('=');
+            if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected KEY=VALUE");
+            run->set(kv.substr(0, eq), kv.substr(eq + 1));
+        }
         const FrameSetup frame{r.scene, r.camera, r.width, r.height};
         // Warm-up, not timed: compilation and allocation, and on a GPU half a second of
         // frames, so that its clocks have left the idle state the CPU reference put it in
@@ -404,6 +410,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--spp", o->spp, "Reference samples per pixel")->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache directory (default OUT/reference-cache)");
     cmd->add_flag("--no-cache", o->noCache, "Render every reference afresh and store none");
+    cmd->add_option("--set", o->overrides, "KEY=VALUE after each preset's settings (every technique benched must take it)");
     cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
     cmd->add_flag("--reference-performance", o->referencePerformance,
                   "Also time the AO reference (256x256, 256 spp) of each scene, in rays/s");

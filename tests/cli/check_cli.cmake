@@ -137,3 +137,25 @@ file(READ "${WORK_DIR}/docs/results.md" report)
 if(NOT report MATCHES "## Voxelizer" OR NOT report MATCHES "## Visibility in voxel space")
   message(FATAL_ERROR "results.md lacks the voxelizer sections")
 endif()
+
+# --set overrides every preset's settings (here the maps' size: six 256^2 32F layers, plus the
+# lights' records, a few KiB; the low preset's own 512^2 maps would be four times as much),
+# and --no-cache leaves no reference files behind.
+run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --techniques shadow.cube --presets low
+    --set resolution=256 --no-cache --out "${WORK_DIR}/bench_set")
+file(READ "${WORK_DIR}/bench_set/bench.json" bench)
+string(JSON mapBytes GET "${bench}" rows 0 memory shadow.maps)
+math(EXPR expected "6 * 256 * 256 * 4")
+math(EXPR ceiling "${expected} + 65536")
+if(mapBytes LESS expected OR NOT mapBytes LESS ceiling)
+  message(FATAL_ERROR "bench --set resolution=256: shadow.maps holds ${mapBytes} bytes, expected ${expected}")
+endif()
+if(EXISTS "${WORK_DIR}/bench_set/reference-cache")
+  message(FATAL_ERROR "bench --no-cache wrote a reference cache")
+endif()
+execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques shadow.cube --presets low
+                        --set resolution --out "${WORK_DIR}/bench_bad"
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "KEY=VALUE")
+  message(FATAL_ERROR "bench --set without a value was not refused clearly: ${err}")
+endif()
