@@ -212,8 +212,9 @@ def gpu_section(gpu_rows, cpu_rows):
         worst = max(abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"]))
         lines += ["### GPU beside llvmpipe", "",
                   f"Rows measured on both, same scene, size and settings: {len(matched)}; the largest RMSE "
-                  f"difference between the two is {fmt(worst)}. Times: llvmpipe's wall clock against the GPU's "
-                  "timer queries.", "",
+                  f"difference between the two is {fmt(worst)}. Rows that differ by more than a few times the "
+                  "reference noise mean that one machine computes something else: see benchmarks/README.md for "
+                  "the faults known on that GPU. Times: llvmpipe's wall clock against the GPU's timer queries.", "",
                   "| scene | technique | preset | quantity | size | llvmpipe ms | GPU ms | llvmpipe RMSE | GPU RMSE |",
                   "|---|---|---|---|---|---|---|---|---|"]
         for g, c in sorted(matched, key=lambda m: row_key(m[0])):
