@@ -209,7 +209,8 @@ def gpu_section(gpu_rows, cpu_rows):
     cpu = {row_key(r): r for r in cpu_rows}
     matched = [(r, cpu[row_key(r)]) for r in gpu_rows if row_key(r) in cpu]
     if matched:
-        worst = max(abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"]))
+        worst = max((abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"])),
+                    default=float("nan"))
         lines += ["### GPU beside llvmpipe", "",
                   f"Rows measured on both, same scene, size and settings: {len(matched)}; the largest RMSE "
                   f"difference between the two is {fmt(worst)}. Rows that differ by more than a few times the "

@@ -269,11 +269,7 @@ private:
                       const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset) {
         auto run = info.create(ctx);
         for (const auto& [key, value] : preset.settings) run->set(key, value);
-        for (const std::string& kv : o_.overrides) {
-            const auto eq = kv.find('=');
-            if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected KEY=VALUE");
-            run->set(kv.substr(0, eq), kv.substr(eq + 1));
-        }
+        applySettings(*run, o_.overrides);
         const FrameSetup frame{r.scene, r.camera, r.width, r.height};
         // Warm-up, not timed: compilation and allocation, and on a GPU half a second of
         // frames, so that its clocks have left the idle state the CPU reference put it in
@@ -406,7 +402,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--techniques", o->techniques, "Glob of technique names")->capture_default_str();
     cmd->add_option("--presets", o->presets, "Comma-separated presets (default: all of each technique)");
     cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
-    cmd->add_option("--frames", o->frames, "Timed frames after a warm-up frame (>= 20)")->capture_default_str();
+    cmd->add_option("--frames", o->frames, "Timed frames after the warm-up (one frame; half a second of frames on a GPU) (>= 20)")->capture_default_str();
     cmd->add_option("--spp", o->spp, "Reference samples per pixel")->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache directory (default OUT/reference-cache)");
     cmd->add_flag("--no-cache", o->noCache, "Render every reference afresh and store none");

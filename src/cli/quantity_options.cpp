@@ -103,9 +103,7 @@ reference::Quantity parseQuantity(const std::string& integrator, const std::vect
     }
     reference::Quantity q = it->second.defaults;
     for (const auto& kv : sets) {
-        const auto eq = kv.find('=');
-        if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected key=value");
-        const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+        const auto [key, value] = splitSetting(kv);
         const auto setter = it->second.keys.find(key);
         if (setter == it->second.keys.end()) {
             std::string known;

@@ -72,11 +72,7 @@ void runRender(const RenderOptions& o) {
             std::printf("%-12s skipped: %s\n", t->name.c_str(), why.c_str());
             continue;
         }
-        for (const auto& kv : o.sets) {
-            const auto eq = kv.find('=');
-            if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + kv + ": expected key=value");
-            run->set(kv.substr(0, eq), kv.substr(eq + 1));
-        }
+        applySettings(*run, o.sets);
         const FrameSetup frame{scene, camera, width, height};
         run->run(frame); // warm-up: shader compilation and allocation are not timed
         ctx.profiler().reset();

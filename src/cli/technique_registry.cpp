@@ -19,6 +19,19 @@ void registerTechnique(TechniqueInfo info) {
     registry().emplace(name, std::move(info));
 }
 
+std::pair<std::string, std::string> splitSetting(const std::string& keyValue) {
+    const auto eq = keyValue.find('=');
+    if (eq == std::string::npos) throw Error(ErrorCode::Parse, "--set " + keyValue + ": expected key=value");
+    return {keyValue.substr(0, eq), keyValue.substr(eq + 1)};
+}
+
+void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues) {
+    for (const std::string& kv : keyValues) {
+        const auto [key, value] = splitSetting(kv);
+        run.set(key, value);
+    }
+}
+
 bool parseBool(const std::string& key, const std::string& value) {
     if (value == "1" || value == "true" || value == "on") return true;
     if (value == "0" || value == "false" || value == "off") return false;

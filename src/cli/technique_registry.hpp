@@ -111,6 +111,10 @@ struct TechniqueRegistrar {
     explicit TechniqueRegistrar(TechniqueInfo info) { registerTechnique(std::move(info)); }
 };
 
+//! Splits a --set argument "key=value"; throws Error{Parse} without the '='.
+std::pair<std::string, std::string> splitSetting(const std::string& keyValue);
+//! Applies --set arguments to a run, after its preset (each must be one of its settings).
+void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues);
 //! Parses a boolean setting value ("1/0/true/false/on/off"); throws Error{Parse}.
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.

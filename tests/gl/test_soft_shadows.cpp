@@ -311,10 +311,9 @@ TEST_CASE("Wide kernels light an unoccluded floor a few degrees off edge-on to t
             CAPTURE(static_cast<int>(kernel), static_cast<int>(filter), worstSteep, worstGrazing);
             // The mask is R16F: a float sum of weights a rounding below 1 may store 1 - 2^-11.
             CHECK(worstSteep <= std::ldexp(1.0, -11));
-            // Past tan theta = 16 the slope bias stops growing (its clamp), and PCF's own taps
-            // meet acne there (measured up to 0.56 dark below 1 degree): a documented limit.
-            // PCSS finds no blocker and stays exactly lit.
+            // PCSS finds no blocker and stays exactly lit. PCF is not checked there: past
+            // tan theta = 16 the slope bias stops growing (its clamp), and its own taps meet
+            // acne (measured up to 0.56 dark below 1 degree), a documented limit.
             if (filter == ShadowFilter::Pcss) CHECK(worstGrazing == 0.0);
-            else CHECK(worstGrazing <= 1.0);
         }
 }

@@ -476,15 +476,14 @@ TEST_CASE("Debug output: our messages go to our callback and the host's callback
     test::GlFixture gl(/*debug=*/true);
     // Drivers may add notifications of their own (NVIDIA 580: where a buffer lives), and
     // deliver the host's asynchronously: those are not messages of ours or the host's.
-    const auto driverNote = [](GLenum source, GLenum severity) {
-        return source == GL_DEBUG_SOURCE_API && severity == GL_DEBUG_SEVERITY_NOTIFICATION;
-    };
     struct Counter {
         int messages = 0;
+        static bool driverNote(GLenum source, GLenum severity) {
+            return source == GL_DEBUG_SOURCE_API && severity == GL_DEBUG_SEVERITY_NOTIFICATION;
+        }
         static void GLAD_API_PTR callback(GLenum source, GLenum, GLuint, GLenum severity, GLsizei, const GLchar*,
                                           const void* user) {
-            if (!(source == GL_DEBUG_SOURCE_API && severity == GL_DEBUG_SEVERITY_NOTIFICATION))
-                ++static_cast<Counter*>(const_cast<void*>(user))->messages;
+            if (!driverNote(source, severity)) ++static_cast<Counter*>(const_cast<void*>(user))->messages;
         }
     } hostCounter;
     glDebugMessageCallback(&Counter::callback, &hostCounter);
@@ -501,7 +500,7 @@ TEST_CASE("Debug output: our messages go to our callback and the host's callback
         ContextDesc desc = gl.desc();
         std::string first;
         desc.debugOutput = [&](const DebugMessage& m) {
-            if (driverNote(m.source, m.severity)) return;
+            if (Counter::driverNote(m.source, m.severity)) return;
             if (ours++ == 0) first = m.text;
         };
         Context ctx(desc);
