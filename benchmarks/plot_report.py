@@ -169,7 +169,9 @@ def resolution_section(rows):
         return []
     return ["## Half resolution", "",
             "Presets `medium` and `high` (full resolution, no blur) against `medium_half` and `high_half` (the same "
-            "rays and steps at half resolution, a 3-tap geometry-aware blur and joint bilateral upsampling), at the "
+            "rays and steps at half resolution, a geometry-aware blur of 3 taps each side at medium and 1 at high, "
+            "joint bilateral upsampling, and the pixels the upsampling finds no similar neighbour for computed at full "
+            "resolution: `refine_threshold`, pass `<module>.refine`), at the "
             "size of the tables above and, where a resolution study was run (`scripts/report.sh`: 512x512), at that "
             "size. Times are the technique's own passes (the G-buffer and its shadow maps, which they share, "
             "excluded); on llvmpipe each pass also pays a glFinish, which weighs most at small sizes. The goal: at "
@@ -194,7 +196,9 @@ def gpu_section(gpu_rows, cpu_rows):
              f"{', '.join(clocks)}: GPU timer queries, the median of the timed frames. These runs come from "
              "`benchmarks/gpu/run.sh` on a machine lent to a session and are kept under `benchmarks/gpu/`; "
              "`scripts/report.sh` does not rerun them. Their references are the same Embree integrators "
-             "rendered afresh there.", ""]
+             "rendered afresh there. They were measured at commit 621dcc0 (2026-11-24), before the half-resolution "
+             "presets refined edges at full resolution and before `high_half` blurred with 1 tap each side, so their "
+             "`_half` rows are of the older code.", ""]
     study = resolution_rows(gpu_rows)
     if study:
         lines += ["### Half resolution on the GPU", "",

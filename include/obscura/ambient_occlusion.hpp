@@ -75,6 +75,13 @@ struct AmbientOcclusionSettings {
     float blurDepthSigma = 0.05f;
     //! Blur and upsampling: normal weight max(0, n.n')^power, [0, 256].
     float blurNormalPower = 16.0f;
+    //! Upsampling (Half, Quarter): G-buffer pixels whose similar low-resolution neighbours
+    //! carry less than this share of their bilinear weight (the guide weights times the
+    //! bilinear ones, summed) are computed at full resolution instead, pass "ao.refine":
+    //! mostly the edges of parts thinner than the low resolution's pixels. [0, 1]; 0: none
+    //! (where no neighbour is similar, the one nearest in depth fills in). At most a quarter
+    //! of the G-buffer's pixels are refined; past that they are blended as with 0.
+    float refineThreshold = 0.25f;
     bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
     //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.
@@ -95,8 +102,8 @@ public:
     AmbientOcclusion(const AmbientOcclusion&) = delete;
     AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
 
-    //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur" and "ao.upsample"
-    //! when used. Throws Error{InvalidArgument} for settings out of range, a G-buffer without
+    //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
+    //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range, a G-buffer without
     //! depth or normal (or without backDepth for DepthPeeling), or the Voxel method without a
     //! grid. The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);

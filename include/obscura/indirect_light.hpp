@@ -54,6 +54,7 @@ struct IndirectLightSettings {
     int blurRadius = 0;          //!< geometry-aware separable blur taps each side, [0, 16]
     float blurDepthSigma = 0.05f;  //!< as AmbientOcclusionSettings, (0, 1]
     float blurNormalPower = 16.0f; //!< as AmbientOcclusionSettings, [0, 256]
+    float refineThreshold = 0.25f; //!< as AmbientOcclusionSettings (pass "gi.refine"), [0, 1]
     const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
     VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Hybrid
 };
@@ -70,8 +71,8 @@ public:
     IndirectLight(const IndirectLight&) = delete;
     IndirectLight& operator=(const IndirectLight&) = delete;
 
-    //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur" and
-    //! "gi.upsample" when used. Throws Error{InvalidArgument} for settings out of range, a
+    //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
+    //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings out of range, a
     //! G-buffer without depth, normal, albedo or direct radiance (adopted host buffers have
     //! no radiance to gather), without backDepth for DepthPeeling, or the hybrid method
     //! without a grid.

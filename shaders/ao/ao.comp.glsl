@@ -1,6 +1,8 @@
 // Ambient occlusion / obscurance at the AO resolution: one invocation per AO pixel, at the
 // top-left G-buffer pixel of its block. When the result is filtered, also writes the guide
-// (view normal, view z) that the blur and the upsampling weigh with.
+// (view normal, view z) that the blur and the upsampling weigh with. REFINE: one invocation
+// per G-buffer pixel the upsampling listed (refine_list.glsl), computed as at full
+// resolution and written into the full-resolution images.
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=1
 //! variant: METHOD=0 SCREEN_MARCH=2
@@ -12,11 +14,19 @@
 //! variant: METHOD=3 TRAVERSAL=0
 //! variant: METHOD=3 TRAVERSAL=1
 //! variant: METHOD=3 TRAVERSAL=2
+//! variant: METHOD=0 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=1 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=2 REFINE
+//! variant: METHOD=3 TRAVERSAL=2 REFINE
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "ao_common.glsl"
 #if METHOD == AO_METHOD_VOXEL
 #include "../voxel/voxel_traversal.glsl"
+#endif
+#include "../filters/refine_list.glsl"
+#if defined(REFINE) && AO_WORKGROUP * AO_WORKGROUP != FILTER_REFINE_GROUP
+#error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
 #endif
 
 layout(local_size_x = AO_WORKGROUP, local_size_y = AO_WORKGROUP) in;
@@ -50,7 +60,7 @@ void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
 }
 
 #if METHOD == AO_METHOD_RAYMARCH
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -64,7 +74,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
 #elif METHOD == AO_METHOD_POINTS
 // Crytek-style: points uniform in the ball of radius r cut to the normal's hemisphere (the
 // distance from p as r u^(1/3)); a hidden point counts as occluded at its distance.
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -89,7 +99,7 @@ float aoArc(float h1, float h2, float g) {
 // to the radius projected at p find the highest point within the radius above p's tangent
 // plane. The result is normalized by the same sum for an open hemisphere, so a plane with
 // nothing above it is exactly 1 for any number of slices.
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -99,7 +109,6 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
     const float pixelsPerUnit = 0.5 * float(frameSize().y) * frame.projection[1][1] /
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
     const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
-    const ivec2 fullPixel = pixel * aoScale();
     float visible = 0.0, open = 0.0;
     for (int s = 0; s < slices; ++s) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
@@ -143,7 +152,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
 }
 #else
 // Rays of length r through the voxel grid from a start lifted off the surface's voxels.
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -168,22 +177,26 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel) {
 #endif
 
 void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, aoSize()))) return;
-    const ivec2 full = min(pixel * aoScale(), frameSize() - 1);
+    ivec2 pixel, full;
+    if (!integratorPixel(aoSize(), aoScale(), pixel, full)) return;
+#ifdef REFINE
+    const bool guide = false; // the listed pixels are written at full resolution, unfiltered
+#else
+    const bool guide = aoGuide();
+#endif
     const float depth = texelFetch(visDepth, full, 0).r;
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
     if (isBackground(depth) || normalTexel.a == 0.0) {
         imageStore(aoOut, pixel, vec4(1.0));
         if (aoBent()) imageStore(bentOut, pixel, vec4(0.0));
-        if (aoGuide()) imageStore(guideOut, pixel, vec4(0.0));
+        if (guide) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-    const Estimate e = aoEstimate(p, normal, pixel);
+    const Estimate e = aoEstimate(p, normal, pixel, full);
     const float value = e.count > 0.0 ? clamp(e.sum / e.count, 0.0, 1.0) : 1.0;
     imageStore(aoOut, pixel, vec4(value));
     if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));
-    if (aoGuide()) imageStore(guideOut, pixel, vec4(normal, p.z));
+    if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

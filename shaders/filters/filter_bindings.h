@@ -22,16 +22,22 @@ using ivec4 = glm::ivec4;
 #define FILTER_GUIDE_IN_IMAGE 2      // read: the guide (rgba32f)
 #define FILTER_VALUE_IN_IMAGE 3      // read: the value
 #define FILTER_DIRECTION_IN_IMAGE 4  // read: the direction, with DIRECTION
+#define FILTER_REFINE_SSBO 6         // the pixels to refine (refine_list.glsl), with REFINE
 
 #define FILTER_LOC_STEP 0 // blur: ivec2 pixel step of this pass
 
 #define FILTER_FLAG_UNIT_RANGE 2 // values are clamped to [0, 1]
 
 #define FILTER_WORKGROUP 8
+// Invocations per group of the refinement dispatch: the integrators' 8 x 8 workgroups.
+#define FILTER_REFINE_GROUP 64
+// The refinement list's header: an indirect dispatch (groups x, y, z), then the count.
+#define FILTER_REFINE_HEADER_UINTS 4
 
 struct FilterParams {
     ivec4 sizes;   // x, y: low resolution; z: scale to the full resolution; w: blur taps each side
-    vec4 weights;  // x: depth sigma (relative view depth), y: normal power, z: background value, w: unused
+    vec4 weights;  // x: depth sigma (relative view depth), y: normal power, z: background value,
+                   // w: refinement threshold (share of the bilinear weight; REFINE)
     ivec4 flags;   // x: FILTER_FLAG_*, y, z, w: unused
 };
 

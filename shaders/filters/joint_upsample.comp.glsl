@@ -1,15 +1,23 @@
 // Joint bilateral upsampling to the G-buffer's resolution: the four low-resolution pixels
 // around each G-buffer pixel, weighted bilinearly and by guideWeight against the pixel's own
 // view depth and normal. Where no neighbour is similar, the one nearest in depth is taken.
-// Background pixels get the background value (and no direction).
+// Background pixels get the background value (and no direction). REFINE: pixels whose
+// similar neighbours carry less than the threshold's share of the bilinear weight are listed
+// for the integrator to compute instead (refine_list.glsl); they are not written here.
 //
 // One invocation writes a 2 x 2 quad of G-buffer pixels. With an even scale the quad's four
 // pixels share the same four low-resolution neighbours, so they are loaded once per quad,
 // and the quad's own depth and normal are one textureGather per channel.
 //! variant: RGB
 //! variant: DIRECTION
+//! variant: REFINE
+//! variant: DIRECTION REFINE
+//! variant: RGB REFINE
 #include "../visibility/screen_march.glsl"
 #include "filter_common.glsl"
+#ifdef REFINE
+#include "refine_list.glsl"
+#endif
 
 layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
 
@@ -56,7 +64,10 @@ void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE 
 void writePixel(ivec2 pixel, Target t, Blend b) {
     const bool weighted = b.total > 1e-6;
     const FILTER_VALUE blended = filterFinish(weighted ? b.sum / b.total : b.nearest);
-    const bool inside = all(lessThan(pixel, frameSize())); // odd sizes: the quad's far half is outside
+    bool inside = all(lessThan(pixel, frameSize())); // odd sizes: the quad's far half is outside
+#ifdef REFINE
+    if (inside && !t.background && b.total < filterParams.weights.w && refineAppend(pixel)) inside = false;
+#endif
     if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.weights.z) : blended));
 #ifdef DIRECTION
     if (inside) {

@@ -1,6 +1,7 @@
 // One-bounce indirect light at the GI resolution: one invocation per pixel, at the top-left
 // G-buffer pixel of its block; when the result is filtered, also writes the guide for the
-// filters.
+// filters. REFINE: one invocation per G-buffer pixel the upsampling listed
+// (refine_list.glsl), computed as at full resolution into the full-resolution image.
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=1
 //! variant: METHOD=0 SCREEN_MARCH=2
@@ -9,11 +10,17 @@
 //! variant: METHOD=1 TRAVERSAL=0
 //! variant: METHOD=1 TRAVERSAL=1
 //! variant: METHOD=1 TRAVERSAL=2
+//! variant: METHOD=0 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=1 TRAVERSAL=2 REFINE
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "gi_bindings.h"
 #if METHOD == GI_METHOD_HYBRID
 #include "../voxel/voxel_traversal.glsl"
+#endif
+#include "../filters/refine_list.glsl"
+#if defined(REFINE) && GI_WORKGROUP * GI_WORKGROUP != FILTER_REFINE_GROUP
+#error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
 #endif
 
 layout(local_size_x = GI_WORKGROUP, local_size_y = GI_WORKGROUP) in;
@@ -71,19 +78,23 @@ vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
 }
 
 void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, gi.sizes.xy))) return;
-    const ivec2 full = min(pixel * gi.sizes.z, frameSize() - 1);
+    ivec2 pixel, full;
+    if (!integratorPixel(gi.sizes.xy, gi.sizes.z, pixel, full)) return;
+#ifdef REFINE
+    const bool guide = false; // the listed pixels are written at full resolution, unfiltered
+#else
+    const bool guide = gi.counts.z != 0;
+#endif
     const float depth = texelFetch(visDepth, full, 0).r;
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
     if (isBackground(depth) || normalTexel.a == 0.0) {
         imageStore(giOut, pixel, vec4(0.0));
-        if (gi.counts.z != 0) imageStore(guideOut, pixel, vec4(0.0));
+        if (guide) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const vec3 albedo = texelFetch(albedoTexture, full, 0).rgb;
     imageStore(giOut, pixel, vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0));
-    if (gi.counts.z != 0) imageStore(guideOut, pixel, vec4(normal, p.z));
+    if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

@@ -49,6 +49,7 @@ void validateSettings(const AmbientOcclusionSettings& s) {
         throw Error(ErrorCode::InvalidArgument, "AmbientOcclusionSettings::thickness must be in [0, inf) world units (0: "
                                                 "the radius), got " + std::to_string(s.thickness));
     validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "AmbientOcclusionSettings");
+    validateRefineThreshold(s.refineThreshold, "AmbientOcclusionSettings");
     if (s.method == AoMethod::Horizon && !s.cosineWeighted)
         throw Error(ErrorCode::InvalidArgument, "the horizon method integrates the cosine-weighted AO only: set "
                                                 "AmbientOcclusionSettings::cosineWeighted");
@@ -130,14 +131,14 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     // The guide is only for the filters: a full-resolution result without blur needs none.
     const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide") : 0;
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
+    std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
+    if (marches) {
+        const auto screen = screenMarchDefines(march, peeled ? ScreenThickness::DepthPeeling : ScreenThickness::Constant);
+        defines.insert(defines.end(), screen.begin(), screen.end());
+    }
+    if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
     {
         PassScope pass(ctx, passName(s.method));
-        std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
-        if (marches) {
-            const auto screen = screenMarchDefines(march, peeled ? ScreenThickness::DepthPeeling : ScreenThickness::Constant);
-            defines.insert(defines.end(), screen.begin(), screen.end());
-        }
-        if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
         ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
@@ -147,7 +148,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     const FilterImages images{guide, aoTexture, bent, false, size, scale};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold};
     d.filters.blur(ctx, images, filter, "ao.blur");
     AmbientOcclusionView out;
     out.width = view.width;
@@ -159,6 +160,14 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         const GLuint fullAo = d.fullAo.ensure(ctx, GL_R16F, view.width, view.height, "ao.output");
         const GLuint fullBent = bent ? d.fullBent.ensure(ctx, GL_RGBA16F, view.width, view.height, "ao.bent_normal") : 0;
         d.filters.upsample(ctx, images, filter, fullAo, fullBent, {view.width, view.height}, "ao.upsample");
+        if (s.refineThreshold > 0.0f) {
+            PassScope pass(ctx, "ao.refine");
+            defines.push_back("REFINE");
+            ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
+            d.bindWrite(AO_OUT_IMAGE, fullAo, GL_R16F);
+            if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, fullBent, GL_RGBA16F);
+            d.filters.dispatchRefinement(ctx);
+        }
         out.ao = {fullAo, GL_R16F, view.width, view.height};
         if (bent) out.bentNormal = {fullBent, GL_RGBA16F, view.width, view.height};
     }

@@ -3,6 +3,7 @@
 #include "obscura/error.hpp"
 
 #include <algorithm>
+#include <map>
 
 namespace obscura::cli {
 namespace {
@@ -77,8 +78,12 @@ GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& vi
     return {readTexture(ctx, gbuffer.positions(view)), readTexture(ctx, view.normal)};
 }
 
+// X_half: X's rays and steps at half resolution, blurred and upsampled. The blur trades noise
+// for bias: 3 taps each side at 16 rays, and at 64 rays (half the noise) half as wide,
+// rounded down to 1 (2CylinderEngine 512x512, ao.horizon high_half RMSE 0.083 with 3 taps,
+// 0.061 with 2, 0.051 with 1, against 0.029 at full resolution).
 std::vector<Preset> integratorPresets() {
-    const std::vector<std::pair<std::string, std::string>> half = {{"resolution", "half"}, {"blur_radius", "3"}};
+    const std::map<std::string, std::string> blurTaps = {{"medium", "3"}, {"high", "1"}};
     std::vector<Preset> presets = {
         {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
         {"medium", {{"rays", "16"}, {"steps", "8"}}},
@@ -88,7 +93,8 @@ std::vector<Preset> integratorPresets() {
     for (const char* name : {"high", "medium"}) {
         const auto full = std::find_if(presets.begin(), presets.end(), [&](const Preset& p) { return p.name == name; });
         Preset halved{full->name + "_half", full->settings};
-        halved.settings.insert(halved.settings.end(), half.begin(), half.end());
+        halved.settings.push_back({"resolution", "half"});
+        halved.settings.push_back({"blur_radius", blurTaps.at(name)});
         presets.insert(full + 1, halved);
     }
     return presets;

@@ -18,6 +18,9 @@ struct GuidedFilterSettings {
     float normalPower = 16.0f;   //!< normal weight exponent, [0, 256]
     bool unitRange = false;      //!< clamp values to [0, 1]
     float background = 0.0f;    //!< upsampling: the value of background pixels
+    //! upsampling: pixels whose similar neighbours carry less than this share of their
+    //! bilinear weight are listed for refinement at full resolution, [0, 1]; 0: none
+    float refineThreshold = 0.0f;
 };
 
 //! The images one integrator filters: a value (GL_R16F, or GL_RGBA16F with `rgb`) and an
@@ -37,6 +40,8 @@ inline bool filtersRun(int scale, int taps) { return scale > 1 || taps > 0; }
 
 //! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
+//! Throws Error{InvalidArgument} for a refinement threshold outside [0, 1].
+void validateRefineThreshold(float threshold, const std::string& owner);
 
 class GuidedFilters {
 public:
@@ -44,13 +49,21 @@ public:
     void blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName);
     //! Writes the full-resolution images from the low-resolution ones; the caller has bound
     //! the frame block and the G-buffer's depth and normal (VIS_DEPTH_UNIT, VIS_NORMAL_UNIT).
+    //! With a refinement threshold, the pixels it lists are left unwritten (refine_list.glsl),
+    //! at most a quarter of the G-buffer's pixels; the rest are blended as without it.
     void upsample(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, GLuint fullValue,
                   GLuint fullDirection, glm::ivec2 fullSize, const char* passName);
+    //! After an upsample with a refinement threshold: runs the program in use (an integrator's
+    //! REFINE variant, FILTER_REFINE_GROUP invocations a group) once per listed pixel, with the
+    //! list bound at FILTER_REFINE_SSBO. The caller binds the program's inputs and outputs.
+    void dispatchRefinement(ContextImpl& ctx);
     std::size_t memoryBytes() const;
 
 private:
     void upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s);
-    Buffer params_;
+    void startRefineList(ContextImpl& ctx, glm::ivec2 fullSize);
+    Buffer params_, refineList_;
+    std::size_t refineListBytes_ = 0;
     SizedTexture valueTemp_, directionTemp_;
 };
 

@@ -35,6 +35,7 @@ void validateSettings(const IndirectLightSettings& s) {
         throw Error(ErrorCode::InvalidArgument, "IndirectLightSettings::thickness must be in [0, inf) world units, got " +
                                                     std::to_string(s.thickness));
     validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "IndirectLightSettings");
+    validateRefineThreshold(s.refineThreshold, "IndirectLightSettings");
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
 }
 
@@ -116,14 +117,14 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
     // The guide is only for the filters: a full-resolution result without blur needs none.
     const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide") : 0;
+    std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
+    if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+    else {
+        const auto screen = screenMarchDefines(s.march, s.thicknessMode);
+        defines.insert(defines.end(), screen.begin(), screen.end());
+    }
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
-        std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
-        if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
-        else {
-            const auto screen = screenMarchDefines(s.march, s.thicknessMode);
-            defines.insert(defines.end(), screen.begin(), screen.end());
-        }
         ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
@@ -132,12 +133,19 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     const FilterImages images{guide, radiance, 0, true, size, scale};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold};
     d.filters.blur(ctx, images, filter, "gi.blur");
     IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};
     if (scale > 1) {
         const GLuint full = d.full.ensure(ctx, GL_RGBA16F, fullSize.x, fullSize.y, "gi.output");
         d.filters.upsample(ctx, images, filter, full, 0, fullSize, "gi.upsample");
+        if (s.refineThreshold > 0.0f) {
+            PassScope pass(ctx, "gi.refine");
+            defines.push_back("REFINE");
+            ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
+            d.bindWrite(GI_OUT_IMAGE, full, GL_RGBA16F);
+            d.filters.dispatchRefinement(ctx);
+        }
         out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
     }
     barrierForReaders(ctx);

@@ -377,6 +377,8 @@ TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-i
              [](AmbientOcclusionSettings& s) { s.rays = 0; }, [](AmbientOcclusionSettings& s) { s.rays = 2000; },
              [](AmbientOcclusionSettings& s) { s.steps = 0; }, [](AmbientOcclusionSettings& s) { s.thickness = -1.0f; },
              [](AmbientOcclusionSettings& s) { s.blurRadius = 17; }, [](AmbientOcclusionSettings& s) { s.blurDepthSigma = 0.0f; },
+             [](AmbientOcclusionSettings& s) { s.refineThreshold = -0.1f; },
+             [](AmbientOcclusionSettings& s) { s.refineThreshold = NAN; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.rays = 7; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.cosineWeighted = false; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Voxel; }}) {

@@ -3,7 +3,8 @@
 // (Context::addShaderSource) by itself with the estimate swapped for a hash of the pixel,
 // k / 256 for the AO (exact in half floats) and a hashed unit vector for the bent normal.
 // Everything else is the module's own code: its guide, the blur's two passes through half
-// float temporaries, the upsampling, the background handling and the image edges.
+// float temporaries, the upsampling, the background handling, the image edges, and the
+// refinement, whose pixels the integrator computes with the hash of their own G-buffer pixel.
 #include "gl_fixture.hpp"
 
 #include "obscura/assets.hpp"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -100,6 +102,7 @@ struct Model {
     bool unitRange;
     float background; // the value of background pixels
     Image positions, normals;
+    double refineThreshold = 0.0;
 
     int lowWidth() const { return (width + scale - 1) / scale; }
     int lowHeight() const { return (height + scale - 1) / scale; }
@@ -161,18 +164,44 @@ LowImages blurPass(const Model& m, const LowImages& in, glm::ivec2 step) {
     return out;
 }
 
+// What a G-buffer pixel may hold: the upsampling's blend, or, where it lists the pixel for
+// refinement, what the integrator writes there at full resolution. Both are allowed where
+// the model cannot tell which the GPU did: a total weight within float rounding of the
+// threshold, or more pixels to refine than the list holds (which of them got in is the
+// order of the GPU's atomics).
 struct Expected {
-    std::vector<glm::vec4> value, direction;
+    std::vector<glm::vec4> value, direction;          // the blend
+    std::vector<glm::vec4> refinedValue, refinedDirection;
+    std::vector<char> refined, either;
+    int qualifying = 0;                               // pixels below the threshold
 };
 
-Expected upsample(const Model& m, const LowImages& low) {
+// The integrator's full-resolution value and direction at a G-buffer pixel.
+struct FullResolution {
+    std::function<glm::vec4(int, int)> value;
+    std::function<glm::vec4(int, int)> direction;
+};
+
+// The refinement list's capacity (guided_filters.cpp): a quarter of the G-buffer's pixels.
+int refineCapacity(const Model& m) { return (m.width * m.height + 3) / 4; }
+
+Expected upsample(const Model& m, const LowImages& low, const FullResolution& full = {}) {
     Expected e;
     const int w = m.lowWidth(), h = m.lowHeight();
+    // The GPU's weights are float (exp2 of a float exponent): about 1e-6 relative.
+    constexpr double kThresholdSlack = 1e-4;
+    const auto noRefinement = [&] {
+        e.refinedValue.push_back(glm::vec4(0.0f));
+        e.refinedDirection.push_back(glm::vec4(0.0f));
+        e.refined.push_back(0);
+        e.either.push_back(0);
+    };
     for (int y = 0; y < m.height; ++y)
         for (int x = 0; x < m.width; ++x) {
             if (m.isBackground(x, y)) {
                 e.value.push_back(glm::vec4(m.background));
                 e.direction.push_back(glm::vec4(0.0f));
+                noRefinement();
                 continue;
             }
             const Guide target{m.normalAt(x, y), m.positions.at(x, y, 2)};
@@ -201,7 +230,18 @@ Expected upsample(const Model& m, const LowImages& low) {
             const bool weighted = total > 1e-6;
             e.value.push_back(m.finish(weighted ? sum / total : nearest));
             e.direction.push_back(glm::vec4(toHalf(glm::vec3(glm::normalize(weighted ? direction : nearestDirection))), 1.0f));
+            if (m.refineThreshold > 0.0 && total < m.refineThreshold + kThresholdSlack) {
+                e.refinedValue.push_back(full.value(x, y));
+                e.refinedDirection.push_back(full.direction(x, y));
+                e.refined.push_back(1);
+                e.either.push_back(total > m.refineThreshold - kThresholdSlack);
+                e.qualifying += total < m.refineThreshold;
+            } else {
+                noRefinement();
+            }
         }
+    if (e.qualifying > refineCapacity(m))
+        for (std::size_t i = 0; i < e.refined.size(); ++i) e.either[i] |= e.refined[i];
     return e;
 }
 
@@ -212,6 +252,28 @@ double worstDifference(const Image& gpu, const std::vector<glm::vec4>& model, in
         for (int x = 0; x < gpu.width; ++x)
             for (int c = 0; c < channels; ++c)
                 worst = std::max(worst, double(std::abs(gpu.at(x, y, c) - model[std::size_t(y) * gpu.width + x][c])));
+    return worst;
+}
+
+// The difference of `gpu` (GL rows) from what each pixel may hold (Expected), the blend or
+// the refined value; `refinedCount` counts the pixels that hold the refined one and not the
+// blend (within `tolerance`).
+double worstDifference(const Image& gpu, const Expected& e, bool directions, int channels, double tolerance,
+                       int* refinedCount = nullptr) {
+    const std::vector<glm::vec4>& blend = directions ? e.direction : e.value;
+    const std::vector<glm::vec4>& refined = directions ? e.refinedDirection : e.refinedValue;
+    double worst = 0.0;
+    for (int y = 0; y < gpu.height; ++y)
+        for (int x = 0; x < gpu.width; ++x) {
+            const std::size_t i = std::size_t(y) * gpu.width + x;
+            double toBlend = 0.0, toRefined = 0.0;
+            for (int c = 0; c < channels; ++c) {
+                toBlend = std::max(toBlend, double(std::abs(gpu.at(x, y, c) - blend[i][c])));
+                toRefined = std::max(toRefined, double(std::abs(gpu.at(x, y, c) - refined[i][c])));
+            }
+            if (refinedCount && e.refined[i] && toRefined <= tolerance && toBlend > tolerance) ++*refinedCount;
+            worst = std::max(worst, e.either[i] ? std::min(toBlend, toRefined) : e.refined[i] ? toRefined : toBlend);
+        }
     return worst;
 }
 
@@ -258,31 +320,47 @@ struct FilterFixture {
 TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent normals compute the documented "
           "guided filters", "[filters][ao]") {
     FilterFixture f;
-    overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel);",
+    overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
                    "const Estimate e = Estimate(filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);");
     f.render();
     AmbientOcclusion ao(f.ctx);
+    // Refined pixels hold the overridden estimate at their own G-buffer pixel.
+    const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0)); },
+                              [](int x, int y) { return glm::vec4(toHalf(directionOf(x, y)), 1.0f); }};
     for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-        for (const int taps : {0, 1, 3}) {
-            CAPTURE(static_cast<int>(resolution), taps);
-            AmbientOcclusionSettings s;
-            s.resolution = resolution;
-            s.blurRadius = taps;
-            s.bentNormals = true;
-            const AmbientOcclusionView out = ao.run(f.view, s);
-            const Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
-            LowImages low;
-            for (int j = 0; j < m.lowHeight(); ++j)
-                for (int i = 0; i < m.lowWidth(); ++i) {
-                    const bool background = m.lowGuide(i, j).z == 0.0;
-                    low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
-                    low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
-                }
-            if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
-            const Expected expected = upsample(m, low);
-            CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected.value, 1) <= kTolerance);
-            CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected.direction, 4) <= kDirectionTolerance);
-        }
+        for (const int taps : {0, 1, 3})
+            for (const float refine : {0.0f, 0.25f, 1.0f}) {
+                CAPTURE(static_cast<int>(resolution), taps, refine);
+                AmbientOcclusionSettings s;
+                s.resolution = resolution;
+                s.blurRadius = taps;
+                s.bentNormals = true;
+                s.refineThreshold = refine;
+                const AmbientOcclusionView out = ao.run(f.view, s);
+                Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
+                m.refineThreshold = refine;
+                LowImages low;
+                for (int j = 0; j < m.lowHeight(); ++j)
+                    for (int i = 0; i < m.lowWidth(); ++i) {
+                        const bool background = m.lowGuide(i, j).z == 0.0;
+                        low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
+                        low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
+                    }
+                if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+                const Expected expected = upsample(m, low, full);
+                int refined = 0;
+                CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
+                CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
+                      kDirectionTolerance);
+                // The box's edges and the background's give pixels to refine at any threshold
+                // above 0; at 1 nearly all but the exact ones qualify, more than the list holds.
+                CAPTURE(expected.qualifying, refined);
+                if (refine > 0.0f) CHECK(expected.qualifying > 0);
+                // Counted are the refined pixels whose blend differs from the refined value by
+                // more than the tolerance; a few coincide (values are multiples of 1/256).
+                CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
+                CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+            }
 }
 
 TEST_CASE("The half and quarter resolution blur and upsampling of indirect light compute the documented guided "
@@ -292,23 +370,34 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
                    "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)");
     f.render();
     IndirectLight gi(f.ctx);
+    const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0), valueOf(x, y, 1), valueOf(x, y, 2), 1.0f); },
+                              [](int, int) { return glm::vec4(0.0f); }};
     for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-        for (const int taps : {0, 2}) {
-            CAPTURE(static_cast<int>(resolution), taps);
-            IndirectLightSettings s;
-            s.resolution = resolution;
-            s.blurRadius = taps;
-            const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
-            const Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
-            LowImages low;
-            for (int j = 0; j < m.lowHeight(); ++j)
-                for (int i = 0; i < m.lowWidth(); ++i) {
-                    const bool background = m.lowGuide(i, j).z == 0.0;
-                    low.value.push_back(background ? glm::vec4(0.0f)
-                                                   : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
-                    low.direction.push_back(glm::vec3(0.0f));
-                }
-            if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
-            CHECK(worstDifference(radiance, upsample(m, low).value, 4) <= kTolerance);
-        }
+        for (const int taps : {0, 2})
+            for (const float refine : {0.0f, 0.25f}) {
+                CAPTURE(static_cast<int>(resolution), taps, refine);
+                IndirectLightSettings s;
+                s.resolution = resolution;
+                s.blurRadius = taps;
+                s.refineThreshold = refine;
+                const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
+                Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
+                m.refineThreshold = refine;
+                LowImages low;
+                for (int j = 0; j < m.lowHeight(); ++j)
+                    for (int i = 0; i < m.lowWidth(); ++i) {
+                        const bool background = m.lowGuide(i, j).z == 0.0;
+                        low.value.push_back(background ? glm::vec4(0.0f)
+                                                       : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
+                        low.direction.push_back(glm::vec3(0.0f));
+                    }
+                if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+                const Expected expected = upsample(m, low, full);
+                int refined = 0;
+                CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
+                CAPTURE(expected.qualifying, refined);
+                if (refine > 0.0f) CHECK(expected.qualifying > 0);
+                CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
+                CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+            }
 }

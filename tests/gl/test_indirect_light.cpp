@@ -171,6 +171,7 @@ TEST_CASE("Indirect light refuses bad settings and buffers without radiance", "[
     for (auto change : std::vector<void (*)(IndirectLightSettings&)>{
              [](IndirectLightSettings& s) { s.radius = -1.0f; }, [](IndirectLightSettings& s) { s.rays = 0; },
              [](IndirectLightSettings& s) { s.steps = 300; }, [](IndirectLightSettings& s) { s.blurRadius = -1; },
+             [](IndirectLightSettings& s) { s.refineThreshold = 1.5f; },
              [](IndirectLightSettings& s) { s.method = GiMethod::Hybrid; }}) {
         IndirectLightSettings s;
         change(s);

@@ -28,6 +28,7 @@ const std::vector<SettingInfo> kSettings = {
     {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
     {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
     {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
+    {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"bent_normals", "", "0|1", "also compute the bent normal (default 1; not for ao.horizon)"},
     {"voxel_resolution", "voxels", "8..2048, power of two", "ao.voxel: grid columns per axis (128 slices)"},
     {"voxel_traversal", "", "march|exact|hierarchical", "ao.voxel: visibility query"},
@@ -64,6 +65,7 @@ public:
         else if (key == "blur_radius") s.blurRadius = static_cast<int>(parseNumber(key, value, 0, 16, "taps"));
         else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
+        else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
         else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
         else if (key == "voxel_traversal")
