@@ -67,8 +67,9 @@ struct ShadingPoint {
     glm::dvec3 albedo{0.0};    //!< diffuse reflectance at the point (material x texture)
     glm::dvec3 emission{0.0};  //!< emitted radiance at the point, W/(sr m^2)
     //! How far, in world units, `position` may be from the true surface: the float error of a
-    //! ray hit, or for G-buffer samples the 32F depth quantization (4 float steps of the
-    //! stored depth, mapped to distance). Secondary rays start at least this far off the surface.
+    //! ray hit, or for G-buffer samples the view ray did not find a surface near (silhouette
+    //! pixels) the 32F depth quantization (4 float steps of the stored depth, mapped to
+    //! distance). Secondary rays start at least this far off the surface.
     double uncertainty = 0.0;
     bool surface() const noexcept { return distance < kInfinity; }
 };
@@ -83,8 +84,10 @@ struct ShadingPoints {
 //! Primary rays through pixel centres (mode b).
 OBSCURA_API ShadingPoints fromCamera(const RayScene& scene, const Camera& camera, int width, int height);
 //! The G-buffer's samples (mode a): view-space positions (GBuffer::positions, alpha = 1 on
-//! geometry) and normals (GBufferView::normal) read back with readTexture. The albedo and
-//! emission come from the triangle a ray from the camera to the point hits.
+//! geometry) and normals (GBufferView::normal) read back with readTexture. A sample moves
+//! along its view ray onto the surface found within 2^-10 of its distance (plus its depth
+//! uncertainty) of it, whose material it takes; a sample with none there (a silhouette
+//! pixel) stays, with the material of the nearest surface along the ray.
 OBSCURA_API ShadingPoints fromGBuffer(const RayScene& scene, const Camera& camera, const Image& viewPositions,
                                       const Image& viewNormals);
 

@@ -31,21 +31,25 @@ bool finite(dvec3 p) { return !any(isnan(p)) && !any(isinf(p)); }
 // Emits one (piece of the) triangle, already permuted, as its grown bounding-box quad.
 void emitTriangle(dvec3 pa, dvec3 pb, dvec3 pc, int axis, vec3 plane) {
     const dvec3 origin = floor(min(pa, min(pb, pc)));
-    gA = vec3(pa - origin);
-    gB = vec3(pb - origin);
-    gC = vec3(pc - origin);
-    gOrigin = ivec3(origin); // within the grid grown by two voxels: no overflow
-    gAxis = axis;
-    gPlane = plane;
+    const vec3 a = vec3(pa - origin), b = vec3(pb - origin), c = vec3(pc - origin);
     // The separating-axis test's float error grows with the piece's extent E (its
     // coordinates here are in [0, E]): a few ulp of E, plus a floor for tiny triangles.
-    const vec3 extent = max(gA, max(gB, gC));
-    gGrow = 1e-5 + 8.0 * max(extent.x, max(extent.y, extent.z)) / 16777216.0;
-    const vec2 lo = vec2(origin.xy) + floor(min(gA.xy, min(gB.xy, gC.xy))) - 1.0;
-    const vec2 hi = vec2(origin.xy) + ceil(max(gA.xy, max(gB.xy, gC.xy))) + 1.0;
+    const vec3 extent = max(a, max(b, c));
+    const float grow = 1e-5 + 8.0 * max(extent.x, max(extent.y, extent.z)) / 16777216.0;
+    const vec2 lo = vec2(origin.xy) + floor(min(a.xy, min(b.xy, c.xy))) - 1.0;
+    const vec2 hi = vec2(origin.xy) + ceil(max(a.xy, max(b.xy, c.xy))) + 1.0;
     const float size = float(voxel.counts.z);
     const vec2 corners[4] = vec2[4](vec2(lo.x, lo.y), vec2(hi.x, lo.y), vec2(lo.x, hi.y), vec2(hi.x, hi.y));
     for (int i = 0; i < 4; ++i) {
+        // Every output again before each vertex: EmitVertex leaves them undefined (GLSL 4.50
+        // 8.16), and the strip's provoking vertices are its later ones.
+        gA = a;
+        gB = b;
+        gC = c;
+        gOrigin = ivec3(origin); // within the grid grown by two voxels: no overflow
+        gAxis = axis;
+        gPlane = plane;
+        gGrow = grow;
         gl_Position = vec4(clamp(corners[i], vec2(0.0), vec2(size)) / size * 2.0 - 1.0, 0.0, 1.0);
         EmitVertex();
     }

@@ -114,14 +114,27 @@ ShadingPoints fromGBuffer(const RayScene& scene, const Camera& camera, const Ima
             s.normal = nl > 0.0 ? rotation * (nv / nl) : -s.direction;
             const glm::dvec2 ndc((x + 0.5) / w * 2.0 - 1.0, 1.0 - (y + 0.5) / h * 2.0);
             s.uncertainty = depthUncertainty(camera, pv, ndc) + hitUncertainty(s.distance);
-            // The surface's material: the triangle the view ray reaches at that distance (within
-            // the sample's uncertainty plus a pixel's slack of 2^-10 of the distance), else the
-            // nearest one (a silhouette pixel whose centre misses the rasterized triangle).
+            // The surface the sample stands for: the triangle the view ray reaches at that
+            // distance (within the sample's uncertainty plus a pixel's slack of 2^-10 of the
+            // distance). The sample moves onto it: rasterizers may interpolate depth from
+            // vertices snapped to their sub-pixel grid (NVIDIA does; 8 bits there), which puts
+            // the rebuilt point off the surface by the depth's slope over 1/256 of a pixel,
+            // far more than the depth's quantization (about 1e-4 of the model's size at 128x128
+            // against 1e-6). Secondary rays lifted only by the quantization then started behind
+            // the surface and hit it: shadowed and occluded where nothing is. Else (a silhouette
+            // pixel whose centre misses the rasterized triangle) the point stays where the
+            // G-buffer put it and takes the nearest triangle's material.
             s.shadingNormal = s.normal;
             const double slack = 4.0 * s.uncertainty + std::ldexp(s.distance, -10);
             auto hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, s.distance + slack,
                                               std::max(tnear, s.distance - slack));
-            if (!hit) hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, kInfinity, tnear);
+            if (hit) {
+                s.distance = hit->distance;
+                s.position = s.origin + hit->distance * s.direction;
+                s.uncertainty = hitUncertainty(hit->distance);
+            } else {
+                hit = scene.impl().intersect(glm::vec3(s.origin), s.direction, kInfinity, tnear);
+            }
             if (hit) {
                 s.albedo = scene.impl().albedo(*hit);
                 s.emission = scene.impl().emission(*hit);

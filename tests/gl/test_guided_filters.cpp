@@ -15,10 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <functional>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 using namespace obscura;
@@ -63,30 +60,6 @@ Image glRows(Image image) {
 float toHalf(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
 glm::vec3 toHalf(glm::vec3 v) { return {toHalf(v.x), toHalf(v.y), toHalf(v.z)}; }
 glm::vec4 toHalf(glm::vec4 v) { return {toHalf(glm::vec3(v)), toHalf(v.w)}; }
-
-// Every shader file of the source tree, with `call` in `file` replaced by `replacement`.
-void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement) {
-    namespace fs = std::filesystem;
-    const fs::path root = OBSCURA_SHADER_DIR;
-    bool replaced = false;
-    for (const auto& entry : fs::recursive_directory_iterator(root)) {
-        if (!entry.is_regular_file()) continue;
-        std::ifstream in(entry.path());
-        std::stringstream text;
-        text << in.rdbuf();
-        std::string source = text.str();
-        const std::string path = fs::relative(entry.path(), root).generic_string();
-        if (path == file) {
-            const auto at = source.find(call);
-            REQUIRE(at != std::string::npos);
-            source.replace(at, call.size(), replacement);
-            source.insert(source.find("void main()"), kHashGlsl);
-            replaced = true;
-        }
-        ctx.addShaderSource(path, source);
-    }
-    REQUIRE(replaced);
-}
 
 // What the filters weigh with (filter_common.glsl): a low-resolution pixel's guide, or a
 // G-buffer pixel's normal and view z; z = 0 is the background.
@@ -320,8 +293,8 @@ struct FilterFixture {
 TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent normals compute the documented "
           "guided filters", "[filters][ao]") {
     FilterFixture f;
-    overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
-                   "const Estimate e = Estimate(filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);");
+    test::overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
+                         "const Estimate e = Estimate(filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);", kHashGlsl);
     f.render();
     AmbientOcclusion ao(f.ctx);
     // Refined pixels hold the overridden estimate at their own G-buffer pixel.
@@ -366,8 +339,9 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
 TEST_CASE("The half and quarter resolution blur and upsampling of indirect light compute the documented guided "
           "filters", "[filters][gi]") {
     FilterFixture f;
-    overrideShader(f.ctx, "gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
-                   "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)");
+    test::overrideShader(f.ctx, "gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
+                         "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)",
+                         kHashGlsl);
     f.render();
     IndirectLight gi(f.ctx);
     const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0), valueOf(x, y, 1), valueOf(x, y, 2), 1.0f); },

@@ -1,6 +1,11 @@
 #include "gl_fixture.hpp"
 
 #include <EGL/egl.h>
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace obscura::test {
@@ -42,6 +47,30 @@ std::vector<unsigned> drainGlErrors() {
     std::vector<unsigned> errors;
     for (GLenum e = glGetError(); e != GL_NO_ERROR && errors.size() < 64; e = glGetError()) errors.push_back(e);
     return errors;
+}
+
+void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,
+                    const std::string& prelude) {
+    namespace fs = std::filesystem;
+    const fs::path root = OBSCURA_SHADER_DIR;
+    bool replaced = false;
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path());
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string source = text.str();
+        const std::string path = fs::relative(entry.path(), root).generic_string();
+        if (path == file) {
+            const auto at = source.find(call);
+            REQUIRE(at != std::string::npos);
+            source.replace(at, call.size(), replacement);
+            source.insert(source.find("void main()"), prelude);
+            replaced = true;
+        }
+        ctx.addShaderSource(path, source);
+    }
+    REQUIRE(replaced);
 }
 
 } // namespace obscura::test

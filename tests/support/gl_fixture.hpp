@@ -35,4 +35,10 @@ std::set<std::string> liveGlObjects(unsigned limit = 4096);
 //! Drains and returns pending GL errors (GL_NO_ERROR-free list).
 std::vector<unsigned> drainGlErrors();
 
+//! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
+//! its text `call` replaced by `replacement` and `prelude` inserted before its main(). A test
+//! fails (REQUIRE) if `file` or `call` is not there.
+void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,
+                    const std::string& prelude = "");
+
 } // namespace obscura::test
