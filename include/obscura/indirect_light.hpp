@@ -72,10 +72,10 @@ public:
     IndirectLight& operator=(const IndirectLight&) = delete;
 
     //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
-    //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings out of range, a
-    //! G-buffer without depth, normal, albedo or direct radiance (adopted host buffers have
-    //! no radiance to gather), without backDepth for DepthPeeling, or the hybrid method
-    //! without a grid.
+    //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
+    //! out of range, a G-buffer without depth, normal, albedo or direct radiance (adopted host
+    //! buffers have no radiance to gather), without backDepth for DepthPeeling, or the hybrid
+    //! method without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     std::size_t memoryBytes() const;
