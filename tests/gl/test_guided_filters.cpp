@@ -250,6 +250,18 @@ double worstDifference(const Image& gpu, const Expected& e, bool directions, int
     return worst;
 }
 
+// How many pixels the GPU refined (`refined`, counted by worstDifference) against the model.
+// The box's edges and the background's give pixels to refine at any threshold above 0; at 1
+// nearly all but the exact ones qualify, more than the list holds. Counted are the refined
+// pixels whose blend differs from the refined value by more than the tolerance; a few
+// coincide (values are multiples of 1/256), hence the 9/10.
+void checkRefinedCount(const Model& m, const Expected& expected, int refined) {
+    CAPTURE(m.refineThreshold, expected.qualifying, refined);
+    if (m.refineThreshold > 0.0) CHECK(expected.qualifying > 0);
+    CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
+    CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+}
+
 // GL leaves float-to-half rounding to the implementation (llvmpipe's stores come out up to
 // one ulp below the model's round-to-nearest), so each rounded step may differ from the model
 // by one ulp, 2^-11 for values in [-1, 1]: the horizontal pass, the vertical pass and the
@@ -325,14 +337,7 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
                 CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
                 CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
                       kDirectionTolerance);
-                // The box's edges and the background's give pixels to refine at any threshold
-                // above 0; at 1 nearly all but the exact ones qualify, more than the list holds.
-                CAPTURE(expected.qualifying, refined);
-                if (refine > 0.0f) CHECK(expected.qualifying > 0);
-                // Counted are the refined pixels whose blend differs from the refined value by
-                // more than the tolerance; a few coincide (values are multiples of 1/256).
-                CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
-                CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+                checkRefinedCount(m, expected, refined);
             }
 }
 
@@ -369,9 +374,6 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
                 const Expected expected = upsample(m, low, full);
                 int refined = 0;
                 CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
-                CAPTURE(expected.qualifying, refined);
-                if (refine > 0.0f) CHECK(expected.qualifying > 0);
-                CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
-                CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+                checkRefinedCount(m, expected, refined);
             }
 }
