@@ -34,8 +34,11 @@ layout(binding = AO_OUT_IMAGE, r16f) writeonly uniform image2D aoOut;
 layout(binding = AO_BENT_OUT_IMAGE, rgba16f) writeonly uniform image2D bentOut;
 layout(binding = AO_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
 
+// The estimate is 1 - occluded / count rather than sum(V) / count: GLSL allows division 2.5
+// ULP of error, so n / n may come out below 1, and a float-to-half store may round it toward
+// zero to 0.99951. With nothing occluded the quotient is 0 / count, exactly 0.
 struct Estimate {
-    float sum;  // of V or rho over the samples
+    float occluded; // sum of 1 - V (or 1 - rho) over the samples
     vec3 bent;  // sum of the unoccluded directions (cosine-weighted)
     float count;
 };
@@ -49,12 +52,12 @@ vec3 aoDirection(uint i, uint n, vec2 rotation, vec3 normal) {
     return toFrame(aoCosine() ? cosineHemisphere(u) : uniformHemisphere(u), normal);
 }
 
-// Adds one ray's result: V (or rho at the hit), and to the bent normal the direction when
+// Adds one ray's result: 1 - V (or 1 - rho at the hit), and to the bent normal the direction when
 // open (weighted by the cosine when the directions are uniform, so both estimate the
 // cosine-weighted mean).
 void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
     const bool hit = hitDistance >= 0.0;
-    e.sum += hit ? aoHitValue(hitDistance) : 1.0;
+    e.occluded += hit ? 1.0 - aoHitValue(hitDistance) : 0.0;
     if (!hit) e.bent += aoCosine() ? w : w * max(dot(w, normal), 0.0);
     e.count += 1.0;
 }
@@ -145,7 +148,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
         visible += weight * aoArc(h[0], h[1], g);
         open += weight * aoArc(g - 0.5 * OBSCURA_PI, g + 0.5 * OBSCURA_PI, g);
     }
-    e.sum = open > 0.0 ? visible / open : 1.0;
+    e.occluded = open > 0.0 ? max(open - visible, 0.0) / open : 0.0;
     e.count = 1.0;
     e.bent = normal; // the horizon method gives no bent normal of its own
     return e;
@@ -195,7 +198,7 @@ void main() {
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const Estimate e = aoEstimate(p, normal, pixel, full);
-    const float value = e.count > 0.0 ? clamp(e.sum / e.count, 0.0, 1.0) : 1.0;
+    const float value = e.count > 0.0 ? clamp(1.0 - e.occluded / e.count, 0.0, 1.0) : 1.0;
     imageStore(aoOut, pixel, vec4(value));
     if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));

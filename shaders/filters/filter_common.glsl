@@ -33,6 +33,13 @@ bool insideLow(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessT
 
 FILTER_VALUE loadValue(ivec2 q) { return FILTER_VALUE_OF(imageLoad(valueIn, q)); }
 
+// A weighted mean as `anchor` plus the weighted offsets from it over their total weight. A
+// plain sum / total of equal values can come out below them: GLSL 4.50 (4.7.1) allows
+// division 2.5 ULP of error, and float-to-half stores may round toward zero (llvmpipe's do),
+// which turns 0.99999994 into 0.99951. Offsets from a value the mean contains are exactly 0
+// for a constant image, so it stays exactly constant (an open plane's AO stays 1).
+FILTER_VALUE weightedMean(FILTER_VALUE anchor, FILTER_VALUE offsets, float total) { return anchor + offsets / total; }
+
 FILTER_VALUE filterFinish(FILTER_VALUE v) {
     if ((filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0) return clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(1.0));
     return v;

@@ -19,7 +19,8 @@ void main() {
     if (c.w == 0.0) return;
     const int taps = filterParams.sizes.w;
     const float sigma = max(0.5 * float(taps), 0.5);
-    FILTER_VALUE sum = loadValue(pixel);
+    const FILTER_VALUE centre = loadValue(pixel);
+    FILTER_VALUE offsets = FILTER_VALUE(0.0); // sum of w (value - centre), see weightedMean
 #ifdef DIRECTION
     vec3 direction = imageLoad(directionIn, pixel).xyz;
 #endif
@@ -30,13 +31,13 @@ void main() {
         const vec4 g = imageLoad(guideIn, q);
         if (g.w == 0.0) continue;
         const float w = exp2(-0.5 * kLog2E * float(k * k) / (sigma * sigma) + guideLog2Weight(c.xyz, c.w, g.xyz, g.w));
-        sum += w * loadValue(q);
+        offsets += w * (loadValue(q) - centre);
 #ifdef DIRECTION
         direction += w * imageLoad(directionIn, q).xyz;
 #endif
         total += w;
     }
-    imageStore(valueOut, pixel, vec4(filterFinish(sum / total)));
+    imageStore(valueOut, pixel, vec4(filterFinish(weightedMean(centre, offsets, total))));
 #ifdef DIRECTION
     imageStore(directionOut, pixel, vec4(safeNormalize(direction, c.xyz), 1.0));
 #endif

@@ -21,9 +21,10 @@
 
 layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
 
-// The running weighted sums for one G-buffer pixel, and the neighbour nearest in depth.
+// The running weighted sums for one G-buffer pixel (of the values' offsets from the quad's
+// first usable neighbour's, see weightedMean), and the neighbour nearest in depth.
 struct Blend {
-    FILTER_VALUE sum, nearest;
+    FILTER_VALUE offsets, nearest;
     vec3 direction, nearestDirection;
     float total, nearestDz;
 };
@@ -44,11 +45,11 @@ Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
 Blend startBlend(Target t) { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), t.n, 0.0, 1e30); }
 
 // Adds neighbour `corner` (0 or 1 per axis) with its guide, value and direction to a blend.
-void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE value, vec3 direction) {
+void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE value, FILTER_VALUE anchor, vec3 direction) {
     const vec2 bilinear = mix(1.0 - t.f, t.f, vec2(corner));
     const bool usable = guide.w != 0.0;
     const float w = usable ? bilinear.x * bilinear.y * guideWeight(t.n, t.z, guide.xyz, guide.w) : 0.0;
-    b.sum += w * value;
+    b.offsets += w * (value - anchor);
     b.direction += w * direction;
     b.total += w;
     const float dz = abs(guide.w - t.z);
@@ -61,9 +62,9 @@ void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE 
 
 // Single exit: Mesa 22.3 llvmpipe miscompiles early returns in inlined code (see
 // voxel_traversal.glsl).
-void writePixel(ivec2 pixel, Target t, Blend b) {
+void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
     const bool weighted = b.total > 1e-6;
-    const FILTER_VALUE blended = filterFinish(weighted ? b.sum / b.total : b.nearest);
+    const FILTER_VALUE blended = filterFinish(weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest);
     bool inside = all(lessThan(pixel, frameSize())); // odd sizes: the quad's far half is outside
 #ifdef REFINE
     if (inside && !t.background && b.total < filterParams.weights.w && refineAppend(pixel)) inside = false;
@@ -102,6 +103,8 @@ void main() {
     // A loop, not straight code, so that on llvmpipe a SIMD batch of background quads skips
     // the loads: straight-line loads are speculated and paid for masked-off lanes too.
     const bool geometry = !(t00.background && t10.background && t01.background && t11.background);
+    FILTER_VALUE anchor = FILTER_VALUE(0.0);
+    bool anchored = false;
     for (int i = 0; i < (geometry ? 4 : 0); ++i) {
         const ivec2 corner = ivec2(i & 1, i >> 1);
         // Past the last row or column the last one repeats (the image's own edge).
@@ -113,13 +116,17 @@ void main() {
 #else
         const vec3 direction = vec3(0.0);
 #endif
-        accumulate(b00, t00, corner, guide, value, direction);
-        accumulate(b10, t10, corner, guide, value, direction);
-        accumulate(b01, t01, corner, guide, value, direction);
-        accumulate(b11, t11, corner, guide, value, direction);
+        if (!anchored && guide.w != 0.0) { // the first usable neighbour (see Blend)
+            anchor = value;
+            anchored = true;
+        }
+        accumulate(b00, t00, corner, guide, value, anchor, direction);
+        accumulate(b10, t10, corner, guide, value, anchor, direction);
+        accumulate(b01, t01, corner, guide, value, anchor, direction);
+        accumulate(b11, t11, corner, guide, value, anchor, direction);
     }
-    writePixel(p00, t00, b00);
-    writePixel(p00 + ivec2(1, 0), t10, b10);
-    writePixel(p00 + ivec2(0, 1), t01, b01);
-    writePixel(p00 + ivec2(1, 1), t11, b11);
+    writePixel(p00, t00, b00, anchor);
+    writePixel(p00 + ivec2(1, 0), t10, b10, anchor);
+    writePixel(p00 + ivec2(0, 1), t01, b01, anchor);
+    writePixel(p00 + ivec2(1, 1), t11, b11, anchor);
 }

@@ -111,7 +111,9 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution and fa
                 AmbientOcclusionSettings s;
                 s.method = method;
                 s.radius = 2.0f;
-                s.rays = 32;
+                // Not a power of two: n / n is where a GPU's division by reciprocal (GLSL
+                // allows 2.5 ULP) falls short of 1.
+                s.rays = 24;
                 s.resolution = resolution;
                 s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
                 s.falloff = falloff;
@@ -172,8 +174,9 @@ TEST_CASE("A floor in front of a wall matches the closed form within the samplin
                 // Five standard deviations of the mean of `rays` independent samples (the
                 // rotated Hammersley set is used as if it were random: a conservative bound).
                 const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
-                // The stored value is a 16-bit float: rounded by at most 2^-12.
-                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
+                // The stored value is a 16-bit float, rounded as the implementation likes (toward
+                // zero on llvmpipe): off by less than one ulp, at most 2^-11 below 1.
+                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -11);
                 CAPTURE(x, y, distance, value, lo, hi);
                 CHECK(value >= lo - tolerance);
                 CHECK(value <= hi + tolerance);
@@ -182,10 +185,11 @@ TEST_CASE("A floor in front of a wall matches the closed form within the samplin
             }
         CHECK(checked > 200);
         // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
-        // error over the pixels stays within the bias window plus 5 sigma / sqrt(pixels).
+        // error over the pixels stays within the bias window plus 5 sigma / sqrt(pixels), plus
+        // the half-float rounding, which need not average out (toward zero on llvmpipe).
         INFO("mean error " << meanError / checked << " over " << checked << " pixels");
         CHECK(std::abs(meanError / checked) < 0.5 * (wallAo(0.5, radius * (1.0 - 1.0 / steps)) - wallAo(0.5 - voxelSide, radius)) +
-                                                  5.0 * 0.5 / std::sqrt(double(rays) * checked));
+                                                  5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
     }
 }
 
@@ -243,7 +247,7 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
                     hi = discAo(rho, a, h - lift);
                 }
                 const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
-                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
+                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -11); // half float
                 CAPTURE(x, y, rho, value, lo, hi, discAo(rho, a, h));
                 CHECK(value >= lo - tolerance);
                 CHECK(value <= hi + tolerance);
@@ -254,11 +258,12 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
             }
         CHECK(checked > 100);
         // Independent per-pixel rotations: the mean stays within the mean bias window plus
-        // 5 sigma / sqrt(pixels) (sigma <= 0.5 / sqrt(rays)).
+        // 5 sigma / sqrt(pixels) (sigma <= 0.5 / sqrt(rays)), plus the half-float rounding.
         INFO("mean error " << meanError / checked << " from the window's centre (window +-" << meanWindow / checked
                            << "), " << meanExactError / checked << " from the closed form, over " << checked
                            << " pixels; on the axis h^2 / (h^2 + a^2) = " << discAo(0.0, a, h));
-        CHECK(std::abs(meanError / checked) <= meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked));
+        CHECK(std::abs(meanError / checked) <=
+              meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
     }
 }
 
@@ -305,7 +310,7 @@ TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ
                 // cosine-weighted hemisphere. Screen space does not see the slab at all.
                 ++covered;
                 const double lo = std::pow(hMin / 1.5, 2.0), hi = std::pow(hMax / 1.5, 2.0);
-                const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -12);
+                const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -11);
                 CHECK(screen.at(x, y, 0) == 1.0f);
                 CHECK(voxel.at(x, y, 0) >= lo - tolerance);
                 CHECK(voxel.at(x, y, 0) <= hi + tolerance);

@@ -218,16 +218,6 @@ Expected upsample(const Model& m, const LowImages& low, const FullResolution& fu
     return e;
 }
 
-// The largest difference over the first `channels` channels of `gpu` (GL rows) and `model`.
-double worstDifference(const Image& gpu, const std::vector<glm::vec4>& model, int channels) {
-    double worst = 0.0;
-    for (int y = 0; y < gpu.height; ++y)
-        for (int x = 0; x < gpu.width; ++x)
-            for (int c = 0; c < channels; ++c)
-                worst = std::max(worst, double(std::abs(gpu.at(x, y, c) - model[std::size_t(y) * gpu.width + x][c])));
-    return worst;
-}
-
 // The difference of `gpu` (GL rows) from what each pixel may hold (Expected), the blend or
 // the refined value; `refinedCount` counts the pixels that hold the refined one and not the
 // blend (within `tolerance`).
@@ -306,7 +296,8 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
           "guided filters", "[filters][ao]") {
     FilterFixture f;
     test::overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
-                         "const Estimate e = Estimate(filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);", kHashGlsl);
+                         "const Estimate e = Estimate(1.0 - filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);",
+                         kHashGlsl);
     f.render();
     AmbientOcclusion ao(f.ctx);
     // Refined pixels hold the overridden estimate at their own G-buffer pixel.
@@ -376,4 +367,61 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
                 CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
                 checkRefinedCount(m, expected, refined);
             }
+}
+
+TEST_CASE("The blur and upsampling keep a constant image exactly constant, as GLSL division and half stores allow",
+          "[filters][ao][gi][stability]") {
+    // A weighted mean written as sum / total of equal values may come out a float ulp below
+    // them (GLSL allows division 2.5 ULP of error; here the products' rounding does it), and
+    // llvmpipe's float-to-half stores round toward zero, so such a pixel lost a whole half
+    // ulp (2^-11 below 1: an open plane's AO came out 0.99951). Values k / 256 are exact in
+    // half floats; the geometry's pixels must hold them exactly, whatever their weights.
+    constexpr int kAo = 179, kRed = 77, kGreen = 230, kBlue = 131;
+    const auto constant = [](int k) { return std::to_string(k) + ".0 / 256.0"; };
+    for (const bool indirect : {false, true}) {
+        CAPTURE(indirect);
+        FilterFixture f;
+        if (indirect)
+            test::overrideShader(f.ctx, "gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
+                                 "vec4(" + constant(kRed) + ", " + constant(kGreen) + ", " + constant(kBlue) + ", 1.0)");
+        else
+            test::overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
+                                 "const Estimate e = Estimate(1.0 - " + constant(kAo) + ", normal, 1.0);");
+        f.render();
+        AmbientOcclusion ao(f.ctx);
+        IndirectLight gi(f.ctx);
+        const glm::vec4 expected = indirect ? glm::vec4(kRed, kGreen, kBlue, 256) / 256.0f : glm::vec4(kAo / 256.0f);
+        const int channels = indirect ? 3 : 1;
+        for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
+            for (const int taps : {1, 3})
+                for (const float refine : {0.0f, 0.25f}) {
+                    CAPTURE(static_cast<int>(resolution), taps, refine);
+                    Image out;
+                    if (indirect) {
+                        IndirectLightSettings s;
+                        s.resolution = resolution;
+                        s.blurRadius = taps;
+                        s.refineThreshold = refine;
+                        out = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
+                    } else {
+                        AmbientOcclusionSettings s;
+                        s.resolution = resolution;
+                        s.blurRadius = taps;
+                        s.refineThreshold = refine;
+                        out = glRows(readTexture(f.ctx, ao.run(f.view, s).ao));
+                    }
+                    const Model m = f.model(static_cast<int>(resolution), taps, !indirect, indirect ? 0.0f : 1.0f);
+                    int geometry = 0, changed = 0;
+                    for (int y = 0; y < kHeight; ++y)
+                        for (int x = 0; x < kWidth; ++x) {
+                            if (m.isBackground(x, y)) continue;
+                            ++geometry;
+                            bool same = true;
+                            for (int c = 0; c < channels; ++c) same = same && out.at(x, y, c) == expected[c];
+                            changed += same ? 0 : 1;
+                        }
+                    CHECK(geometry > kWidth * kHeight / 2);
+                    CHECK(changed == 0);
+                }
+    }
 }
