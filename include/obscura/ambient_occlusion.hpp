@@ -54,6 +54,7 @@ struct AmbientOcclusionSettings {
     int rays = 16;              //!< directions (points for Points) per pixel, [1, 1024]; Horizon: [2, 1024], even
     int steps = 8;              //!< depth samples per ray (RayMarch) or per side (Horizon), [1, 256]
     bool cosineWeighted = true; //!< cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only
+    //! rho of obscurance (None: AO); not for Horizon, whose slices find horizons, not hits
     ObscuranceFalloff falloff = ObscuranceFalloff::None;
     //! RayMarch, Points: how far behind a depth sample's tangent plane (along its normal), in
     //! world units, a point still counts as inside the object, [0, inf); 0 = the radius.

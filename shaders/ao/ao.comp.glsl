@@ -134,10 +134,11 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frameSize()))) break; // border: open
                 const float depth = texelFetch(visDepth, q, 0).r;
                 if (isBackground(depth)) continue;
-                const vec3 d = viewPositionFromDepth(pixelCenterUv(q), depth) - p;
+                const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth), d = o - p;
                 const float len = length(d);
-                // Within the radius and above p's tangent plane (beyond float rounding).
-                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= kScreenPlaneTolerance * length(p) * 4.0) continue;
+                // Within the radius and above p's tangent plane (beyond float rounding and the
+                // depth buffer's precision).
+                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(o, depth, length(p) * 4.0)) continue;
                 best = max(best, dot(d / len, v));
             }
             // Angle from v toward the side; limited by the hemisphere of the normal.
@@ -199,7 +200,7 @@ void main() {
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const Estimate e = aoEstimate(p, normal, pixel, full);
     const float value = e.count > 0.0 ? clamp(1.0 - e.occluded / e.count, 0.0, 1.0) : 1.0;
-    imageStore(aoOut, pixel, vec4(value));
+    imageStore(aoOut, pixel, vec4(roundedToHalf(value)));
     if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

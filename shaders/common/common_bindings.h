@@ -33,10 +33,11 @@ struct FrameData {
     vec4 depthXY;     // DepthReconstruction: xyScale.xy, xyOffset.xy
     vec4 depthZ;      // DepthReconstruction: zScale, zBiasHi, zBiasLo, clearDepth
     ivec4 viewport;   // width, height (pixels), projection kind, reversed-Z (0/1)
+    vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 3 * 64 + 3 * 16, "FrameData must match std140");
+static_assert(sizeof(FrameData) == 3 * 64 + 4 * 16, "FrameData must match std140");
 } // namespace obscura::shader
 #endif
 

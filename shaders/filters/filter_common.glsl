@@ -40,9 +40,11 @@ FILTER_VALUE loadValue(ivec2 q) { return FILTER_VALUE_OF(imageLoad(valueIn, q));
 // for a constant image, so it stays exactly constant (an open plane's AO stays 1).
 FILTER_VALUE weightedMean(FILTER_VALUE anchor, FILTER_VALUE offsets, float total) { return anchor + offsets / total; }
 
+// A value as stored: clamped to [0, 1] when it is a fraction, rounded to the nearest half
+// float (see roundedToHalf).
 FILTER_VALUE filterFinish(FILTER_VALUE v) {
-    if ((filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0) return clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(1.0));
-    return v;
+    if ((filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0) v = clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(1.0));
+    return roundedToHalf(v);
 }
 
 // log2 of how much a sample with view normal n2 and view z z2 counts for a pixel with n1, z1:

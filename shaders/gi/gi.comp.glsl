@@ -95,6 +95,6 @@ void main() {
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const vec3 albedo = texelFetch(albedoTexture, full, 0).rgb;
-    imageStore(giOut, pixel, vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0));
+    imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

@@ -50,6 +50,13 @@ bool screenPixelOf(vec3 s, out ivec2 pixel) { return screenPixelOfClip(frame.pro
 // rounding of a few ulp of their magnitude.
 const float kScreenPlaneTolerance = 4e-6;
 
+// How far behind the tangent plane of o, sampled from `depth`, a point must be to count as
+// hidden: float rounding, and the depth buffer's precision at o and at the ray's start
+// (taken as o's: a ray leaving a surface meets its own plane's pixels first).
+float screenPlaneTolerance(vec3 o, float depth, float magnitude) {
+    return kScreenPlaneTolerance * magnitude + 2.0 * depthReconstructionError(o, depth);
+}
+
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
 // behind its tangent plane, and at most `thickness` behind it (measured along the normal,
 // so the test does not depend on how much depth one pixel's footprint spans) or, peeled,
@@ -64,7 +71,7 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
     const float back = texelFetch(visBackDepth, pixel, 0).r;
     inside = isBackground(back) ? inside : s.z >= min(viewZFromDepth(back), o.z);
 #endif
-    return !isBackground(depth) && behind > kScreenPlaneTolerance * max(length(o), length(s)) && inside;
+    return !isBackground(depth) && behind > screenPlaneTolerance(o, depth, max(length(o), length(s))) && inside;
 }
 
 // Whether s is hidden behind the depth buffer (see above).

@@ -53,6 +53,10 @@ void validateSettings(const AmbientOcclusionSettings& s) {
     if (s.method == AoMethod::Horizon && !s.cosineWeighted)
         throw Error(ErrorCode::InvalidArgument, "the horizon method integrates the cosine-weighted AO only: set "
                                                 "AmbientOcclusionSettings::cosineWeighted");
+    if (s.method == AoMethod::Horizon && s.falloff != ObscuranceFalloff::None)
+        throw Error(ErrorCode::InvalidArgument, "the horizon method finds horizons, not hit distances, so it has no "
+                                                "obscurance: set AmbientOcclusionSettings::falloff to None or use "
+                                                "another method");
     if (s.method == AoMethod::Voxel) requireVoxelGrid(s.voxels, s.voxelTraversal, "AmbientOcclusionSettings");
 }
 
@@ -122,7 +126,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
-    d.frame.bind(ctx, view.camera, view.width, view.height);
+    d.frame.bind(ctx, view.camera, view.width, view.height, view.depth.internalFormat);
     bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
     const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;

@@ -51,7 +51,7 @@ struct ScreenVisibility::Impl {
         analyzeProjection(view.camera);
         StateScope scope(ctx);
         auto& gl = ctx.gl;
-        frame.bind(ctx, view.camera, view.width, view.height);
+        frame.bind(ctx, view.camera, view.width, view.height, view.depth.internalFormat);
         bindScreenInputs(ctx, view, peeled);
         batch.upload(ctx, queries); // first: it refuses oversized batches before any work
         if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, peeled, "visibility.hiz");

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace obscura;
@@ -99,37 +100,101 @@ Scene withDisc(Scene scene, double a, double h) {
 
 } // namespace
 
-TEST_CASE("An open plane gives AO = 1 exactly for every method resolution and falloff", "[ao]") {
+TEST_CASE("An open plane gives AO = 1 exactly for every method resolution falloff and projection", "[ao]") {
     AoFixture f;
     const Scene scene = floorScene();
     constexpr int W = 64, H = 48;
-    f.render(scene, lookAt({0, 3, 6}, {0, 0, 0}, W, H), W, H);
-    for (AoMethod method : kAllMethods)
-        for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter})
-            for (ObscuranceFalloff falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Smooth}) {
-                CAPTURE(nameOf(method), static_cast<int>(resolution), static_cast<int>(falloff));
+    const LookAt look{{0, 3, 6}, {0, 0, 0}, {0, 1, 0}};
+    struct Projection {
+        const char* name;
+        Camera camera;
+    };
+    const Projection projections[] = {
+        {"perspective", lookAt(look.eye, look.target, W, H)},
+        {"reversed-Z, infinite far", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 0.05f, INFINITY,
+                                                         DepthMode::Reversed)},
+        {"orthographic, zero to one", Camera::orthographic(look, 3.0f, float(W) / H, 0.05f, 200.0f,
+                                                           DepthMode::StandardZeroToOne)},
+    };
+    for (const Projection& projection : projections) {
+        f.render(scene, projection.camera, W, H);
+        for (AoMethod method : kAllMethods)
+            for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter})
+                for (ObscuranceFalloff falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Smooth}) {
+                    // The horizon method integrates AO only (no falloff).
+                    if (method == AoMethod::Horizon && falloff != ObscuranceFalloff::None) continue;
+                    CAPTURE(projection.name, nameOf(method), static_cast<int>(resolution), static_cast<int>(falloff));
+                    AmbientOcclusionSettings s;
+                    s.method = method;
+                    s.radius = 2.0f;
+                    // Not a power of two: n / n is where a GPU's division by reciprocal (GLSL
+                    // allows 2.5 ULP) falls short of 1.
+                    s.rays = 24;
+                    s.resolution = resolution;
+                    s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
+                    s.falloff = falloff;
+                    VoxelizerSettings v;
+                    v.resolution = 64;
+                    const Image ao = f.run(scene, s, v);
+                    std::size_t notOne = 0, pixels = 0;
+                    for (int y = 0; y < H; ++y)
+                        for (int x = 0; x < W; ++x) {
+                            if (!f.geometry(x, y)) continue;
+                            ++pixels;
+                            notOne += ao.at(x, y, 0) != 1.0f;
+                        }
+                    CHECK(pixels > W * H / 2);
+                    CHECK(notOne == 0);
+                }
+    }
+}
+
+TEST_CASE("Post-process mode: on a host's 16-, 24- and 32-bit depth an open plane gives AO = 1", "[ao][host]") {
+    // The host's depth pass leaves the floor's depth quantized to its format; the tangent-plane
+    // tests allow for that precision (depthReconstructionError), so no method may find the
+    // floor occluding itself. Standard depth with the near plane at 0.05: a 16-bit step is
+    // 0.01 units of depth at the camera's distance, a 24-bit one 4e-5.
+    AoFixture f;
+    const Scene scene = floorScene();
+    constexpr int W = 64, H = 48;
+    const Camera camera = lookAt({0, 3, 6}, {0, 0, 0}, W, H);
+    f.render(scene, camera, W, H);
+    for (const GLenum format : {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT16})
+        for (const bool hostNormals : {false, true}) {
+            const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, format);
+            HostGBuffer host;
+            host.depth = {depth, format, W, H};
+            if (hostNormals) host.normal = f.view.normal;
+            GBuffer adopter(f.ctx);
+            const GBufferView adopted = adopter.adopt(host, camera);
+            for (AoMethod method : kAllMethods) {
+                // Not asserted: normals reconstructed from 16-bit depth are themselves off by
+                // degrees, and the horizon method then finds the floor above the tilted
+                // tangent plane within the radius (rays start lifted by that plane's error).
+                if (format == GL_DEPTH_COMPONENT16 && !hostNormals && method == AoMethod::Horizon) continue;
+                CAPTURE(format, hostNormals, nameOf(method));
                 AmbientOcclusionSettings s;
                 s.method = method;
                 s.radius = 2.0f;
-                // Not a power of two: n / n is where a GPU's division by reciprocal (GLSL
-                // allows 2.5 ULP) falls short of 1.
                 s.rays = 24;
-                s.resolution = resolution;
-                s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
-                s.falloff = falloff;
-                VoxelizerSettings v;
-                v.resolution = 64;
-                const Image ao = f.run(scene, s, v);
+                if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, {});
+                const Image ao = readTexture(f.ctx, f.ao.run(adopted, s).ao);
                 std::size_t notOne = 0, pixels = 0;
+                double lowest = 1.0;
                 for (int y = 0; y < H; ++y)
                     for (int x = 0; x < W; ++x) {
                         if (!f.geometry(x, y)) continue;
                         ++pixels;
                         notOne += ao.at(x, y, 0) != 1.0f;
+                        lowest = std::min(lowest, double(ao.at(x, y, 0)));
                     }
+                INFO(notOne << " of " << pixels << " pixels below 1, lowest " << lowest);
                 CHECK(pixels > W * H / 2);
                 CHECK(notOne == 0);
             }
+            glDeleteTextures(1, &depth);
+        }
+    CHECK(test::drainGlErrors().empty());
 }
 
 TEST_CASE("A floor in front of a wall matches the closed form within the sampling error", "[ao]") {
@@ -386,6 +451,7 @@ TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-i
              [](AmbientOcclusionSettings& s) { s.refineThreshold = NAN; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.rays = 7; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.cosineWeighted = false; },
+             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.falloff = ObscuranceFalloff::Linear; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Voxel; }}) {
         AmbientOcclusionSettings s;
         change(s);

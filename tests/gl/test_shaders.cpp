@@ -77,8 +77,8 @@ TEST_CASE("Memory is allocated on first use and reported by the module", "[shade
     const GBufferView view = gbuffer.render(scene, camera, {32, 16, true, {}});
     // Targets: 32F depth + 2 x RGBA16F + SRGB8_ALPHA8 = 24 bytes per pixel; the mesh (4
     // positions and 4 normals of 12 bytes, 6 indices of 4 = 120 bytes); one 80-byte light
-    // slot (kept even without lights); the 240-byte frame block.
-    CHECK(gbuffer.memoryBytes() == 32 * 16 * 24 + 120 + 80 + 240);
+    // slot (kept even without lights); the 256-byte frame block.
+    CHECK(gbuffer.memoryBytes() == 32 * 16 * 24 + 120 + 80 + 256);
     const std::size_t before = gbuffer.memoryBytes();
     gbuffer.positions(view);
     CHECK(gbuffer.memoryBytes() == before + 32 * 16 * 16);

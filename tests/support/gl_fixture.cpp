@@ -49,6 +49,61 @@ std::vector<unsigned> drainGlErrors() {
     return errors;
 }
 
+namespace {
+
+GLuint compiledShader(GLenum kind, const char* source) {
+    const GLuint shader = glCreateShader(kind);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    REQUIRE(ok == GL_TRUE);
+    return shader;
+}
+
+} // namespace
+
+GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format) {
+    const GLuint vs = compiledShader(GL_VERTEX_SHADER, R"(#version 450
+void main() { gl_Position = vec4(vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0, 0.0, 1.0); })");
+    const GLuint fs = compiledShader(GL_FRAGMENT_SHADER, R"(#version 450
+layout(binding = 0) uniform sampler2D source;
+void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })");
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLuint target = 0, fbo = 0, vao = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &target);
+    glTextureStorage2D(target, 1, format, width, height);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, target, 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glCreateVertexArrays(1, &vao);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, width, height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(program);
+    glBindTextureUnit(0, depth);
+    glBindVertexArray(vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glBindTextureUnit(0, 0);
+    glUseProgram(0);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteProgram(program);
+    return target;
+}
+
 void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,
                     const std::string& prelude) {
     namespace fs = std::filesystem;

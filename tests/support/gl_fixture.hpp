@@ -35,6 +35,11 @@ std::set<std::string> liveGlObjects(unsigned limit = 4096);
 //! Drains and returns pending GL errors (GL_NO_ERROR-free list).
 std::vector<unsigned> drainGlErrors();
 
+//! A host's depth texture: `depth` (a depth texture the size width x height) drawn into a new
+//! GL_TEXTURE_2D of `format` (e.g. GL_DEPTH_COMPONENT24) by the host's own program, as a host
+//! engine's depth pass would leave it (quantized to its format). The caller deletes it.
+GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
+
 //! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
 //! its text `call` replaced by `replacement` and `prelude` inserted before its main(). A test
 //! fails (REQUIRE) if `file` or `call` is not there.
