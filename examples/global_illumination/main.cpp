@@ -23,9 +23,15 @@ int main(int argc, char** argv) {
     controls.addOptions(parser);
     std::string viewName = "composed";
     float exposure = 0.0f;
-    parser.add_option("--view", viewName, "indirect (L1 alone) or composed (direct + L1, tone mapped)")
+    float ambient = 0.0f;
+    parser.add_option("--view", viewName, "indirect (L1 alone) or composed (direct + L1 + AO-shaded ambient, tone mapped)")
         ->capture_default_str();
-    parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping (0: 1 / the scene's brightest light)")
+    parser.add_option("--ambient", ambient,
+                      "Ambient radiance L_amb, W/(sr m^2), [0, 65504], that AO shades in the composed view (physical "
+                      "combine: it adds to the indirect light; 0: none, and no AO pass)")
+        ->check(CLI::Range(0.0f, 65504.0f))
+        ->capture_default_str();
+    parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping, [0, 1e3] (0: 1, no scaling)")
         ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
@@ -43,6 +49,7 @@ int main(int argc, char** argv) {
             controls.drawPanel("global illumination");
             ImGui::Begin("global illumination");
             controls.changed |= ImGui::Checkbox("composed", &composed);
+            controls.changed |= ImGui::DragFloat("ambient", &ambient, 0.001f, 0.0f, 65504.0f, "%.4f");
             controls.changed |= ImGui::Checkbox("ambient occlusion", &withAo);
             controls.changed |= ImGui::DragFloat("exposure", &exposure, 0.001f, 0.0f, 1e3f, "%.4f");
             ImGui::End();
@@ -69,9 +76,11 @@ int main(int argc, char** argv) {
                 const IndirectLightView result = gi.run(view, s);
                 ComposeSettings c;
                 c.exposure = exposure > 0.0f ? exposure : 1.0f;
+                c.ambient = glm::vec3(ambient);
                 if (composed) {
                     ComposeInputs inputs{view, {}, result.radiance};
-                    if (withAo) {
+                    // AO shades only the ambient term (ComposeSettings, physical combine).
+                    if (withAo && ambient > 0.0f) {
                         AmbientOcclusionSettings a;
                         a.radius = s.radius;
                         a.resolution = s.resolution;
