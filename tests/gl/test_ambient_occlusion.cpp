@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 using namespace obscura;
 
@@ -65,15 +66,50 @@ Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode 
     return Camera::perspective({eye, target, {0, 1, 0}}, glm::radians(50.0f), float(width) / float(height), 0.05f, 200.0f, mode);
 }
 
-// Cosine-weighted AO_r of a floor point at distance D from an infinite wall: the directions
-// that reach the wall within r are those with horizontal component toward it >= D / r,
-// whose share of the projected unit disc is a circular segment.
-double wallAo(double distance, double radius) {
-    const double c = distance / radius;
-    if (c >= 1.0) return 1.0;
-    return 1.0 - (std::acos(c) - c * std::sqrt(1.0 - c * c)) / kPi;
+// rho(t) of an obscurance falloff (AO: 0, a hit is fully occluded).
+double falloffOf(ObscuranceFalloff f, double t) {
+    switch (f) {
+    case ObscuranceFalloff::Linear: return t;
+    case ObscuranceFalloff::Quadratic: return t * t;
+    case ObscuranceFalloff::Smooth: return t * t * (3.0 - 2.0 * t);
+    case ObscuranceFalloff::None: break;
+    }
+    return 0.0;
 }
 
+// The mean over a floor point's hemisphere of `atHit(d)` for the directions that reach an
+// infinite wall at distance d <= reach, and of 1 for the others, the point being `distance`
+// from the wall. A direction's component u toward the wall decides: d = distance / u. Cosine-
+// weighted directions project uniformly onto the unit disc, where u has density
+// 2 sqrt(1 - u^2) / pi; uniform ones have u uniform in [-1, 1] (Archimedes' theorem). So
+// mean = 1 - Integral_{distance/reach}^1 (1 - atHit(distance / u)) density(u) du, by
+// Simpson's rule on 4096 intervals (atHit is smooth there; the density's square root at u = 1
+// leaves an error of order h^1.5, about 1e-6).
+double wallMean(double distance, double reach, bool cosine, const std::function<double(double)>& atHit) {
+    const double c = distance / reach;
+    if (c >= 1.0) return 1.0;
+    constexpr int n = 4096;
+    const double h = (1.0 - c) / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double u = c + h * i;
+        const double density = cosine ? 2.0 * std::sqrt(std::max(0.0, 1.0 - u * u)) / kPi : 0.5;
+        const double f = u > 0.0 ? (1.0 - atHit(distance / u)) * density : density;
+        sum += f * (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0);
+    }
+    return 1.0 - sum * h / 3.0;
+}
+
+// The angle from the floor's normal toward +z, away from the wall, of the bent normal (the
+// cosine-weighted mean of the open directions) of a floor point with c = distance / reach:
+// over the disc, E[y; open] = (1/2) Integral_{-1}^{c} (1 - u^2) du and E[z; open] =
+// 2 (1 - c^2)^{3/2} / (3 pi) for c < 1.
+double wallBentTilt(double c) {
+    if (c >= 1.0) return 0.0;
+    const double y = 0.5 * ((c - c * c * c / 3.0) + 2.0 / 3.0);
+    const double z = 2.0 * std::pow(1.0 - c * c, 1.5) / (3.0 * kPi);
+    return std::atan2(z, y);
+}
 
 // Cosine-weighted AO (no radius limit) at a floor point under a parallel disc of radius a at
 // height h, at horizontal distance rho from its axis: one minus the view factor of the disc,
@@ -197,13 +233,15 @@ TEST_CASE("Post-process mode: on a host's 16-, 24- and 32-bit depth an open plan
     CHECK(test::drainGlErrors().empty());
 }
 
-TEST_CASE("A floor in front of a wall matches the closed form within the sampling error", "[ao]") {
+TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match their integrals within the "
+          "sampling error", "[ao]") {
     AoFixture f;
     // The wall's plane z = -1 faces the camera; floor points at distance D = z + 1 from it.
     const Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
                                          {{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
     constexpr int W = 96, H = 72;
     f.render(scene, lookAt({0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, W, H), W, H);
+    const glm::dmat3 toWorld(glm::inverse(glm::dmat4(f.view.camera.view)));
     constexpr double radius = 1.0;
     constexpr int rays = 1024, steps = 32;
     // The voxel grid covers the region around the floor points finely: voxel sides 4/128 m.
@@ -213,49 +251,91 @@ TEST_CASE("A floor in front of a wall matches the closed form within the samplin
     voxels.boxMin = glm::vec3(-2.0f, -0.5f, -1.5f);
     voxels.boxMax = glm::vec3(2.0f, 3.5f, 2.5f);
     const double voxelSide = 4.0 / 128.0;
-    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel}) {
-        CAPTURE(nameOf(method));
-        AmbientOcclusionSettings s;
-        s.method = method;
-        s.radius = static_cast<float>(radius);
-        s.rays = rays;
-        s.steps = steps;
-        const Image ao = f.run(scene, s, voxels);
-        double meanError = 0.0;
-        int checked = 0;
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                if (!f.geometry(x, y)) continue;
-                const glm::dvec3 p = f.world(x, y);
-                // Floor points whose whole radius lies inside the grid and whose rays stay on
-                // screen (checked by the margin from the image border).
-                if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
-                const double distance = p.z + 1.0;
-                // Ray marching misses walls hit between its last sample, at least at
-                // r (1 - 1/steps), and r; voxels bring the wall closer by up to a voxel side.
-                double lo = wallAo(distance, radius), hi = lo;
-                if (method == AoMethod::RayMarch) hi = wallAo(distance, radius * (1.0 - 1.0 / steps));
-                else lo = wallAo(std::max(distance - voxelSide, 0.0), radius);
-                // Five standard deviations of the mean of `rays` independent samples (the
-                // rotated Hammersley set is used as if it were random: a conservative bound).
-                const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
-                // The stored value is a 16-bit float, rounded as the implementation likes (toward
-                // zero on llvmpipe): off by less than one ulp, at most 2^-11 below 1.
-                const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -11);
-                CAPTURE(x, y, distance, value, lo, hi);
-                CHECK(value >= lo - tolerance);
-                CHECK(value <= hi + tolerance);
-                meanError += value - 0.5 * (lo + hi);
-                ++checked;
+    struct Quantity {
+        ObscuranceFalloff falloff;
+        bool cosine;
+    };
+    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel})
+        for (const Quantity q : {Quantity{ObscuranceFalloff::None, true}, Quantity{ObscuranceFalloff::None, false},
+                                 Quantity{ObscuranceFalloff::Linear, true}, Quantity{ObscuranceFalloff::Quadratic, true},
+                                 Quantity{ObscuranceFalloff::Smooth, true}}) {
+            CAPTURE(nameOf(method), static_cast<int>(q.falloff), q.cosine);
+            AmbientOcclusionSettings s;
+            s.method = method;
+            s.radius = static_cast<float>(radius);
+            s.rays = rays;
+            s.steps = steps;
+            s.falloff = q.falloff;
+            s.cosineWeighted = q.cosine;
+            s.bentNormals = true;
+            if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, voxels);
+            const AmbientOcclusionView out = f.ao.run(f.view, s);
+            const Image ao = readTexture(f.ctx, out.ao), bent = readTexture(f.ctx, out.bentNormal);
+            const auto exact = [&](double d) { return falloffOf(q.falloff, std::min(d / radius, 1.0)); };
+            // Ray marching finds a hit at its first sample past it, at most a step (r / steps)
+            // late, and none beyond its last sample, at least at r (1 - 1/steps): rho only
+            // grows with d, so the value can only be higher. Voxels bring the wall closer by up
+            // to a voxel side: lower.
+            const auto late = [&](double d) { return falloffOf(q.falloff, std::min((d + radius / steps) / radius, 1.0)); };
+            const double marchReach = radius * (1.0 - 1.0 / steps);
+            double meanError = 0.0, meanWindow = 0.0, tiltError = 0.0, tiltWindow = 0.0;
+            int checked = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    if (!f.geometry(x, y)) continue;
+                    const glm::dvec3 p = f.world(x, y);
+                    // Floor points whose whole radius lies inside the grid and whose rays stay
+                    // on screen (checked by the margin from the image border).
+                    if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
+                    const double distance = p.z + 1.0;
+                    double lo = wallMean(distance, radius, q.cosine, exact), hi = lo;
+                    double cLo = distance / radius, cHi = cLo; // the bent normal's window of c
+                    if (method == AoMethod::RayMarch) {
+                        hi = wallMean(distance, marchReach, q.cosine, late);
+                        cHi = distance / marchReach;
+                    } else {
+                        const double closer = std::max(distance - voxelSide, 0.0);
+                        lo = wallMean(closer, radius, q.cosine, exact);
+                        cLo = closer / radius;
+                    }
+                    // Five standard deviations of the mean of `rays` samples in [0, 1], whose
+                    // variance is at most mu (1 - mu) (the rotated Hammersley set taken as random:
+                    // conservative), and the half float's rounding.
+                    const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+                    const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -11);
+                    CAPTURE(x, y, distance, value, lo, hi);
+                    CHECK(value >= lo - tolerance);
+                    CHECK(value <= hi + tolerance);
+                    meanError += value - 0.5 * (lo + hi);
+                    meanWindow += 0.5 * (hi - lo);
+                    if (q.falloff == ObscuranceFalloff::None && q.cosine) {
+                        const glm::dvec3 b = toWorld * glm::dvec3(bent.at(x, y, 0), bent.at(x, y, 1), bent.at(x, y, 2));
+                        const double tilt = std::atan2(b.z, b.y), tiltLo = wallBentTilt(cHi), tiltHi = wallBentTilt(cLo);
+                        CHECK(std::abs(glm::length(b) - 1.0) < 1e-2);
+                        CHECK(std::abs(b.x) < 0.2); // the wall is symmetric in x (5 sigma, below)
+                        tiltError += tilt - 0.5 * (tiltLo + tiltHi);
+                        tiltWindow += 0.5 * (tiltHi - tiltLo);
+                    }
+                    ++checked;
+                }
+            CHECK(checked > 200);
+            // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
+            // error over the pixels stays within the mean window plus 5 sigma / sqrt(pixels),
+            // plus the half-float rounding.
+            INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
+            CHECK(std::abs(meanError / checked) <=
+                  meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
+            if (q.falloff == ObscuranceFalloff::None && q.cosine) {
+                // The bent normal's angle: the sum of `rays` open directions has per-component
+                // standard deviations at most sqrt(E[z^2]) = 1/2 and sqrt(E[y^2]) = sqrt(1/2)
+                // over sqrt(rays), and a length of at least E[y] >= 1/3 per ray, so its angle's
+                // is at most sqrt(3/4) / (1/3) / sqrt(rays); a mean over the pixels, over
+                // sqrt(pixels) more.
+                const double tiltSigma = std::sqrt(0.75) * 3.0 / std::sqrt(double(rays) * checked);
+                INFO("bent normal tilt mean error " << tiltError / checked << " rad, window +-" << tiltWindow / checked);
+                CHECK(std::abs(tiltError / checked) <= tiltWindow / checked + 5.0 * tiltSigma);
             }
-        CHECK(checked > 200);
-        // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
-        // error over the pixels stays within the bias window plus 5 sigma / sqrt(pixels), plus
-        // the half-float rounding, which need not average out (toward zero on llvmpipe).
-        INFO("mean error " << meanError / checked << " over " << checked << " pixels");
-        CHECK(std::abs(meanError / checked) < 0.5 * (wallAo(0.5, radius * (1.0 - 1.0 / steps)) - wallAo(0.5 - voxelSide, radius)) +
-                                                  5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
-    }
+        }
 }
 
 TEST_CASE("AO under a disc matches one minus its view factor within the march and voxel bounds", "[ao]") {

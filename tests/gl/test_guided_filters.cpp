@@ -369,7 +369,7 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
             }
 }
 
-TEST_CASE("The blur and upsampling keep a constant image exactly constant, as GLSL division and half stores allow",
+TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLSL division and half stores allow",
           "[filters][ao][gi][stability]") {
     // A weighted mean written as sum / total of equal values may come out a float ulp below
     // them (GLSL allows division 2.5 ULP of error; here the products' rounding does it), and
