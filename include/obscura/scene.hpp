@@ -77,7 +77,10 @@ struct TextureImage {
 
 struct Material {
     glm::vec3 albedo{0.8f};     //!< linear diffuse reflectance, [0,1] per channel
-    glm::vec3 emission{0.0f};   //!< emitted radiance, W/(sr·m²), [0, inf)
+    //! emitted radiance, W/(sr·m²), [0, inf), from the front side of each triangle only: the
+    //! side from which its vertices, as placed in the world, wind counter-clockwise (as a
+    //! rect light emits from one side)
+    glm::vec3 emission{0.0f};
     unsigned albedoTexture = 0; //!< optional host GL_TEXTURE_2D multiplying albedo (needs texcoords)
     std::shared_ptr<const TextureImage> albedoImage; //!< optional CPU image, used when albedoTexture == 0
     std::string name;

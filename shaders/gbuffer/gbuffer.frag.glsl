@@ -21,6 +21,7 @@ in FragmentData {
     vec3 shadingNormal;
     vec2 texcoord;
     flat vec3 faceNormal;
+    flat float frontSide;
 } fin;
 
 layout(location = 0) out vec4 outNormal;
@@ -137,7 +138,7 @@ void main() {
 #endif
     albedo = clamp(albedo, vec3(0.0), vec3(1.0));
 
-    vec3 radiance = materialEmission;
+    vec3 radiance = materialEmission * fin.frontSide; // materials emit from their front side
 #ifndef NO_DIRECT_LIGHTING
     vec3 e = vec3(0.0);
     for (int i = 0; i < lightCount; ++i) {

@@ -1,5 +1,6 @@
 // Computes the exact face (geometric) normal of each triangle from its view-space vertices,
-// turned toward the camera, and drops triangles that cannot be shaded: non-finite vertices
+// turned toward the camera (and whether the camera sees the counter-clockwise, emitting
+// side), and drops triangles that cannot be shaded: non-finite vertices
 // (NaN/Inf in a host buffer) and zero-area triangles, whose normal is undefined.
 #include "../common/frame.glsl"
 #include "../common/math.glsl"
@@ -20,6 +21,7 @@ out FragmentData {
     vec3 shadingNormal;
     vec2 texcoord;
     flat vec3 faceNormal;
+    flat float frontSide; // 1 when the camera sees the counter-clockwise side (emission), else 0
 } gout;
 
 void main() {
@@ -34,7 +36,8 @@ void main() {
     if (n == vec3(0.0)) return;
     // The plane's side facing the camera: n.p has one sign over the whole plane.
     vec3 toCamera = isPerspective() ? -p0 : vec3(0.0, 0.0, 1.0);
-    if (dot(n, toCamera) < 0.0) n = -n;
+    const bool front = dot(n, toCamera) >= 0.0;
+    if (!front) n = -n;
 
     for (int i = 0; i < 3; ++i) {
         gl_Position = gl_in[i].gl_Position;
@@ -42,6 +45,7 @@ void main() {
         gout.shadingNormal = gin[i].viewNormal;
         gout.texcoord = gin[i].texcoord;
         gout.faceNormal = n;
+        gout.frontSide = front ? 1.0 : 0.0;
         EmitVertex();
     }
     EndPrimitive();

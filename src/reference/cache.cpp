@@ -16,7 +16,8 @@ namespace {
 std::uint64_t cacheKey(const RayScene& scene, const ShadingPoints& points, const Quantity& quantity,
                        const RenderSettings& settings) {
     detail::Hasher h;
-    h.add(std::string_view("obscura.reference.cache.v1")).add(scene.contentHash());
+    // v2: materials emit from their front side only.
+    h.add(std::string_view("obscura.reference.cache.v2")).add(scene.contentHash());
     h.add(points.width).add(points.height);
     for (const ShadingPoint& p : points.points)
         h.add(p.origin).add(p.direction).add(p.distance).add(p.position).add(p.normal).add(p.shadingNormal).add(p.albedo)

@@ -164,7 +164,7 @@ Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
             // would only shift it), so it comes from the pixel's PCG stream.
             const double offset = std::ldexp(hit->distance + glm::length(glm::dvec3(origin)), -20);
             sum += directRadiance(lights, scene.scene, y, ng, scene.shadingNormal(*hit, ng), scene.albedo(*hit),
-                                  scene.emission(*hit), s.uniform2(), offset, rays);
+                                  scene.emission(*hit, -w), s.uniform2(), offset, rays);
         }
         return glm::dvec4(p.albedo * sum / double(n), 0.0);
     };

@@ -107,8 +107,11 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                               3 * sizeof(float), m.positions.size()));
         const glm::dmat4 model(mesh.model);
+        Impl::MeshRecord record;
+        record.positions.reserve(m.positions.size());
         for (std::size_t i = 0; i < m.positions.size(); ++i) {
             const glm::vec3 w(model * glm::dvec4(glm::dvec3(m.positions[i]), 1.0));
+            record.positions.push_back(w);
             v[3 * i] = w.x;
             v[3 * i + 1] = w.y;
             v[3 * i + 2] = w.z;
@@ -119,7 +122,6 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
                 d.bounds.max = glm::max(d.bounds.max, w);
             }
         }
-        Impl::MeshRecord record;
         record.indices = m.indices;
         if (record.indices.empty())
             for (std::uint32_t i = 0; i < m.positions.size(); ++i) record.indices.push_back(i);
@@ -208,8 +210,12 @@ glm::dvec3 RayScene::Impl::shadingNormal(const Hit& hit, const glm::dvec3& geome
     return glm::dot(n, geometric) < 0.0 ? -n / len : n / len;
 }
 
-glm::dvec3 RayScene::Impl::emission(const Hit& hit) const {
-    return glm::dvec3(scene.materials[meshes[hit.geometry].material].emission);
+glm::dvec3 RayScene::Impl::emission(const Hit& hit, const glm::dvec3& toward) const {
+    const MeshRecord& m = meshes[hit.geometry];
+    const std::uint32_t* tri = &m.indices[3 * static_cast<std::size_t>(hit.primitive)];
+    const glm::dvec3 p0(m.positions[tri[0]]), p1(m.positions[tri[1]]), p2(m.positions[tri[2]]);
+    const bool front = glm::dot(glm::cross(p1 - p0, p2 - p0), toward) > 0.0;
+    return front ? glm::dvec3(scene.materials[m.material].emission) : glm::dvec3(0.0);
 }
 
 } // namespace obscura::reference

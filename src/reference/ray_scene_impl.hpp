@@ -20,6 +20,7 @@ struct Hit {
 
 struct RayScene::Impl {
     struct MeshRecord {
+        std::vector<glm::vec3> positions; //!< world space, as given to Embree
         std::vector<glm::vec2> texcoords; //!< empty when the mesh has none
         std::vector<glm::vec3> normals;   //!< world-space vertex normals; empty when the mesh has none
         std::vector<std::uint32_t> indices;
@@ -59,7 +60,9 @@ struct RayScene::Impl {
     //! `geometric` (the geometric normal already turned toward the viewer); `geometric`
     //! itself for meshes without normals.
     glm::dvec3 shadingNormal(const Hit& hit, const glm::dvec3& geometric) const;
-    glm::dvec3 emission(const Hit& hit) const;
+    //! The radiance the hit's material emits toward `toward` (a direction away from the
+    //! surface): its emission on the triangle's front side (Material::emission), else 0.
+    glm::dvec3 emission(const Hit& hit, const glm::dvec3& toward) const;
 };
 
 } // namespace obscura::reference

@@ -64,7 +64,7 @@ void shade(const RayScene::Impl& scene, const Hit& hit, ShadingPoint& s) {
     s.normal = glm::dot(hit.normal, s.direction) > 0.0 ? -hit.normal : hit.normal;
     s.shadingNormal = scene.shadingNormal(hit, s.normal);
     s.albedo = scene.albedo(hit);
-    s.emission = scene.emission(hit);
+    s.emission = scene.emission(hit, -s.direction);
     s.uncertainty = hitUncertainty(hit.distance);
 }
 
@@ -137,7 +137,7 @@ ShadingPoints fromGBuffer(const RayScene& scene, const Camera& camera, const Ima
             }
             if (hit) {
                 s.albedo = scene.impl().albedo(*hit);
-                s.emission = scene.impl().emission(*hit);
+                s.emission = scene.impl().emission(*hit, -s.direction);
                 s.shadingNormal = scene.impl().shadingNormal(*hit, s.normal);
             }
         }

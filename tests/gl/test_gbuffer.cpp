@@ -255,7 +255,7 @@ TEST_CASE("Direct radiance follows Lambert's law for directional point and spot 
         }
 }
 
-TEST_CASE("Albedo and emission come from the material - radiance saturates instead of overflowing", "[gbuffer]") {
+TEST_CASE("Albedo and emission come from the material - emission from the front side - radiance saturates instead of overflowing", "[gbuffer]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
     GBuffer gbuffer(ctx);
@@ -275,6 +275,16 @@ TEST_CASE("Albedo and emission come from the material - radiance saturates inste
             CHECK(direct.at(x, y, 0) == Approx(1.0).epsilon(kHalfRelative));
             CHECK(direct.at(x, y, 1) == Approx(2.0).epsilon(kHalfRelative));
             CHECK(direct.at(x, y, 2) == 65504.0f);
+        }
+    // Materials emit from their front side (counter-clockwise, here +z) only: from behind the
+    // quad shows its albedo and, without lights, no radiance.
+    const Camera behind = Camera::perspective({{0, 0, -3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f);
+    const GBufferView back = gbuffer.render(scene, behind, {8, 8, true, {}});
+    const Image backAlbedo = readTexture(ctx, back.albedo), backDirect = readTexture(ctx, back.directRadiance);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            CHECK(backAlbedo.at(x, y, 1) == Approx(0.5).margin(1.0 / 255));
+            for (int c = 0; c < 3; ++c) CHECK(backDirect.at(x, y, c) == 0.0f);
         }
 }
 

@@ -141,6 +141,41 @@ TEST_CASE("Indirect light under an emissive disc is albedo times emission times 
     for (float v : near.value.pixels) CHECK(v == 0.0f);
 }
 
+TEST_CASE("Materials emit from their front side only", "[reference][indirect]") {
+    // The disc of the test above turned over (its triangles wound the other way): the floor
+    // under it sees its back, which emits nothing; a camera below sees the front emit, one
+    // above the back (its albedo is 0, so what the back shows is 0 too).
+    const double h = 1.0, a = 0.5, emitted = 3.0;
+    auto flipped = std::make_shared<MeshData>(*test::discMesh({0, h, 0}, a, 64));
+    for (std::size_t i = 0; i + 2 < flipped->indices.size(); i += 3) std::swap(flipped->indices[i + 1], flipped->indices[i + 2]);
+    Material lamp;
+    lamp.albedo = glm::vec3(0.0f);
+    lamp.emission = glm::vec3(static_cast<float>(emitted));
+    for (const bool turned : {false, true}) {
+        CAPTURE(turned);
+        Scene s = test::meshScene({test::quadMesh(kFloor)});
+        s.materials.push_back(lamp);
+        s.meshes.push_back({turned ? flipped : test::discMesh({0, h, 0}, a, 64), glm::mat4(1.0f), 1, "lamp"});
+        const RayScene scene(s);
+        RenderSettings settings;
+        settings.samplesPerPixel = 256;
+        const Reference r = render(scene, test::pointsAt(std::vector<glm::dvec3>(8, glm::dvec3(0.0)), {0, 1, 0}, glm::dvec3(0.6)),
+                                   IndirectLight{}, settings);
+        const test::Stats st = test::stats(r.value, 0);
+        if (turned) CHECK(st.mean == 0.0);
+        else CHECK(st.mean > 0.1); // 0.6 * 3 * a^2 / (h^2 + a^2) = 0.36 (the test above)
+        for (const double eyeY : {0.5, 2.0}) {
+            const Camera camera = Camera::perspective({{0, float(eyeY), 0.01f}, {0, float(h), 0}, {0, 0, 1}}, 0.3f, 1.0f, 0.01f, 10.0f);
+            const ShadingPoints points = fromCamera(scene, camera, 4, 4);
+            const bool seesFront = (eyeY < h) != turned;
+            for (const ShadingPoint& p : points.points) {
+                REQUIRE(p.surface());
+                CHECK(p.emission.x == (seesFront ? emitted : 0.0));
+            }
+        }
+    }
+}
+
 TEST_CASE("Indirect light gathers shadowed or unshadowed direct light at its hits", "[reference][indirect]") {
     // The sun straight down, a roof at height 3 over the whole floor: the floor is in shadow.
     // A point facing +x just above the floor sees the floor in the lower half of its
