@@ -112,6 +112,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const float pixelsPerUnit = 0.5 * float(frameSize().y) * frame.projection[1][1] /
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
     const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
+    const float pError = depthReconstructionError(p, texelFetch(visDepth, fullPixel, 0).r);
     float visible = 0.0, open = 0.0;
     for (int s = 0; s < slices; ++s) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
@@ -138,7 +139,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                 const float len = length(d);
                 // Within the radius and above p's tangent plane (beyond float rounding and the
                 // depth buffer's precision).
-                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(o, depth, length(p) * 4.0)) continue;
+                const float errors = depthReconstructionError(o, depth) + pError;
+                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(length(p) * 4.0, errors)) continue;
                 best = max(best, dot(d / len, v));
             }
             // Angle from v toward the side; limited by the hemisphere of the normal.

@@ -31,7 +31,9 @@ vec3 viewPositionFromDepth(vec2 uv, float depth) {
 float depthReconstructionError(vec3 o, float depth) {
     const float step = max(frame.depthPrecision.x, abs(depth) * 1.1920929e-7); // 2^-23
     if (!isPerspective()) return abs(frame.depthZ.x) * step;
-    return o.z * o.z / abs(frame.depthZ.x) * step * (length(o) / max(abs(o.z), 1e-30));
+    // |dz/dd| = z^2 / |zScale|, times |o| / |z| along the ray: |z| |o| / |zScale| (no z^2 to
+    // overflow).
+    return abs(o.z) / abs(frame.depthZ.x) * length(o) * step;
 }
 
 vec2 pixelCenterUv(ivec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frameSize()); }

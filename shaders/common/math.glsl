@@ -24,7 +24,8 @@ vec3 safeNormalize(vec3 v, vec3 fallback) {
 // v rounded to the nearest half float (ties away from zero), so that storing it into a
 // 16-bit float image is exact: GL leaves that conversion's rounding to the implementation,
 // and llvmpipe's rounds toward zero, which turns 0.99999994 into 0.99951 (a float's last bit
-// of error, an unoccluded AO, became a whole half ulp). For finite v; below half's normal
+// of error, an unoccluded AO, became a whole half ulp). For finite |v| < 65520 (callers clamp
+// to kHalfMax; 65520 and up round to Inf, as they would to nearest); below half's normal
 // range (2^-14) the store may still round, by less than 2^-24.
 float roundedToHalf(float v) { return uintBitsToFloat((floatBitsToUint(v) + 0x1000u) & 0xFFFFE000u); }
 vec4 roundedToHalf(vec4 v) { return uintBitsToFloat((floatBitsToUint(v) + uvec4(0x1000u)) & uvec4(0xFFFFE000u)); }

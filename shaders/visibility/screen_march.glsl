@@ -50,11 +50,11 @@ bool screenPixelOf(vec3 s, out ivec2 pixel) { return screenPixelOfClip(frame.pro
 // rounding of a few ulp of their magnitude.
 const float kScreenPlaneTolerance = 4e-6;
 
-// How far behind the tangent plane of o, sampled from `depth`, a point must be to count as
-// hidden: float rounding, and the depth buffer's precision at o and at the ray's start
-// (taken as o's: a ray leaving a surface meets its own plane's pixels first).
-float screenPlaneTolerance(vec3 o, float depth, float magnitude) {
-    return kScreenPlaneTolerance * magnitude + 2.0 * depthReconstructionError(o, depth);
+// How far from a tangent plane a point must be to count as behind or above it: float
+// rounding of points of this magnitude, plus the reconstruction errors (depthReconstructionError)
+// of the plane's point and of the one compared with it.
+float screenPlaneTolerance(float magnitude, float reconstructionErrors) {
+    return kScreenPlaneTolerance * magnitude + reconstructionErrors;
 }
 
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
@@ -71,7 +71,10 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
     const float back = texelFetch(visBackDepth, pixel, 0).r;
     inside = isBackground(back) ? inside : s.z >= min(viewZFromDepth(back), o.z);
 #endif
-    return !isBackground(depth) && behind > screenPlaneTolerance(o, depth, max(length(o), length(s))) && inside;
+    // The ray's start carries the error of its own pixel's depth, taken as o's: a ray leaving
+    // a surface meets its own plane's pixels first.
+    const float errors = 2.0 * depthReconstructionError(o, depth);
+    return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), length(s)), errors) && inside;
 }
 
 // Whether s is hidden behind the depth buffer (see above).

@@ -4,23 +4,8 @@
 #include "core/context_impl.hpp"
 
 namespace obscura::detail {
-namespace {
 
-// One step of a depth buffer of this format in [0, 1]: fixed point 1 / (2^bits - 1); float
-// formats have no fixed step (the shaders use a float ulp of the depth).
-float depthStep(GLenum format) {
-    switch (format) {
-    case GL_DEPTH_COMPONENT16: return static_cast<float>(1.0 / 65535.0);
-    case GL_DEPTH_COMPONENT24:
-    case GL_DEPTH24_STENCIL8: return static_cast<float>(1.0 / 16777215.0);
-    case GL_DEPTH_COMPONENT32: return static_cast<float>(1.0 / 4294967295.0);
-    default: return 0.0f;
-    }
-}
-
-} // namespace
-
-void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int height, GLenum depthFormat) {
+void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep) {
     const DepthReconstruction r = depthReconstruction(camera);
     const ProjectionInfo info = analyzeProjection(camera);
     shader::FrameData data;
@@ -33,7 +18,7 @@ void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int 
                                r.kind == ProjectionKind::Perspective ? OBSCURA_PROJECTION_PERSPECTIVE
                                                                      : OBSCURA_PROJECTION_ORTHOGRAPHIC,
                                info.reversedZ ? 1 : 0);
-    data.depthPrecision = glm::vec4(depthStep(depthFormat), 0.0f, 0.0f, 0.0f);
+    data.depthPrecision = glm::vec4(static_cast<float>(depthStep), 0.0f, 0.0f, 0.0f);
     if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
     ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
     ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());

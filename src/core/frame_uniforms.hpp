@@ -10,9 +10,9 @@ struct ContextImpl;
 class FrameUniforms {
 public:
     //! Uploads the camera and viewport and binds the block at OBSCURA_FRAME_UBO_BINDING.
-    //! `depthFormat`: the internal format of the depth buffer read with it (its precision
-    //! bounds what screen-space tests can resolve).
-    void bind(ContextImpl& ctx, const Camera& camera, int width, int height, GLenum depthFormat = GL_DEPTH_COMPONENT32F);
+    //! `depthStep`: one step of the depth buffer read with it (TextureInfo::depthStep; 0 for
+    //! float depth), whose precision bounds what screen-space tests can resolve.
+    void bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep);
     std::size_t memoryBytes() const;
 
 private:

@@ -5,6 +5,8 @@
 
 #include <cstdio>
 
+#include <cmath>
+
 namespace obscura::detail {
 
 std::string formatName(GLenum f) {
@@ -77,6 +79,9 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_ALPHA_SIZE, &sizes[3]);
     gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_RED_TYPE, &redType);
     if (depthSize > 0) {
+        GLint depthType = 0;
+        gl.GetTextureLevelParameteriv(name, 0, GL_TEXTURE_DEPTH_TYPE, &depthType);
+        if (depthType == GL_UNSIGNED_NORMALIZED) t.depthStep = 1.0 / (std::ldexp(1.0, depthSize) - 1.0);
         t.depth = true;
         t.stencil = stencilSize > 0;
         t.channels = 1;
@@ -91,6 +96,10 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     static constexpr GLenum intFormats[4] = {GL_RED_INTEGER, GL_RG_INTEGER, GL_RGB_INTEGER, GL_RGBA_INTEGER};
     t.pixelFormat = (t.integer ? intFormats : floatFormats)[t.channels - 1];
     return t;
+}
+
+double depthStepOf(ContextImpl& ctx, GLuint depthTexture) {
+    return queryTexture2D(ctx, depthTexture, "depth texture").depthStep;
 }
 
 } // namespace obscura::detail

@@ -19,11 +19,17 @@ struct TextureInfo {
     bool isSigned = false;     //!< for integer formats
     bool srgb = false;         //!< sRGB-encoded storage (GL_SRGB8, GL_SRGB8_ALPHA8)
     GLenum pixelFormat = 0;    //!< glGetTextureImage format matching `channels`
+    //! Depth formats: one step of the stored depth in [0, 1], 1 / (2^bits - 1) when fixed
+    //! point, 0 when float (GL_TEXTURE_DEPTH_SIZE and _TYPE: unsized formats too).
+    double depthStep = 0.0;
 };
 
 //! Throws Error{InvalidArgument} mentioning `who` unless `name` is a single-sampled,
 //! uncompressed GL_TEXTURE_2D with a level 0.
 TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who);
+
+//! TextureInfo::depthStep of a depth texture (queried from GL, whatever format it claims).
+double depthStepOf(ContextImpl& ctx, GLuint depthTexture);
 
 //! For textures Obscura samples: level 0 must be the base level (texelFetch and
 //! non-mipmapped sampling read the base level).

@@ -257,7 +257,7 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     for (std::size_t i = 0; i < scene.meshRefs.size(); ++i) hostMeshes.push_back(impl_->meshes.hostMesh(i, scene.meshRefs[i]));
     impl_->ensureTargets(settings.width, settings.height);
     const glm::dmat4 view(camera.view);
-    impl_->frame.bind(ctx, camera, settings.width, settings.height);
+    impl_->frame.bind(ctx, camera, settings.width, settings.height, 0.0); // our depth is 32-bit float
     const bool shadowed = impl_->bindShadows(scene, camera, settings);
     impl_->uploadLights(scene, view);
 
@@ -361,7 +361,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     const GLuint normal = impl_->adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
     const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
     ctx.gl.UseProgram(program);
-    impl_->frame.bind(ctx, camera, w, h, host.depth.internalFormat);
+    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, host.depth.name));
     ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, host.depth.name);
     ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
     if (host.normal.name != 0) {
@@ -390,7 +390,7 @@ TextureView GBuffer::positions(const GBufferView& view) {
     const int w = depth.width, h = depth.height;
     const GLuint positions = impl_->positions.ensure(ctx, GL_RGBA32F, w, h, "gbuffer.positions");
     ctx.gl.UseProgram(ctx.shaders->program({"gbuffer/positions.comp.glsl"}));
-    impl_->frame.bind(ctx, view.camera, w, h, view.depth.internalFormat);
+    impl_->frame.bind(ctx, view.camera, w, h, depthStepOf(ctx, view.depth.name));
     ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, view.depth.name);
     ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
     ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, positions, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);

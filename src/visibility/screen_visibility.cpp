@@ -3,6 +3,7 @@
 #include "core/compute.hpp"
 #include "core/context_impl.hpp"
 #include "core/frame_uniforms.hpp"
+#include "core/texture_info.hpp"
 #include "core/pass_scope.hpp"
 #include "core/segment_batch.hpp"
 #include "core/shader_library.hpp"
@@ -51,7 +52,7 @@ struct ScreenVisibility::Impl {
         analyzeProjection(view.camera);
         StateScope scope(ctx);
         auto& gl = ctx.gl;
-        frame.bind(ctx, view.camera, view.width, view.height, view.depth.internalFormat);
+        frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name));
         bindScreenInputs(ctx, view, peeled);
         batch.upload(ctx, queries); // first: it refuses oversized batches before any work
         if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, peeled, "visibility.hiz");

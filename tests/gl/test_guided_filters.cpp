@@ -252,10 +252,12 @@ void checkRefinedCount(const Model& m, const Expected& expected, int refined) {
     CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
 }
 
-// GL leaves float-to-half rounding to the implementation (llvmpipe's stores come out up to
-// one ulp below the model's round-to-nearest), so each rounded step may differ from the model
-// by one ulp, 2^-11 for values in [-1, 1]: the horizontal pass, the vertical pass and the
-// output, 3 ulps in all (the bent normal is rounded once more, where the AO pass stores it).
+// Each step's result is rounded to a half float (to nearest in the shaders, roundedToHalf;
+// the bent normal by the store, which GL leaves to the implementation: llvmpipe's truncate),
+// and the GPU's float weights may put a value on the other side of a rounding boundary than
+// the model's: one ulp, 2^-11 for values in [-1, 1], per step: the horizontal pass, the
+// vertical pass and the output, 3 ulps in all (the bent normal is rounded once more, where
+// the AO pass stores it).
 // The weights' float error (about 1e-6 relative) adds at most 1e-5 to a weighted mean.
 constexpr double kUlp = 1.0 / 2048.0;
 constexpr double kTolerance = 3.0 * kUlp + 1e-5, kDirectionTolerance = 4.0 * kUlp + 1e-5;
@@ -375,53 +377,61 @@ TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLS
     // them (GLSL allows division 2.5 ULP of error; here the products' rounding does it), and
     // llvmpipe's float-to-half stores round toward zero, so such a pixel lost a whole half
     // ulp (2^-11 below 1: an open plane's AO came out 0.99951). Values k / 256 are exact in
-    // half floats; the geometry's pixels must hold them exactly, whatever their weights.
+    // half floats; the geometry's pixels must hold them exactly, whatever their weights: by
+    // the blends' offsets from a value they contain (weightedMean) alone, with the rounding
+    // to nearest before the stores (roundedToHalf) turned off, and with both.
     constexpr int kAo = 179, kRed = 77, kGreen = 230, kBlue = 131;
     const auto constant = [](int k) { return std::to_string(k) + ".0 / 256.0"; };
-    for (const bool indirect : {false, true}) {
-        CAPTURE(indirect);
-        FilterFixture f;
-        if (indirect)
-            test::overrideShader(f.ctx, "gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
-                                 "vec4(" + constant(kRed) + ", " + constant(kGreen) + ", " + constant(kBlue) + ", 1.0)");
-        else
-            test::overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
-                                 "const Estimate e = Estimate(1.0 - " + constant(kAo) + ", normal, 1.0);");
-        f.render();
-        AmbientOcclusion ao(f.ctx);
-        IndirectLight gi(f.ctx);
-        const glm::vec4 expected = indirect ? glm::vec4(kRed, kGreen, kBlue, 256) / 256.0f : glm::vec4(kAo / 256.0f);
-        const int channels = indirect ? 3 : 1;
-        for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-            for (const int taps : {1, 3})
-                for (const float refine : {0.0f, 0.25f}) {
-                    CAPTURE(static_cast<int>(resolution), taps, refine);
-                    Image out;
-                    if (indirect) {
-                        IndirectLightSettings s;
-                        s.resolution = resolution;
-                        s.blurRadius = taps;
-                        s.refineThreshold = refine;
-                        out = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
-                    } else {
-                        AmbientOcclusionSettings s;
-                        s.resolution = resolution;
-                        s.blurRadius = taps;
-                        s.refineThreshold = refine;
-                        out = glRows(readTexture(f.ctx, ao.run(f.view, s).ao));
-                    }
-                    const Model m = f.model(static_cast<int>(resolution), taps, !indirect, indirect ? 0.0f : 1.0f);
-                    int geometry = 0, changed = 0;
-                    for (int y = 0; y < kHeight; ++y)
-                        for (int x = 0; x < kWidth; ++x) {
-                            if (m.isBackground(x, y)) continue;
-                            ++geometry;
-                            bool same = true;
-                            for (int c = 0; c < channels; ++c) same = same && out.at(x, y, c) == expected[c];
-                            changed += same ? 0 : 1;
+    const std::vector<test::ShaderEdit> noRounding = {
+        {"common/math.glsl", "float roundedToHalf(float v) { return", "float roundedToHalf(float v) { return v; return", ""},
+        {"common/math.glsl", "vec4 roundedToHalf(vec4 v) { return", "vec4 roundedToHalf(vec4 v) { return v; return", ""}};
+    for (const bool indirect : {false, true})
+        for (const bool rounding : {true, false}) {
+            CAPTURE(indirect, rounding);
+            FilterFixture f;
+            std::vector<test::ShaderEdit> edits = rounding ? std::vector<test::ShaderEdit>{} : noRounding;
+            if (indirect)
+                edits.push_back({"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)",
+                                 "vec4(" + constant(kRed) + ", " + constant(kGreen) + ", " + constant(kBlue) + ", 1.0)", ""});
+            else
+                edits.push_back({"ao/ao.comp.glsl", "const Estimate e = aoEstimate(p, normal, pixel, full);",
+                                 "const Estimate e = Estimate(1.0 - " + constant(kAo) + ", normal, 1.0);", ""});
+            test::overrideShaders(f.ctx, edits);
+            f.render();
+            AmbientOcclusion ao(f.ctx);
+            IndirectLight gi(f.ctx);
+            const glm::vec4 expected = indirect ? glm::vec4(kRed, kGreen, kBlue, 256) / 256.0f : glm::vec4(kAo / 256.0f);
+            const int channels = indirect ? 3 : 1;
+            for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
+                for (const int taps : {1, 3})
+                    for (const float refine : {0.0f, 0.25f}) {
+                        CAPTURE(static_cast<int>(resolution), taps, refine);
+                        Image out;
+                        if (indirect) {
+                            IndirectLightSettings s;
+                            s.resolution = resolution;
+                            s.blurRadius = taps;
+                            s.refineThreshold = refine;
+                            out = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
+                        } else {
+                            AmbientOcclusionSettings s;
+                            s.resolution = resolution;
+                            s.blurRadius = taps;
+                            s.refineThreshold = refine;
+                            out = glRows(readTexture(f.ctx, ao.run(f.view, s).ao));
                         }
-                    CHECK(geometry > kWidth * kHeight / 2);
-                    CHECK(changed == 0);
-                }
-    }
+                        const Model m = f.model(static_cast<int>(resolution), taps, !indirect, indirect ? 0.0f : 1.0f);
+                        int geometry = 0, changed = 0;
+                        for (int y = 0; y < kHeight; ++y)
+                            for (int x = 0; x < kWidth; ++x) {
+                                if (m.isBackground(x, y)) continue;
+                                ++geometry;
+                                bool same = true;
+                                for (int c = 0; c < channels; ++c) same = same && out.at(x, y, c) == expected[c];
+                                changed += same ? 0 : 1;
+                            }
+                        CHECK(geometry > kWidth * kHeight / 2);
+                        CHECK(changed == 0);
+                    }
+        }
 }

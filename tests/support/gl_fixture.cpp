@@ -75,6 +75,9 @@ void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })
     glLinkProgram(program);
     glDeleteShader(vs);
     glDeleteShader(fs);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    REQUIRE(linked == GL_TRUE);
     GLuint target = 0, fbo = 0, vao = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, format, width, height);
@@ -84,7 +87,12 @@ void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })
     REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
     glCreateVertexArrays(1, &vao);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    // The state the copy needs, set explicitly (the caller's is not kept: test contexts only).
     glViewport(0, 0, width, height);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glDepthRange(0.0, 1.0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
@@ -106,9 +114,13 @@ void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })
 
 void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,
                     const std::string& prelude) {
+    overrideShaders(ctx, {{file, call, replacement, prelude}});
+}
+
+void overrideShaders(Context& ctx, const std::vector<ShaderEdit>& edits) {
     namespace fs = std::filesystem;
     const fs::path root = OBSCURA_SHADER_DIR;
-    bool replaced = false;
+    std::size_t applied = 0;
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
         if (!entry.is_regular_file()) continue;
         std::ifstream in(entry.path());
@@ -116,16 +128,21 @@ void overrideShader(Context& ctx, const std::string& file, const std::string& ca
         text << in.rdbuf();
         std::string source = text.str();
         const std::string path = fs::relative(entry.path(), root).generic_string();
-        if (path == file) {
-            const auto at = source.find(call);
+        for (const ShaderEdit& edit : edits) {
+            if (path != edit.file) continue;
+            const auto at = source.find(edit.call);
             REQUIRE(at != std::string::npos);
-            source.replace(at, call.size(), replacement);
-            source.insert(source.find("void main()"), prelude);
-            replaced = true;
+            source.replace(at, edit.call.size(), edit.replacement);
+            const auto main = source.find("void main()");
+            if (!edit.prelude.empty()) {
+                REQUIRE(main != std::string::npos);
+                source.insert(main, edit.prelude);
+            }
+            ++applied;
         }
         ctx.addShaderSource(path, source);
     }
-    REQUIRE(replaced);
+    REQUIRE(applied == edits.size());
 }
 
 } // namespace obscura::test

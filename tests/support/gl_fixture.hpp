@@ -37,7 +37,8 @@ std::vector<unsigned> drainGlErrors();
 
 //! A host's depth texture: `depth` (a depth texture the size width x height) drawn into a new
 //! GL_TEXTURE_2D of `format` (e.g. GL_DEPTH_COMPONENT24) by the host's own program, as a host
-//! engine's depth pass would leave it (quantized to its format). The caller deletes it.
+//! engine's depth pass would leave it (quantized to its format). The caller deletes it. Sets
+//! the GL state the draw needs and leaves the defaults bound (for test contexts only).
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 
 //! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
@@ -45,5 +46,14 @@ GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 //! fails (REQUIRE) if `file` or `call` is not there.
 void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,
                     const std::string& prelude = "");
+
+//! One edit of overrideShaders: in `file`, `call` becomes `replacement`, `prelude` goes before
+//! its main() (when it has one).
+struct ShaderEdit {
+    std::string file, call, replacement, prelude;
+};
+
+//! overrideShader with several edits, in one or more files.
+void overrideShaders(Context& ctx, const std::vector<ShaderEdit>& edits);
 
 } // namespace obscura::test
