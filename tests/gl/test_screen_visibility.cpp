@@ -238,6 +238,42 @@ TEST_CASE("Depth peeling gives the back of a closed box and lets rays pass behin
     CHECK(differingSamples(texture, f.visibility.trace(f.view, segments, s)) == 0);
 }
 
+TEST_CASE("Points off the image or behind the camera are visible and a surface hides only its thickness",
+          "[visibility]") {
+    // The border policy and the radius check (screen_march.glsl): what the depth buffer does
+    // not show counts as visible, and a depth sample stands for a slab `thickness` deep, not
+    // for everything behind it ("extending to infinity"). The Cornell box from its camera: the
+    // centre pixel shows the back wall (z = 559.2 in the world, 1059 units from the eye).
+    ScreenFixture f("cornell", 33, 33);
+    REQUIRE(f.positions.at(16, 16, 3) == 1.0f);
+    const glm::vec3 wall(f.positions.at(16, 16, 0), f.positions.at(16, 16, 1), f.positions.at(16, 16, 2));
+    const glm::vec3 ray = glm::normalize(wall); // from the eye through the wall point
+    ScreenTraceSettings s;
+    s.thickness = 50.0f;
+    // A point behind the back wall but off the image: the same depth, moved sideways by
+    // twice the distance (the field of view is 40 degrees, so 2 |z| is far outside it).
+    const glm::vec3 offImage = wall + ray * 10.0f + glm::vec3(2.0f * std::abs(wall.z), 0.0f, 0.0f);
+    const std::vector<glm::vec3> points = {
+        wall + ray * (0.5f * s.thickness), // behind the wall, within its thickness: hidden
+        wall + ray * (2.0f * s.thickness), // beyond the thickness: visible (the radius check)
+        wall - ray * 10.0f,                // in front of the wall: visible
+        offImage,                          // off the image: visible (nothing is known there)
+        glm::vec3(0.0f, 0.0f, 100.0f),     // behind the camera: visible
+        glm::vec3(0.0f, 0.0f, 0.0f),       // at the eye: visible
+    };
+    CHECK(f.visibility.hidden(f.view, points, s) == std::vector<std::uint8_t>{1, 0, 0, 0, 0, 0});
+    // A segment from the wall point out of the image sideways, behind the wall's plane all
+    // along: its samples on the image are hidden, those off it are not.
+    const glm::vec3 side = wall + ray * 10.0f;
+    s.steps = 64;
+    s.jitter = 0.0f;
+    const std::vector<ScreenHit> leaving = f.visibility.trace(f.view, {{offImage, side}}, s);
+    REQUIRE(leaving.size() == 1);
+    CHECK(leaving[0].hit); // it enters the image behind the wall
+    CHECK(leaving[0].sample > 0); // but its first samples, off the image, are visible
+    CHECK(test::drainGlErrors().empty());
+}
+
 TEST_CASE("Screen visibility rejects bad settings and survives NaN segments", "[visibility]") {
     ScreenFixture f("cornell", 32, 32);
     ScreenTraceSettings s;
