@@ -6,9 +6,11 @@
 //   Thesis:   L = rho AO L_amb + k L1 + AO L_dir
 //             (the source thesis's L = f_d (AO pi L_amb + k E_ind) + L_dir AO with f_d = rho/pi,
 //             E_ind = pi L1 / rho; AO darkens the direct light too, which is not physical)
-//   Physical: L = L_dir + k L1 + rho AO L_amb
-//             (indirect light replaces the ambient term where it is given: set L_amb = 0 with
-//             GI; AO only shades the ambient light, direct light is shadowed by shadow maps)
+//   Physical: L = L_dir + k L1          when ComposeInputs::indirect is given,
+//             L = L_dir + rho AO L_amb    when it is not
+//             (the indirect light replaces the ambient term, which is its constant stand-in:
+//             with L1 given, L_amb and AO are not used; AO never darkens the direct light,
+//             which shadow maps shadow. A host can keep L_amb set and toggle GI.)
 // Missing inputs count as absent: no AO = 1, no L1 = 0.
 //
 // Tone mapping of exposure * L: None (clamp), Drago et al. 2003 (logarithmic, adapted to the
@@ -35,7 +37,8 @@ enum class ToneMapper { None, Drago, Aces };
 // Setting keys for tools are the field names in snake case.
 struct ComposeSettings {
     CombineFormula formula = CombineFormula::Physical;
-    glm::vec3 ambient{0.0f};     //!< L_amb, W/(sr m^2), [0, 65504] per channel
+    //! L_amb, W/(sr m^2), [0, 65504] per channel (Physical: only without indirect light)
+    glm::vec3 ambient{0.0f};
     float indirectScale = 1.0f;  //!< k, [0, 1e6]
     float exposure = 1.0f;       //!< multiplies the radiance before tone mapping, (0, 1e6]
     ToneMapper toneMapper = ToneMapper::Aces;

@@ -21,8 +21,10 @@ void main() {
     const vec3 l1 = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0 ? clampRadiance(texelFetch(indirect, pixel, 0).rgb)
                                                                    : vec3(0.0);
     const vec3 ambient = rho * ao * compose.ambient.rgb;
-    const vec3 l = compose.flags.x == COMPOSE_FORMULA_THESIS ? ambient + compose.ambient.w * l1 + ao * direct
-                                                             : direct + compose.ambient.w * l1 + ambient;
+    const bool hasIndirect = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
+    vec3 l;
+    if (compose.flags.x == COMPOSE_FORMULA_THESIS) l = ambient + compose.ambient.w * l1 + ao * direct;
+    else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
     const vec3 exposed = clampRadiance(l * compose.tone.x);
     imageStore(radianceOut, pixel, vec4(exposed, 1.0));
     atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(exposed), 0.0)));

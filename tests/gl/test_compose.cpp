@@ -28,6 +28,14 @@ struct ConstantTexture {
 
 double luminance(glm::dvec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
+// Half an 8-bit sRGB code step at linear value v, in linear units: 0.5 / 255 times the
+// decode's slope, taken at the upper end of the step (the slope grows with the code).
+double halfSrgbStep(double v) {
+    const double code = (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055) + 0.5 / 255.0;
+    const double slope = code <= 0.04045 ? 1.0 / 12.92 : 2.4 / 1.055 * std::pow((code + 0.055) / 1.055, 1.4);
+    return 0.5 / 255.0 * slope;
+}
+
 struct Frame {
     test::GlFixture gl;
     Context ctx{gl.desc()};
@@ -51,35 +59,44 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
     Frame f;
     const ConstantTexture ao(GL_R16F, Frame::W, Frame::H, glm::vec4(0.5f));
     const ConstantTexture indirect(GL_RGBA16F, Frame::W, Frame::H, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
-    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical}) {
-        CAPTURE(formula == CombineFormula::Thesis);
-        ComposeSettings s;
-        s.formula = formula;
-        s.ambient = glm::vec3(0.4f, 0.3f, 0.2f);
-        s.indirectScale = 2.0f;
-        s.exposure = 0.01f; // the Cornell light is ~ 1e2 W/(sr m^2): keep the values in [0, 1]
-        s.toneMapper = ToneMapper::None;
-        s.srgb = false;
-        s.gamma = 1.0f;
-        const TextureView display =
-            f.composer.compose({f.view, ao.view(GL_R16F, Frame::W, Frame::H), indirect.view(GL_RGBA16F, Frame::W, Frame::H)}, s);
-        const Image shown = readTexture(f.ctx, display), radiance = readTexture(f.ctx, f.composer.radiance());
-        for (int y = 0; y < Frame::H; ++y)
-            for (int x = 0; x < Frame::W; ++x)
-                for (int c = 0; c < 3; ++c) {
-                    const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), l1 = 0.1 * (c + 1), a = 0.5;
-                    const double ambient = rho * a * s.ambient[c];
-                    const double expected = s.exposure * (formula == CombineFormula::Thesis
-                                                              ? ambient + s.indirectScale * l1 + a * l
-                                                              : l + s.indirectScale * l1 + ambient);
-                    CAPTURE(x, y, c, expected);
-                    // RGBA16F: 11-bit mantissa (and the inputs are 16-bit too: a few ulp).
-                    CHECK(radiance.at(x, y, c) == Approx(expected).epsilon(4e-3).margin(1e-6));
-                    // RGBA8 after the clamp: the GL converts to one of the two nearest of the 255
-                    // steps (nearest preferred, not required: NVIDIA 580 is off by more than half).
-                    CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 1.0 / 255.0 + 4e-3 * expected);
-                }
-    }
+    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+        for (bool withIndirect : {true, false}) {
+            CAPTURE(formula == CombineFormula::Thesis, withIndirect);
+            ComposeSettings s;
+            s.formula = formula;
+            s.ambient = glm::vec3(0.4f, 0.3f, 0.2f);
+            s.indirectScale = 2.0f;
+            s.exposure = 0.01f; // the Cornell light is ~ 1e2 W/(sr m^2): keep the values in [0, 1]
+            s.toneMapper = ToneMapper::None;
+            s.srgb = false;
+            s.gamma = 1.0f;
+            const TextureView l1View = withIndirect ? indirect.view(GL_RGBA16F, Frame::W, Frame::H) : TextureView{};
+            const TextureView display = f.composer.compose({f.view, ao.view(GL_R16F, Frame::W, Frame::H), l1View}, s);
+            const Image shown = readTexture(f.ctx, display), radiance = readTexture(f.ctx, f.composer.radiance());
+            for (int y = 0; y < Frame::H; ++y)
+                for (int x = 0; x < Frame::W; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), a = 0.5;
+                        const double kl1 = withIndirect ? s.indirectScale * 0.1 * (c + 1) : 0.0;
+                        const double ambient = rho * a * s.ambient[c];
+                        // Physical: the indirect light, where given, replaces the ambient term.
+                        const double expected = s.exposure * (formula == CombineFormula::Thesis ? ambient + kl1 + a * l
+                                                              : withIndirect                    ? l + kl1
+                                                                                                : l + ambient);
+                        const double error = radiance.at(x, y, c) - expected;
+                        CAPTURE(x, y, c, expected, error, rho, l);
+                        // RGBA16F: 11-bit mantissa (and the inputs are 16-bit too: a few ulp). The
+                        // albedo is sRGB-encoded 8-bit: GL does not fix how exactly the shader's
+                        // and the read-back's decodes agree (llvmpipe's differ by ~0.3 of a step
+                        // at code 105): half a code step of rho in the ambient term.
+                        const bool ambientUsed = formula == CombineFormula::Thesis || !withIndirect;
+                        const double rhoSlack = ambientUsed ? s.exposure * a * s.ambient[c] * halfSrgbStep(rho) : 0.0;
+                        CHECK(std::abs(error) <= 4e-3 * expected + rhoSlack + 1e-6);
+                        // RGBA8 after the clamp: the GL converts to one of the two nearest of the 255
+                        // steps (nearest preferred, not required: NVIDIA 580 is off by more than half).
+                        CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 1.0 / 255.0 + 4e-3 * expected);
+                    }
+        }
 }
 
 TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]") {

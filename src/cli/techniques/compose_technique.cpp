@@ -15,12 +15,12 @@ namespace {
 
 const std::vector<SettingInfo> kSettings = joinSettings({
     {"formula", "", "thesis|physical", "see CombineFormula"},
-    {"ambient", "W/(sr m^2)", "[0, 65504]", "grey ambient radiance L_amb"},
+    {"ambient", "W/(sr m^2)", "[0, 65504]", "grey ambient radiance L_amb (physical formula: only with gi=0)"},
     {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
     {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
     {"tone_mapper", "", "none|drago|aces", "tone mapping operator"},
     {"srgb", "", "0|1", "sRGB transfer function (else gamma 2.2)"},
-    {"ao", "", "0|1", "ray-marched AO (medium quality)"},
+    {"ao", "", "0|1", "ray-marched AO (medium quality; the physical formula uses it only with gi=0)"},
     {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
     {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
 }, LitGBuffer::settings());
@@ -50,7 +50,8 @@ public:
         const float radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         view_ = lit_.render(frame, {frame.width, frame.height, true, {}});
         ComposeInputs inputs{view_, {}, {}};
-        if (withAo_) {
+        // The physical combine does not use AO next to indirect light: no AO pass then.
+        if (withAo_ && !(withGi_ && settings_.formula == CombineFormula::Physical)) {
             AmbientOcclusionSettings a;
             a.radius = radius;
             inputs.ao = ao_.run(view_, a).ao;
