@@ -37,8 +37,10 @@ enum class ObscuranceFalloff { None, Linear, Quadratic, Smooth };
 
 enum class AoMethod {
     RayMarch, //!< "ao.raymarch": `rays` directions, `steps` depth-buffer tests along each
-    Points,   //!< "ao.points": Crytek-style: `rays` points in the hemisphere ball of radius r;
-              //!< the share not behind the depth buffer (a volume estimate, not AO_r)
+    Points,   //!< "ao.points": Crytek-style: `rays` points in the hemisphere ball of radius r
+              //!< (3D Hammersley: direction, distance); the share not behind the depth
+              //!< buffer, a volume estimate, not AO_r: a direction first hitting at t < r is
+              //!< (t/r)^3 open (obscurance-like); with a falloff, hidden points count rho
     Horizon,  //!< "ao.horizon": per screen slice, the horizon angles found with `steps` samples
               //!< on each side and the cosine-weighted integral above them (GTAO-style; exact
               //!< for height fields); `rays` / 2 slices; cosine weighting only

@@ -76,7 +76,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
 }
 #elif METHOD == AO_METHOD_POINTS
 // Crytek-style: points uniform in the ball of radius r cut to the normal's hemisphere (the
-// distance from p as r u^(1/3)); a hidden point counts as occluded at its distance.
+// distance from p as r u^(1/3), u the 3D Hammersley set's third coordinate); a hidden point
+// counts as occluded at its distance.
 Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
@@ -84,7 +85,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const uint n = uint(ao.counts.x);
     for (uint i = 0u; i < n; ++i) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        const float u = fract(radicalInverse2(i * 0x9E3779B9u) + jitter);
+        const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
         aoAdd(e, w, normal, screenHidden(p + w * d, ao.shape.y) ? d : -1.0);
     }

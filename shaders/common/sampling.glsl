@@ -10,6 +10,18 @@ layout(binding = OBSCURA_NOISE_TEXTURE_UNIT) uniform sampler2D noiseTexture; // 
 // Van der Corput in base 2: the bits of i mirrored behind the binary point.
 float radicalInverse2(uint i) { return float(bitfieldReverse(i)) * 2.3283064365386963e-10; }
 
+// Van der Corput in base 3: the ternary digits of i mirrored behind the point. The third
+// coordinate of the 3D Hammersley set (i / n, base 2, base 3); a base-2 function of i would
+// tie it to the second (their leading digits would be functions of the same low bits of i).
+float radicalInverse3(uint i) {
+    uint mirrored = 0u, scale = 1u;
+    for (; i > 0u && scale < 1162261467u; i /= 3u) { // 3^19: the digits of any 32-bit i
+        mirrored = mirrored * 3u + i % 3u;
+        scale *= 3u;
+    }
+    return min(float(mirrored) / float(scale), 0.99999994); // past 3^15 the quotient may round to 1
+}
+
 // Point i of the n-point Hammersley set in [0, 1)^2.
 vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), radicalInverse2(i)); }
 
@@ -21,6 +33,7 @@ vec2 rotateSample(vec2 u, vec2 offset) {
     const vec2 v = u + offset;
     return min(v - floor(v), vec2(0.99999994));
 }
+float rotateSample(float u, float offset) { return rotateSample(vec2(u), vec2(offset)).x; }
 
 // Cosine-weighted direction about +z (pdf cos / pi): the disc point of radius sqrt(u.x)
 // lifted onto the hemisphere.

@@ -18,6 +18,15 @@ inline float radicalInverse2(std::uint32_t i) {
     return static_cast<float>(i) * 2.3283064365386963e-10f;
 }
 
+inline float radicalInverse3(std::uint32_t i) {
+    std::uint32_t mirrored = 0, scale = 1;
+    for (; i > 0 && scale < 1162261467u; i /= 3) {
+        mirrored = mirrored * 3 + i % 3;
+        scale *= 3;
+    }
+    return std::min(static_cast<float>(mirrored) / static_cast<float>(scale), 0.99999994f);
+}
+
 inline glm::vec2 hammersley(std::uint32_t i, std::uint32_t n) {
     return {static_cast<float>(i) / static_cast<float>(n), radicalInverse2(i)};
 }

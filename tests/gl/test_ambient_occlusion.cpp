@@ -77,6 +77,21 @@ double falloffOf(ObscuranceFalloff f, double t) {
     return 0.0;
 }
 
+// Points: a direction that meets a surface at t < r holds points at distances x = r s with
+// density 3 s^2 (uniform in the ball), hidden when x > t; each counts 1 - rho(s). The
+// expected occlusion is Integral_{t/r}^1 (1 - rho(s)) 3 s^2 ds, in closed form per falloff
+// (Integral_tau^1 3 s^(k+2) ds = 3 (1 - tau^(k+3)) / (k+3)).
+double pointsOccluded(ObscuranceFalloff f, double tau) {
+    const auto moment = [tau](int k) { return 3.0 * (1.0 - std::pow(tau, k + 3)) / (k + 3); };
+    switch (f) {
+    case ObscuranceFalloff::Linear: return moment(0) - moment(1);
+    case ObscuranceFalloff::Quadratic: return moment(0) - moment(2);
+    case ObscuranceFalloff::Smooth: return moment(0) - 3.0 * moment(2) + 2.0 * moment(3);
+    case ObscuranceFalloff::None: break;
+    }
+    return moment(0);
+}
+
 // The mean over a floor point's hemisphere of `atHit(d)` for the directions that reach an
 // infinite wall at distance d <= reach, and of 1 for the others, the point being `distance`
 // from the wall. A direction's component u toward the wall decides: d = distance / u. Cosine-
@@ -255,7 +270,7 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
         ObscuranceFalloff falloff;
         bool cosine;
     };
-    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel})
+    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel, AoMethod::Points})
         for (const Quantity q : {Quantity{ObscuranceFalloff::None, true}, Quantity{ObscuranceFalloff::None, false},
                                  Quantity{ObscuranceFalloff::Linear, true}, Quantity{ObscuranceFalloff::Quadratic, true},
                                  Quantity{ObscuranceFalloff::Smooth, true}}) {
@@ -268,6 +283,8 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
             s.falloff = q.falloff;
             s.cosineWeighted = q.cosine;
             s.bentNormals = true;
+            // Points: every point behind the wall within the radius counts as inside it.
+            if (method == AoMethod::Points) s.thickness = static_cast<float>(2.0 * radius);
             if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, voxels);
             const AmbientOcclusionView out = f.ao.run(f.view, s);
             const Image ao = readTexture(f.ctx, out.ao), bent = readTexture(f.ctx, out.bentNormal);
@@ -293,6 +310,10 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
                     if (method == AoMethod::RayMarch) {
                         hi = wallMean(distance, marchReach, q.cosine, late);
                         cHi = distance / marchReach;
+                    } else if (method == AoMethod::Points) {
+                        // Each point is classified exactly against the wall's plane: no window.
+                        lo = hi = wallMean(distance, radius, q.cosine,
+                                           [&](double t) { return 1.0 - pointsOccluded(q.falloff, t / radius); });
                     } else {
                         const double closer = std::max(distance - voxelSide, 0.0);
                         lo = wallMean(closer, radius, q.cosine, exact);
@@ -308,7 +329,7 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
                     CHECK(value <= hi + tolerance);
                     meanError += value - 0.5 * (lo + hi);
                     meanWindow += 0.5 * (hi - lo);
-                    if (q.falloff == ObscuranceFalloff::None && q.cosine) {
+                    if (q.falloff == ObscuranceFalloff::None && q.cosine && method != AoMethod::Points) {
                         const glm::dvec3 b = toWorld * glm::dvec3(bent.at(x, y, 0), bent.at(x, y, 1), bent.at(x, y, 2));
                         const double tilt = std::atan2(b.z, b.y), tiltLo = wallBentTilt(cHi), tiltHi = wallBentTilt(cLo);
                         CHECK(std::abs(glm::length(b) - 1.0) < 1e-2);
@@ -327,7 +348,7 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
             INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
             CHECK(std::abs(meanError / checked) <=
                   meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -12));
-            if (q.falloff == ObscuranceFalloff::None && q.cosine) {
+            if (q.falloff == ObscuranceFalloff::None && q.cosine && method != AoMethod::Points) {
                 // The bent normal's angle: the sum of `rays` open directions has per-component
                 // standard deviations at most sqrt(E[z^2]) = 1/2 and sqrt(E[y^2]) = sqrt(1/2)
                 // over sqrt(rays), and a length of at least E[y] >= 1/3 per ray, so its angle's

@@ -24,6 +24,21 @@ TEST_CASE("Hammersley points are the base-2 radical inverse of the index", "[sam
         for (int c : row) CHECK(c == 1);
 }
 
+TEST_CASE("The third Hammersley coordinate is the base-3 radical inverse and independent of the second", "[sampling]") {
+    CHECK(radicalInverse3(0) == 0.0f);
+    CHECK(radicalInverse3(1) == Approx(1.0 / 3.0).epsilon(1e-7));
+    CHECK(radicalInverse3(2) == Approx(2.0 / 3.0).epsilon(1e-7));
+    CHECK(radicalInverse3(3) == Approx(1.0 / 9.0).epsilon(1e-7));
+    CHECK(radicalInverse3(5) == Approx(7.0 / 9.0).epsilon(1e-7)); // 5 = 12_3 -> 0.21_3
+    CHECK(radicalInverse3(0xFFFFFFFFu) < 1.0f);
+    // 3D Hammersley with n = 2^a 3^b points is a net in both pairs: every 1/2 x 1/3 cell of
+    // (base 2, base 3) holds n / 6 points (at n = 36: 6 each).
+    int cells[2][3] = {};
+    for (std::uint32_t i = 0; i < 36; ++i) ++cells[static_cast<int>(radicalInverse2(i) * 2)][static_cast<int>(radicalInverse3(i) * 3)];
+    for (auto& row : cells)
+        for (int c : row) CHECK(c == 6);
+}
+
 TEST_CASE("Hemisphere mappings give unit directions with the expected moments", "[sampling]") {
     // Means over a 4096-point Hammersley set (exact to about 1/4096 for these smooth
     // integrands): cosine weighting E[z] = 2/3, uniform E[z] = 1/2, both E[x] = E[y] = 0.
