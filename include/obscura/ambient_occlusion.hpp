@@ -1,8 +1,9 @@
 #pragma once
 // Ambient occlusion and obscurance from a G-buffer, in screen space or in voxel space.
 //
-// Every method estimates the same quantities as obscura::reference (AmbientOcclusion,
-// Obscurance, BentNormal) with the geometric normal of the G-buffer:
+// The methods estimate the quantities of obscura::reference (AmbientOcclusion, Obscurance,
+// BentNormal) with the geometric normal of the G-buffer (Points and Horizon under their own
+// models, see AoMethod; docs/results.md gives each method's error against the reference):
 //   AO_r(x) = (1/pi) Integral V_r(x, w) (n.w) dw    (cosine-weighted; or (1/2pi) Integral V_r dw)
 //   W(x)    = (1/pi) Integral rho(d(x, w) / r) (n.w) dw   (obscurance, `falloff` != None)
 // V_r(x, w) = 1 when nothing is hit within the radius r. Directions are Hammersley points
