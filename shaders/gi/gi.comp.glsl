@@ -32,17 +32,27 @@ layout(binding = GI_ALBEDO_UNIT) uniform sampler2D albedoTexture;
 layout(binding = GI_OUT_IMAGE, rgba16f) writeonly uniform image2D giOut;
 layout(binding = GI_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
 
-// The radiance leaving the surface at view point `hit` toward p, read from the screen: the
-// pixel it projects to, if that pixel shows the hit (within `tolerance` along the view
-// direction) and its front side faces p. Otherwise nothing is known: 0.
-vec3 giScreenRadiance(vec3 p, vec3 hit, float tolerance) {
+// The radiance leaving the surface at the hit p + w t (w a unit direction, t a distance)
+// toward p, read from the screen: the pixel the hit projects to, if that pixel shows it
+// (within `tolerance` along the view direction), its front side faces p, and the ray enters
+// it from the front (w against its normal) no nearer than `entryFrom` to p, where it crosses
+// the pixel's tangent plane. The screen march passes the distance of the sample before the
+// hit, less half a step: a ray that went behind the visible surface elsewhere, through a side
+// the camera does not see, hit that side, whose radiance is unknown (reading the visible top
+// of a box for a ray that entered through its unseen back made glowing spots). Otherwise
+// nothing is known: 0.
+vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance) {
+    const vec3 hit = p + w * t;
     ivec2 q;
     if (!screenPixelOf(hit, q)) return vec3(0.0);
     const float depth = texelFetch(visDepth, q, 0).r;
     if (isBackground(depth)) return vec3(0.0);
     const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth);
     if (abs(o.z - hit.z) > tolerance) return vec3(0.0);
-    if (!(dot(texelFetch(visNormal, q, 0).xyz, p - o) > 0.0)) return vec3(0.0);
+    const vec3 n = texelFetch(visNormal, q, 0).xyz;
+    const float front = dot(n, p - o), into = dot(n, w);
+    // p in front of the plane and w going into it: the crossing is at front / -into > 0.
+    if (!(front > 0.0 && into < 0.0) || front < entryFrom * -into) return vec3(0.0);
     return clampRadiance(texelFetch(directRadiance, q, 0).rgb);
 }
 
@@ -59,9 +69,12 @@ vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
     for (uint i = 0u; i < n; ++i) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
-        const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y);
-        // The hidden sample lies behind the surface it projects to: read that surface.
-        if (t >= 0.0) sum += giScreenRadiance(p, p + w * t, gi.shape.y + radius);
+        const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
+        // The hidden sample lies behind the surface it projects to: read that surface, if the
+        // ray crossed it after the previous sample (a step of r / steps before, with half a
+        // step of slack).
+        const float entryFrom = t - 1.5 * radius / float(gi.counts.y);
+        if (t >= 0.0) sum += giScreenRadiance(p, w, t, entryFrom, gi.shape.y + radius);
 #else
         const vec3 endVoxel = (gi.viewToVoxel * vec4(start + w * radius, 1.0)).xyz;
 #if TRAVERSAL == VOXEL_METHOD_MARCH
@@ -71,7 +84,10 @@ vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
 #else
         const VoxelHit hit = voxelTraceHierarchical(startVoxel, endVoxel);
 #endif
-        if (hit.hit) sum += giScreenRadiance(p, start + w * (hit.t * radius), gi.shape.y);
+        // The voxel hit is a voxel's entry, up to about a voxel before the surface: no
+        // entry window, but the ray must still go into the surface it reads (from a start
+        // inside a neighbouring surface's voxels, every direction hits at once).
+        if (hit.hit) sum += giScreenRadiance(start, w, hit.t * radius, -1e30, gi.shape.y);
 #endif
     }
     return sum / float(n);

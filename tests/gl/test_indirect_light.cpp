@@ -99,6 +99,96 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
     }
 }
 
+// The view factor from a point P on the wall z = -1 (normal +z) to the part within `reach`
+// of the rectangle y = top, x in [x0, x1], z in [z0, z1] (normal +y), P above it:
+// (1/pi) Integral cos1 cos2 / d^2 dA = (1/pi) Integral (z + 1) (P.y - top) / d^4 dA, by the
+// midpoint rule on 400 x 400 cells (the integrand is smooth: d >= 0.07 here).
+double topFaceViewFactor(glm::dvec3 P, double top, double x0, double x1, double z0, double z1, double reach) {
+    constexpr int n = 400;
+    const double hx = (x1 - x0) / n, hz = (z1 - z0) / n, h = P.y - top;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const glm::dvec3 v(x0 + (i + 0.5) * hx - P.x, -h, z0 + (j + 0.5) * hz - P.z);
+            const double d2 = glm::dot(v, v);
+            if (d2 <= reach * reach) sum += v.z * h / (d2 * d2);
+        }
+    return sum * hx * hz / kPi;
+}
+
+TEST_CASE("Screen-space indirect light reads a visible face only for rays that enter through it", "[gi]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    IndirectLight gi(ctx);
+    // A black box x in [-1, 1], y in [-1, 0.5], z in [-0.9, -0.3] whose top emits Le upward,
+    // 0.15 in front of a grey wall z = -1. Wall points just above the top's plane see the
+    // top nearly edge-on: little light. Rays from them that dip below that plane in the gap
+    // and enter the box through its back, which the camera does not see, hit black; the
+    // screen shows the emitting top where they end, and reading it there made glowing spots.
+    constexpr double top = 0.5, reach = 1.0;
+    const auto box = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) { return test::AnalyticQuad{{a, b, c, d}}; };
+    Scene scene = test::quadScene({box({-20, -1, -1}, {20, -1, -1}, {20, 20, -1}, {-20, 20, -1}),         // wall
+                                   box({-1, top, -0.9}, {-1, top, -0.3}, {1, top, -0.3}, {1, top, -0.9}), // top
+                                   box({-1, -1, -0.3}, {1, -1, -0.3}, {1, top, -0.3}, {-1, top, -0.3}),   // front
+                                   box({-1, top, -0.9}, {1, top, -0.9}, {1, -1, -0.9}, {-1, -1, -0.9}),   // back
+                                   box({1, -1, -0.3}, {1, -1, -0.9}, {1, top, -0.9}, {1, top, -0.3}),     // +x
+                                   box({-1, -1, -0.9}, {-1, -1, -0.3}, {-1, top, -0.3}, {-1, top, -0.9})}, // -x
+                                  glm::vec3(0.8f));
+    Material black, emitter;
+    black.albedo = emitter.albedo = glm::vec3(0.0f);
+    emitter.emission = glm::vec3(1.0f);
+    scene.materials.push_back(black);
+    scene.materials.push_back(emitter);
+    for (std::size_t i = 2; i < scene.meshes.size(); ++i) scene.meshes[i].material = 1;
+    scene.meshes[1].material = 2;
+    constexpr int W = 160, H = 120;
+    const Camera camera = Camera::perspective({{0, 2.2f, 2.5f}, {0, 0.4f, -0.9f}, {0, 1, 0}}, glm::radians(40.0f),
+                                              float(W) / float(H), 0.05f, 200.0f);
+    const GBufferView view = gbuffer.render(scene, camera, {W, H, false, {}});
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.camera.view));
+    constexpr int rays = 1024, steps = 64;
+    IndirectLightSettings s;
+    s.method = GiMethod::Screen;
+    s.radius = static_cast<float>(reach);
+    s.rays = rays;
+    s.steps = steps;
+    const Image radiance = readTexture(ctx, gi.run(view, s).radiance);
+    const double step = reach / steps;
+    int checked = 0;
+    double meanError = 0.0, meanWindow = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (positions.at(x, y, 3) == 0.0f) continue;
+            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0));
+            if (std::abs(p.z + 1.0) > 1e-3 || p.y <= top + 1e-3 || p.y > top + 0.15 || std::abs(p.x) > 0.6) continue;
+            // The march finds a hit at its first sample behind the top, inside the box: rays
+            // that cross the top within about a step of its front edge (where later samples
+            // show the box's black front) or its sides, or beyond r (1 - 1 / steps), may be
+            // missed. A sample s up to delta = 1.5 steps below the top's plane (how far the
+            // accepted crossing may lie before it) counts as behind the top wherever the
+            // camera sees the top in front of it: up to 2 delta beyond the back edge (the
+            // camera's rays there fall 1 in 2). So rays crossing the plane up to 4.5 steps
+            // beyond the back edge (and, conservatively, the sides) may be read.
+            const double lo = topFaceViewFactor(p, top, -1.0 + step, 1.0 - step, -0.9, -0.3 - 2.0 * step, reach - step);
+            const double hi = topFaceViewFactor(p, top, -1.0 - 4.5 * step, 1.0 + 4.5 * step, -0.9 - 4.5 * step, -0.3, reach);
+            // 5 sigma of the share of `rays` cosine-weighted directions, and the half float.
+            const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+            const double value = radiance.at(x, y, 0) / 0.8; // rho Le F, rho = 0.8, Le = 1
+            const double tolerance = 5.0 * sigma + std::ldexp(1.0, -11);
+            CAPTURE(x, y, p.x, p.y - top, value, lo, hi);
+            CHECK(value >= lo - tolerance);
+            CHECK(value <= hi + tolerance);
+            meanError += value - 0.5 * (lo + hi);
+            meanWindow += 0.5 * (hi - lo);
+            ++checked;
+        }
+    CHECK(checked > 40);
+    INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
+    CHECK(std::abs(meanError / checked) <= meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
+}
+
 TEST_CASE("Nothing lit gives no indirect light and the sky stays empty", "[gi]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
