@@ -25,6 +25,7 @@
 #include "../voxel/voxel_traversal.glsl"
 #endif
 #include "../filters/refine_list.glsl"
+#include "../common/ray_batch.glsl"
 #if defined(REFINE) && AO_WORKGROUP * AO_WORKGROUP != FILTER_REFINE_GROUP
 #error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
 #endif
@@ -36,11 +37,12 @@ layout(binding = AO_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut
 
 // The estimate is 1 - occluded / count rather than sum(V) / count: GLSL allows division 2.5
 // ULP of error, so n / n may come out below 1, and a float-to-half store may round it toward
-// zero to 0.99951. With nothing occluded the quotient is 0 / count, exactly 0.
+// zero to 0.99951. With nothing occluded the quotient is 0 / count, exactly 0. Sums over the
+// rays (or slices) of this ray batch (ray_batch.glsl).
 struct Estimate {
-    float occluded; // sum of 1 - V (or 1 - rho) over the samples
+    float occluded; // sum of 1 - V (or 1 - rho) over the samples; horizon: open - visible arcs
     vec3 bent;  // sum of the unoccluded directions (cosine-weighted)
-    float count;
+    float count;    // samples; horizon: the open arcs
 };
 
 // The pixel's offset along the rays (and of the slices), independent of its rotation.
@@ -68,7 +70,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
     const uint n = uint(ao.counts.x);
-    for (uint i = 0u; i < n; ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         aoAdd(e, w, normal, screenMarch(p, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
     }
@@ -83,7 +85,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
     const uint n = uint(ao.counts.x);
-    for (uint i = 0u; i < n; ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
@@ -102,7 +104,7 @@ float aoArc(float h1, float h2, float g) {
 // Slices through the view direction at angles phi; on each side `steps` depth samples out
 // to the radius projected at p find the highest point within the radius above p's tangent
 // plane. The result is normalized by the same sum for an open hemisphere, so a plane with
-// nothing above it is exactly 1 for any number of slices.
+// nothing above it is exactly 1 for any number of slices. Slices are this batch's "rays".
 Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
@@ -114,8 +116,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
     const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
     const float pError = depthReconstructionError(p, texelFetch(visDepth, fullPixel, 0).r);
-    float visible = 0.0, open = 0.0;
-    for (int s = 0; s < slices; ++s) {
+    for (int s = int(rayBatchFirst()); s < int(rayBatchEnd()); ++s) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
         const vec2 dir = vec2(cos(phi), sin(phi));
         // The slice plane holds v and the screen direction; `axis` is its normal, and
@@ -149,13 +150,12 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
             const float found = sgn * acos(clamp(best, -1.0, 1.0));
             h[side] = side == 0 ? max(found, limit) : min(found, limit);
         }
-        visible += weight * aoArc(h[0], h[1], g);
-        open += weight * aoArc(g - 0.5 * OBSCURA_PI, g + 0.5 * OBSCURA_PI, g);
+        // The same arcs for an open slice: open - visible is exactly 0 there.
+        const float open = weight * aoArc(g - 0.5 * OBSCURA_PI, g + 0.5 * OBSCURA_PI, g);
+        e.occluded += open - weight * aoArc(h[0], h[1], g);
+        e.count += open;
     }
-    e.occluded = open > 0.0 ? max(open - visible, 0.0) / open : 0.0;
-    e.count = 1.0;
-    e.bent = normal; // the horizon method gives no bent normal of its own
-    return e;
+    return e; // no bent normal of its own: the normal stands in (main)
 }
 #else
 // Rays of length r through the voxel grid from a start lifted off the surface's voxels.
@@ -166,7 +166,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec3 start = p + normal * ao.shape.z;
     const vec3 startVoxel = (ao.viewToVoxel * vec4(start, 1.0)).xyz;
     const uint n = uint(ao.counts.x);
-    for (uint i = 0u; i < n; ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const vec3 endVoxel = (ao.viewToVoxel * vec4(start + w * ao.shape.x, 1.0)).xyz;
         // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
@@ -201,7 +201,14 @@ void main() {
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-    const Estimate e = aoEstimate(p, normal, pixel, full);
+    const Estimate own = aoEstimate(p, normal, pixel, full);
+    const uint slot = rayBatchSlot(pixel, aoSize());
+    const RayBatchPartial sums = rayBatchMerged(slot, RayBatchPartial(vec4(own.occluded, own.bent), vec4(own.count)));
+    if (!rayBatchLast()) {
+        rayBatchKeep(slot, sums);
+        return;
+    }
+    const Estimate e = Estimate(sums.a.x, sums.a.yzw, sums.b.x);
     const float value = e.count > 0.0 ? clamp(1.0 - e.occluded / e.count, 0.0, 1.0) : 1.0;
     imageStore(aoOut, pixel, vec4(roundedToHalf(value)));
     if (aoBent()) imageStore(bentOut, pixel, vec4(safeNormalize(e.bent, normal), 1.0));

@@ -23,6 +23,11 @@ using mat4 = glm::mat4;
 #define OBSCURA_ATTRIB_NORMAL 1
 #define OBSCURA_ATTRIB_TEXCOORD 2
 
+// Integrators that run their rays in batches (shaders/common/ray_batch.glsl): the partial
+// sums, and the uniform with the batch's range and flags.
+#define OBSCURA_RAY_BATCH_SSBO 7
+#define OBSCURA_LOC_RAY_BATCH 0
+
 #define OBSCURA_PROJECTION_PERSPECTIVE 0
 #define OBSCURA_PROJECTION_ORTHOGRAPHIC 1
 

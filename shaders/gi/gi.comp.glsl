@@ -19,6 +19,7 @@
 #include "../voxel/voxel_traversal.glsl"
 #endif
 #include "../filters/refine_list.glsl"
+#include "../common/ray_batch.glsl"
 #if defined(REFINE) && GI_WORKGROUP * GI_WORKGROUP != FILTER_REFINE_GROUP
 #error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
 #endif
@@ -56,7 +57,8 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
     return clampRadiance(texelFetch(directRadiance, q, 0).rgb);
 }
 
-vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
+// The sum of the radiance read over this batch's rays (ray_batch.glsl).
+vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x;
     const uint n = uint(gi.counts.x);
@@ -66,7 +68,7 @@ vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
     const vec3 start = p + normal * gi.shape.z;
     const vec3 startVoxel = (gi.viewToVoxel * vec4(start, 1.0)).xyz;
 #endif
-    for (uint i = 0u; i < n; ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
         const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
@@ -90,7 +92,7 @@ vec3 giEstimate(vec3 p, vec3 normal, ivec2 pixel) {
         if (hit.hit) sum += giScreenRadiance(start, w, hit.t * radius, -1e30, gi.shape.y);
 #endif
     }
-    return sum / float(n);
+    return sum;
 }
 
 void main() {
@@ -110,7 +112,14 @@ void main() {
     }
     const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
     const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+    const uint slot = rayBatchSlot(pixel, gi.sizes.xy);
+    const RayBatchPartial sums = rayBatchMerged(slot, RayBatchPartial(vec4(giRadianceSum(p, normal, pixel), 0.0), vec4(0.0)));
+    if (!rayBatchLast()) {
+        rayBatchKeep(slot, sums);
+        return;
+    }
     const vec3 albedo = texelFetch(albedoTexture, full, 0).rgb;
-    imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * giEstimate(p, normal, pixel)), 1.0)));
+    const vec3 meanRadiance = sums.a.rgb / float(gi.counts.x); // E / pi: the directions are cosine-weighted
+    imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * meanRadiance), 1.0)));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

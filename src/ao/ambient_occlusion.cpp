@@ -4,6 +4,7 @@
 #include "core/context_impl.hpp"
 #include "core/frame_uniforms.hpp"
 #include "core/pass_scope.hpp"
+#include "core/ray_batches.hpp"
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
@@ -62,6 +63,20 @@ void validateSettings(const AmbientOcclusionSettings& s) {
 
 bool filtered(const AmbientOcclusionSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
 
+// The pass's rays (horizon: slices) and the loop iterations each may take, for its ray
+// batches (core/ray_batches.hpp).
+int batchItems(const AmbientOcclusionSettings& s) { return s.method == AoMethod::Horizon ? std::max(s.rays / 2, 1) : s.rays; }
+
+std::int64_t iterationsPerItem(const AmbientOcclusionSettings& s, glm::ivec2 fullSize) {
+    switch (s.method) {
+    case AoMethod::RayMarch: return screenRayIterations(s.march, s.steps, fullSize);
+    case AoMethod::Points: return 8; // the point and radicalInverse3's digits (7 below 3^7 > 1024)
+    case AoMethod::Horizon: return 2 * (std::int64_t(s.steps) + 1) + 1;
+    case AoMethod::Voxel: return voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1;
+    }
+    return 1;
+}
+
 int falloffCode(ObscuranceFalloff f) {
     switch (f) {
     case ObscuranceFalloff::Linear: return AO_FALLOFF_LINEAR;
@@ -84,6 +99,7 @@ struct AmbientOcclusion::Impl {
     Buffer params;
     SizedTexture ao, bent, guide, fullAo, fullBent;
     GuidedFilters filters;
+    RayBatches batches;
 
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
         shader::AoParams p{};
@@ -141,14 +157,19 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
     if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+    const bool refine = scale > 1 && s.refineThreshold > 0.0f;
+    d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
+                   std::max(std::size_t(size.x) * std::size_t(size.y),
+                            refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}));
     {
         PassScope pass(ctx, passName(s.method));
-        ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
+        const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
+        ctx.gl.UseProgram(program);
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
         if (guide) d.bindWrite(AO_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
         if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, bent, GL_RGBA16F);
-        dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP);
+        d.batches.run(ctx, program, [&] { dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP); });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     const FilterImages images{guide, aoTexture, bent, false, size, scale};
@@ -164,13 +185,14 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         const GLuint fullAo = d.fullAo.ensure(ctx, GL_R16F, view.width, view.height, "ao.output");
         const GLuint fullBent = bent ? d.fullBent.ensure(ctx, GL_RGBA16F, view.width, view.height, "ao.bent_normal") : 0;
         d.filters.upsample(ctx, images, filter, fullAo, fullBent, {view.width, view.height}, "ao.upsample");
-        if (s.refineThreshold > 0.0f) {
+        if (refine) {
             PassScope pass(ctx, "ao.refine");
             defines.push_back("REFINE");
-            ctx.gl.UseProgram(ctx.shaders->program({"ao/ao.comp.glsl"}, defines));
+            const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
+            ctx.gl.UseProgram(program);
             d.bindWrite(AO_OUT_IMAGE, fullAo, GL_R16F);
             if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, fullBent, GL_RGBA16F);
-            d.filters.dispatchRefinement(ctx);
+            d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
         }
         out.ao = {fullAo, GL_R16F, view.width, view.height};
         if (bent) out.bentNormal = {fullBent, GL_RGBA16F, view.width, view.height};
@@ -182,7 +204,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
 std::size_t AmbientOcclusion::memoryBytes() const {
     const auto& d = *impl_;
     return d.ao.bytes() + d.bent.bytes() + d.guide.bytes() + d.fullAo.bytes() + d.fullBent.bytes() + d.frame.memoryBytes() +
-           d.filters.memoryBytes() + d.hiz.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
+           d.filters.memoryBytes() + d.hiz.memoryBytes() + d.batches.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
 }
 
 } // namespace obscura

@@ -21,11 +21,6 @@ std::vector<std::string> variant(const FilterImages& images) {
     return defines;
 }
 
-// The refinement list holds up to a quarter of the G-buffer's pixels: typically a few
-// percent need it (2-3 % on 2CylinderEngine at 512x512, its thin parts' edges), and past
-// the capacity the upsampling blends as without refinement.
-std::size_t refineCapacity(glm::ivec2 fullSize) { return (std::size_t(fullSize.x) * std::size_t(fullSize.y) + 3) / 4; }
-
 void bindImage(ContextImpl& ctx, int unit, GLuint texture, GLenum access, GLenum format) {
     ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, access, format);
 }
@@ -118,6 +113,13 @@ void GuidedFilters::dispatchRefinement(ContextImpl& ctx) {
     ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, refineList_.get());
     ctx.gl.DispatchComputeIndirect(0);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+// The refinement list holds up to a quarter of the G-buffer's pixels: typically a few
+// percent need it (2-3 % on 2CylinderEngine at 512x512, its thin parts' edges), and past
+// the capacity the upsampling blends as without refinement.
+std::size_t GuidedFilters::refineCapacity(glm::ivec2 fullSize) {
+    return (std::size_t(fullSize.x) * std::size_t(fullSize.y) + 3) / 4;
 }
 
 std::size_t GuidedFilters::memoryBytes() const {

@@ -57,6 +57,8 @@ public:
     //! REFINE variant, FILTER_REFINE_GROUP invocations a group) once per listed pixel, with the
     //! list bound at FILTER_REFINE_SSBO. The caller binds the program's inputs and outputs.
     void dispatchRefinement(ContextImpl& ctx);
+    //! The most pixels an upsample to fullSize lists for refinement.
+    static std::size_t refineCapacity(glm::ivec2 fullSize);
     std::size_t memoryBytes() const;
 
 private:

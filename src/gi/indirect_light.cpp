@@ -4,6 +4,7 @@
 #include "core/context_impl.hpp"
 #include "core/frame_uniforms.hpp"
 #include "core/pass_scope.hpp"
+#include "core/ray_batches.hpp"
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
@@ -52,6 +53,7 @@ struct IndirectLight::Impl {
     Buffer params;
     SizedTexture radiance, guide, full;
     GuidedFilters filters;
+    RayBatches batches;
 
     void bindRead(int unit, GLuint texture) {
         ctx.state.bindTexture(ctx, unit, texture);
@@ -123,13 +125,19 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         const auto screen = screenMarchDefines(s.march, s.thicknessMode);
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
+    const bool refine = scale > 1 && s.refineThreshold > 0.0f;
+    const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
+                                       : screenRayIterations(s.march, s.steps, fullSize);
+    d.batches.plan(ctx, s.rays, perRay,
+                   std::max(std::size_t(size.x) * std::size_t(size.y), refine ? GuidedFilters::refineCapacity(fullSize) : std::size_t{0}));
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
-        ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
+        const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
+        ctx.gl.UseProgram(program);
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
         if (guide) d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
-        dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP);
+        d.batches.run(ctx, program, [&] { dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP); });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     const FilterImages images{guide, radiance, 0, true, size, scale};
@@ -139,12 +147,13 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     if (scale > 1) {
         const GLuint full = d.full.ensure(ctx, GL_RGBA16F, fullSize.x, fullSize.y, "gi.output");
         d.filters.upsample(ctx, images, filter, full, 0, fullSize, "gi.upsample");
-        if (s.refineThreshold > 0.0f) {
+        if (refine) {
             PassScope pass(ctx, "gi.refine");
             defines.push_back("REFINE");
-            ctx.gl.UseProgram(ctx.shaders->program({"gi/gi.comp.glsl"}, defines));
+            const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
+            ctx.gl.UseProgram(program);
             d.bindWrite(GI_OUT_IMAGE, full, GL_RGBA16F);
-            d.filters.dispatchRefinement(ctx);
+            d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
         }
         out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
     }
@@ -155,7 +164,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
 std::size_t IndirectLight::memoryBytes() const {
     const auto& d = *impl_;
     return d.radiance.bytes() + d.guide.bytes() + d.full.bytes() + d.frame.memoryBytes() + d.filters.memoryBytes() +
-           d.hiz.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
+           d.hiz.memoryBytes() + d.batches.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
 }
 
 } // namespace obscura
