@@ -11,10 +11,11 @@
 // the method's own error when the G-buffer is rendered without shadows). The radiance
 // at a hit is read from the screen, so only hits the camera sees, on their visible side,
 // contribute; others (hidden, behind the image border, seen from behind) count as dark. The
-// ray must go into the surface it reads from the front, and (Screen) cross its tangent plane
-// within the last step and a half before the hit: a ray that went behind the visible
-// surface through a side the camera does not see counts as dark, not as the light of the
-// face in front of it.
+// ray must go into the surface it reads from the front, and cross its tangent plane no
+// earlier than the last step and a half before the hit (Screen) or a voxel diagonal before
+// the voxel it enters (Hybrid; plus a step with March traversal): a ray that went behind the
+// visible surface through a side the camera does not see counts as dark, not as the light
+// of the face in front of it.
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
 //   Hybrid: hits found in the voxel grid (as AoMethod::Voxel), then looked up on screen; a
 //           hit hidden from the camera by more than `thickness` contributes nothing.

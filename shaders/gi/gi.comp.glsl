@@ -86,10 +86,14 @@ vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
 #else
         const VoxelHit hit = voxelTraceHierarchical(startVoxel, endVoxel);
 #endif
-        // The voxel hit is a voxel's entry, up to about a voxel before the surface: no
-        // entry window, but the ray must still go into the surface it reads (from a start
-        // inside a neighbouring surface's voxels, every direction hits at once).
-        if (hit.hit) sum += giScreenRadiance(start, w, hit.t * radius, -1e30, gi.shape.y);
+        // The voxel hit is the entry into the first voxel the surface touches, so a ray that
+        // meets the visible surface crosses its plane there or after (the march: up to a
+        // step before, its sample being up to a step late). A crossing more than a voxel
+        // diagonal (the slack of the tangent plane) before the hit means the ray went under
+        // the visible surface and entered something the camera does not see.
+        const float t = hit.t * radius;
+        const float slack = gi.shape.z + (TRAVERSAL == VOXEL_METHOD_MARCH ? radius / float(gi.counts.y) : 0.0);
+        if (hit.hit) sum += giScreenRadiance(start, w, t, t - slack, gi.shape.y);
 #endif
     }
     return sum;

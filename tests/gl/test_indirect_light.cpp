@@ -8,7 +8,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 using namespace obscura;
 
@@ -22,6 +24,11 @@ double wallShare(double distance, double radius) {
     const double c = distance / radius;
     if (c >= 1.0) return 0.0;
     return (std::acos(c) - c * std::sqrt(1.0 - c * c)) / kPi;
+}
+
+// The world position of pixel (x, y) from the G-buffer's view-space positions.
+glm::dvec3 worldAt(const Image& positions, const glm::dmat4& toWorld, int x, int y) {
+    return glm::dvec3(toWorld * glm::dvec4(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0));
 }
 
 Camera wallCamera(int width, int height) {
@@ -73,8 +80,7 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
         for (int y = 10; y < H; ++y)
             for (int x = 12; x < W - 12; ++x) {
                 if (positions.at(x, y, 3) == 0.0f) continue;
-                const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(positions.at(x, y, 0), positions.at(x, y, 1),
-                                                                      positions.at(x, y, 2), 1.0));
+                const glm::dvec3 p = worldAt(positions, toWorld, x, y);
                 if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2) continue;
                 const double distance = p.z + 1.0;
                 // L1 = rho Le (share of directions reaching the wall within r): as for AO,
@@ -99,6 +105,8 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
     }
 }
 
+namespace {
+
 // The view factor from a point P on the wall z = -1 (normal +z) to the part within `reach`
 // of the rectangle y = top, x in [x0, x1], z in [z0, z1] (normal +y), P above it:
 // (1/pi) Integral cos1 cos2 / d^2 dA = (1/pi) Integral (z + 1) (P.y - top) / d^4 dA, by the
@@ -116,17 +124,13 @@ double topFaceViewFactor(glm::dvec3 P, double top, double x0, double x1, double 
     return sum * hx * hz / kPi;
 }
 
-TEST_CASE("Screen-space indirect light reads a visible face only for rays that enter through it", "[gi]") {
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    IndirectLight gi(ctx);
-    // A black box x in [-1, 1], y in [-1, 0.5], z in [-0.9, -0.3] whose top emits Le upward,
-    // 0.15 in front of a grey wall z = -1. Wall points just above the top's plane see the
-    // top nearly edge-on: little light. Rays from them that dip below that plane in the gap
-    // and enter the box through its back, which the camera does not see, hit black; the
-    // screen shows the emitting top where they end, and reading it there made glowing spots.
-    constexpr double top = 0.5, reach = 1.0;
+// A black box x in [-1, 1], y in [-1, 0.5], z in [-0.9, -0.3] whose top emits Le = 1
+// upward, 0.15 in front of a grey (0.8) wall z = -1, seen from above and in front.
+constexpr double kBoxTop = 0.5;
+constexpr int kBoxW = 160, kBoxH = 120;
+
+Scene emittingTopScene() {
+    constexpr double top = kBoxTop;
     const auto box = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) { return test::AnalyticQuad{{a, b, c, d}}; };
     Scene scene = test::quadScene({box({-20, -1, -1}, {20, -1, -1}, {20, 20, -1}, {-20, 20, -1}),         // wall
                                    box({-1, top, -0.9}, {-1, top, -0.3}, {1, top, -0.3}, {1, top, -0.9}), // top
@@ -142,9 +146,28 @@ TEST_CASE("Screen-space indirect light reads a visible face only for rays that e
     scene.materials.push_back(emitter);
     for (std::size_t i = 2; i < scene.meshes.size(); ++i) scene.meshes[i].material = 1;
     scene.meshes[1].material = 2;
-    constexpr int W = 160, H = 120;
-    const Camera camera = Camera::perspective({{0, 2.2f, 2.5f}, {0, 0.4f, -0.9f}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 0.05f, 200.0f);
+    return scene;
+}
+
+Camera emittingTopCamera(glm::vec3 eye) {
+    return Camera::perspective({eye, {0, 0.4f, -0.9f}, {0, 1, 0}}, glm::radians(40.0f), float(kBoxW) / float(kBoxH), 0.05f, 200.0f);
+}
+
+} // namespace
+
+TEST_CASE("Screen-space indirect light reads a visible face only for rays that enter through it", "[gi]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    IndirectLight gi(ctx);
+    // Wall points just above the top's plane see the top nearly edge-on: little light. Rays
+    // from them that dip below that plane in the gap and enter the box through its back,
+    // which the camera does not see, hit black; the screen shows the emitting top where they
+    // end, and reading it there made glowing spots.
+    constexpr double top = kBoxTop, reach = 1.0;
+    const Scene scene = emittingTopScene();
+    constexpr int W = kBoxW, H = kBoxH;
+    const Camera camera = emittingTopCamera({0.0f, 2.2f, 2.5f});
     const GBufferView view = gbuffer.render(scene, camera, {W, H, false, {}});
     const Image positions = readTexture(ctx, gbuffer.positions(view));
     const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.camera.view));
@@ -161,7 +184,7 @@ TEST_CASE("Screen-space indirect light reads a visible face only for rays that e
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             if (positions.at(x, y, 3) == 0.0f) continue;
-            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0));
+            const glm::dvec3 p = worldAt(positions, toWorld, x, y);
             if (std::abs(p.z + 1.0) > 1e-3 || p.y <= top + 1e-3 || p.y > top + 0.15 || std::abs(p.x) > 0.6) continue;
             // The march finds a hit at its first sample behind the top, inside the box: rays
             // that cross the top within about a step of its front edge (where later samples
@@ -182,6 +205,156 @@ TEST_CASE("Screen-space indirect light reads a visible face only for rays that e
             CHECK(value <= hi + tolerance);
             meanError += value - 0.5 * (lo + hi);
             meanWindow += 0.5 * (hi - lo);
+            ++checked;
+        }
+    CHECK(checked > 40);
+    INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
+    CHECK(std::abs(meanError / checked) <= meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
+}
+
+namespace {
+
+// The share of cosine-weighted directions about +z for which `hits` holds. Such directions
+// project uniformly onto the unit disc, so the share is the area of the disc's points (u, v)
+// whose direction (u, v, sqrt(1 - u^2 - v^2)) hits, over pi: the midpoint rule on n x n
+// cells of [-1, 1]^2. `unresolved` gets the share of the cells whose centre and corners do
+// not all agree (outside the disc counts as a miss): the rule can be off by at most that
+// where the set's edges cross a cell at most once between samples (here they are lines and
+// conics, smooth on the scale of a cell).
+double directionShare(const std::function<bool(glm::dvec3)>& hits, int n, double& unresolved) {
+    const auto at = [&](double u, double v) {
+        const double r2 = u * u + v * v;
+        return r2 < 1.0 && hits(glm::dvec3(u, v, std::sqrt(1.0 - r2)));
+    };
+    const double h = 2.0 / n;
+    std::vector<char> corner(std::size_t(n + 1) * std::size_t(n + 1));
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) corner[std::size_t(j) * (n + 1) + std::size_t(i)] = at(-1.0 + i * h, -1.0 + j * h);
+    long inside = 0, mixed = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const bool c = at(-1.0 + (i + 0.5) * h, -1.0 + (j + 0.5) * h);
+            inside += c ? 1 : 0;
+            const std::size_t k = std::size_t(j) * (n + 1) + std::size_t(i);
+            const bool uniform = corner[k] == c && corner[k + 1] == c && corner[k + n + 1] == c && corner[k + n + 2] == c;
+            mixed += uniform ? 0 : 1;
+        }
+    unresolved = double(mixed) * h * h / kPi;
+    return double(inside) * h * h / kPi;
+}
+
+// Where a ray from `from` along w meets the plane y = level going down; -1 if it does not.
+double downCrossing(glm::dvec3 from, glm::dvec3 w, double level) {
+    return w.y < 0.0 && from.y > level ? (from.y - level) / -w.y : -1.0;
+}
+
+// Where a ray from `from` along w enters the box [lo, hi] (0 if it starts inside); -1 if it
+// misses it.
+double boxEntry(glm::dvec3 from, glm::dvec3 w, glm::dvec3 lo, glm::dvec3 hi) {
+    double t0 = 0.0, t1 = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        if (w[a] == 0.0) {
+            if (from[a] < lo[a] || from[a] > hi[a]) return -1.0;
+            continue;
+        }
+        const double ta = (lo[a] - from[a]) / w[a], tb = (hi[a] - from[a]) / w[a];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+    }
+    return t0 <= t1 ? t0 : -1.0;
+}
+
+} // namespace
+
+TEST_CASE("Hybrid indirect light reads a visible face only for rays that enter through it", "[gi]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    Voxelizer voxelizer(ctx);
+    IndirectLight gi(ctx);
+    // The scene of the screen-space case. A voxel hit is the entry into the first occupied
+    // voxel, which from the gap behind the box is the back's: the screen there shows the
+    // emitting top in front of it.
+    constexpr double top = kBoxTop, reach = 2.0; // reaches the whole top from every wall point
+    const Scene scene = emittingTopScene();
+    constexpr int W = kBoxW, H = kBoxH;
+    // Seen from higher up than there, so that a pixel's footprint on the top is shorter.
+    const glm::dvec3 eye(0.0, 3.5, 1.5);
+    const GBufferView view = gbuffer.render(scene, emittingTopCamera(eye), {W, H, false, {}});
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.camera.view));
+    // Cubic voxels of side 1/128: the gap (0.1) is many voxels wide. The box's faces do not
+    // lie on voxel boundaries; every voxel a face touches lies within one side of it.
+    VoxelizerSettings voxels;
+    voxels.resolution = 512;
+    voxels.targets = 4;
+    voxels.fitBox = false;
+    voxels.boxMin = glm::vec3(-2.0f, -1.5f, -1.5f);
+    voxels.boxMax = glm::vec3(2.0f, 2.5f, 2.5f);
+    const VoxelGrid& grid = voxelizer.voxelize(scene, voxels);
+    const double side = 4.0 / 512.0, diagonal = std::sqrt(3.0) * side;
+    constexpr int rays = 1024;
+    IndirectLightSettings s;
+    s.method = GiMethod::Hybrid;
+    s.radius = static_cast<float>(reach);
+    s.rays = rays;
+    s.voxels = &grid;
+    // A depth tolerance that alone would let the top be read for rays entering the back up
+    // to 0.3 below it (the default, two voxel diagonals, leaves a few voxels' worth).
+    s.thickness = 0.3f;
+    const Image radiance = readTexture(ctx, gi.run(view, s).radiance);
+    // Every occupied voxel a ray from the wall can meet lies in the box grown by a side.
+    const glm::dvec3 grownLo(-1.0 - side, -1.0 - side, -0.9 - side), grownHi(1.0 + side, top + side, -0.3 + side);
+    // An entry point at most a side above the top projects onto it up to shiftZ further back
+    // and shiftX further out (the eye looks down `rise` over at most eye.z + 0.9 back and 1
+    // across), and the pixel holding that projection reaches up to a pixel footprint on the
+    // top (pixels of 2 tan(20 deg) / H radians at the back corners' distance, stretched along
+    // z by the viewing angle's sine rise / distance).
+    const double rise = eye.y - top;
+    const double shiftZ = side * (eye.z + 0.9) / (rise - side), shiftX = side * 1.0 / (rise - side);
+    const double far = glm::length(glm::dvec3(1.0, rise, eye.z + 0.9));
+    const double pixel = 2.0 * std::tan(glm::radians(20.0)) / H, footX = pixel * far, footZ = pixel * far * far / rise;
+    int checked = 0;
+    double meanError = 0.0, meanWindow = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (positions.at(x, y, 3) == 0.0f) continue;
+            const glm::dvec3 p = worldAt(positions, toWorld, x, y);
+            // Wall points a few voxels above the top's plane: closer, the rays to the top
+            // pass its voxels at the back edge.
+            if (std::abs(p.z + 1.0) > 1e-3 || p.y < top + 0.04 || p.y > top + 0.15 || std::abs(p.x) > 0.6) continue;
+            const glm::dvec3 start = p + glm::dvec3(0.0, 0.0, diagonal); // lifted off the wall's voxels
+            // Read for sure: rays that first meet the grown box through its top face (y = top +
+            // side) and cross the top's plane, both inside the top shrunk by those margins.
+            // Their first occupied voxel is entered between the two crossings (the top's voxels
+            // hold its plane), so its entry projects onto the top, goes into it from the front,
+            // and the plane's crossing does not come before it.
+            const auto read = [&](glm::dvec3 w) {
+                const double a = downCrossing(start, w, top + side), b = downCrossing(start, w, top);
+                if (a < 0.0 || b > reach) return false;
+                const auto onShrunkTop = [&](glm::dvec3 q) {
+                    return std::abs(q.x) <= 1.0 - shiftX - footX && q.z >= -0.9 + shiftZ + footZ && q.z <= -0.3 - footZ;
+                };
+                return onShrunkTop(start + w * a) && onShrunkTop(start + w * b);
+            };
+            // May be read: rays that meet the grown box (their first occupied voxel is there, or
+            // further) and cross the top's plane no more than a voxel diagonal before that.
+            const auto mayRead = [&](glm::dvec3 w) {
+                const double entry = boxEntry(start, w, grownLo, grownHi), c = downCrossing(start, w, top);
+                return entry >= 0.0 && entry <= reach && c >= 0.0 && c >= entry - diagonal;
+            };
+            double unresolvedLo = 0.0, unresolvedHi = 0.0;
+            const double lo = directionShare(read, 400, unresolvedLo), hi = directionShare(mayRead, 400, unresolvedHi);
+            // 5 sigma of the share of `rays` cosine-weighted directions, the quadrature's
+            // unresolved cells, and the half float.
+            const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+            const double value = radiance.at(x, y, 0) / 0.8; // rho Le share, rho = 0.8, Le = 1
+            const double tolerance = 5.0 * sigma + std::ldexp(1.0, -11);
+            CAPTURE(x, y, p.x, p.y - top, value, lo, hi, unresolvedLo, unresolvedHi);
+            CHECK(value >= lo - unresolvedLo - tolerance);
+            CHECK(value <= hi + unresolvedHi + tolerance);
+            meanError += value - 0.5 * (lo + hi);
+            meanWindow += 0.5 * (hi - lo) + 0.5 * (unresolvedLo + unresolvedHi);
             ++checked;
         }
     CHECK(checked > 40);
