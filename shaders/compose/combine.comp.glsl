@@ -18,10 +18,9 @@ void main() {
     const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
     const vec3 rho = texelFetch(albedo, pixel, 0).rgb;
     const float ao = (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
-    const vec3 l1 = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0 ? clampRadiance(texelFetch(indirect, pixel, 0).rgb)
-                                                                   : vec3(0.0);
-    const vec3 ambient = rho * ao * compose.ambient.rgb;
     const bool hasIndirect = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
+    const vec3 l1 = hasIndirect ? clampRadiance(texelFetch(indirect, pixel, 0).rgb) : vec3(0.0);
+    const vec3 ambient = rho * ao * compose.ambient.rgb;
     vec3 l;
     if (compose.flags.x == COMPOSE_FORMULA_THESIS) l = ambient + compose.ambient.w * l1 + ao * direct;
     else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
