@@ -18,7 +18,8 @@
 // of the face in front of it.
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
 //   Hybrid: hits found in the voxel grid (as AoMethod::Voxel), then looked up on screen; a
-//           hit hidden from the camera by more than `thickness` contributes nothing.
+//           hit farther than `thickness` from the tangent plane of the surface its pixel
+//           shows (hidden from the camera) contributes nothing.
 //
 // Output `radiance`: GL_RGBA16F, W/(sr m^2), the G-buffer's size; alpha 1 on geometry, and
 // (0, 0, 0, 0) on background pixels.
@@ -48,7 +49,9 @@ struct IndirectLightSettings {
     int rays = 16;            //!< cosine-weighted directions per pixel, [1, 1024]
     int steps = 8;            //!< Screen: depth samples per ray; Hybrid with March traversal: samples, [1, 256]
     //! Screen: how far behind a depth sample a point still counts as inside (as AO); Hybrid:
-    //! how far a voxel hit may lie from the surface the camera sees there. World units,
+    //! how far a voxel hit may lie from the tangent plane of the surface its pixel shows (a
+    //! plane, not the pixel centre's depth, so that surfaces seen edge-on, whose pixels span
+    //! more depth than a fine grid's voxels, are still found). World units,
     //! [0, inf); 0 = the radius (Screen) or two voxel diagonals (Hybrid).
     float thickness = 0.0f;
     //! Screen: Constant or DepthPeeling (as AmbientOcclusionSettings::thicknessMode).

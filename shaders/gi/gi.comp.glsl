@@ -35,9 +35,10 @@ layout(binding = GI_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut
 
 // The radiance leaving the surface at the hit p + w t (w a unit direction, t a distance)
 // toward p, read from the screen: the pixel the hit projects to, if that pixel shows it
-// (within `tolerance` along the view direction), its front side faces p, and the ray enters
-// it from the front (w against its normal) no nearer than `entryFrom` to p, where it crosses
-// the pixel's tangent plane. The screen march passes the distance of the sample before the
+// (the hit within `tolerance` of the pixel's tangent plane: its depth at the pixel's centre
+// would refuse hits on surfaces seen at a grazing angle, whose pixels span more depth than a
+// fine voxel grid's tolerance), its front side faces p, and the ray enters it from the front
+// (w against its normal) no nearer than `entryFrom` to p, where it crosses that plane. The screen march passes the distance of the sample before the
 // hit, less half a step: a ray that went behind the visible surface elsewhere, through a side
 // the camera does not see, hit that side, whose radiance is unknown (reading the visible top
 // of a box for a ray that entered through its unseen back made glowing spots). Otherwise
@@ -49,8 +50,8 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
     const float depth = texelFetch(visDepth, q, 0).r;
     if (isBackground(depth)) return vec3(0.0);
     const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth);
-    if (abs(o.z - hit.z) > tolerance) return vec3(0.0);
     const vec3 n = texelFetch(visNormal, q, 0).xyz;
+    if (abs(dot(n, hit - o)) > tolerance) return vec3(0.0);
     const float front = dot(n, p - o), into = dot(n, w);
     // p in front of the plane and w going into it: the crossing is at front / -into > 0.
     if (!(front > 0.0 && into < 0.0) || front < entryFrom * -into) return vec3(0.0);
