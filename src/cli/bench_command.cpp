@@ -1,5 +1,6 @@
 // obscura bench: scene x technique x preset -> time per pass and error against the reference.
 #include "commands.hpp"
+#include "obscura/assets.hpp"
 #include "obscura/error.hpp"
 #include "obscura/headless.hpp"
 #include "obscura/metrics.hpp"
@@ -35,6 +36,7 @@ struct BenchOptions {
     std::string out = "out/bench";
     bool referencePerformance = false;
     bool voxels = false;
+    bool images = false; //!< also write each measured output and its reference (OUT/images)
     std::vector<std::string> overrides; //!< KEY=VALUE after each preset's own settings
     VoxelBenchOptions voxel;
     std::string voxelResolutions = "128,512", voxelTargets = "1,4,8";
@@ -319,6 +321,7 @@ private:
             metrics::Options mo;
             mo.mask = &mask;
             const metrics::Report e = metrics::compare(m.value, expected, mo);
+            if (o_.images) writeMeasurementImages(r.scene.name + "_" + info.name + "_" + preset.name + "_" + m.quantity, m.value, expected);
             Row row;
             row.fields = {{"scene", r.scene.name},   {"technique", info.name},  {"preset", preset.name},
                           {"width", r.width},        {"height", r.height},      {"quantity", m.quantity},
@@ -353,6 +356,14 @@ private:
                         e.rmse, e.relMse, e.ssim, std::sqrt(noise));
             rows_.push_back(std::move(row));
         }
+    }
+
+    // OUT/images/NAME.exr and NAME_reference.exr: where the error is, for a look.
+    void writeMeasurementImages(const std::string& name, const Image& value, const Image& expected) const {
+        const std::filesystem::path dir = std::filesystem::path(o_.out) / "images";
+        std::filesystem::create_directories(dir);
+        assets::writeImage(dir / (name + ".exr"), value);
+        assets::writeImage(dir / (name + "_reference.exr"), expected);
     }
 
     BenchOptions o_;
@@ -408,6 +419,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--no-cache", o->noCache, "Render every reference afresh and store none");
     cmd->add_option("--set", o->overrides, "KEY=VALUE after each preset's settings (every technique benched must take it)");
     cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
+    cmd->add_flag("--images", o->images, "Also write each measured output and its reference as OUT/images/*.exr");
     cmd->add_flag("--reference-performance", o->referencePerformance,
                   "Also time the AO reference (256x256, 256 spp) of each scene, in rays/s");
     cmd->add_flag("--voxels", o->voxels,

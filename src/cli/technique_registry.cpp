@@ -3,6 +3,7 @@
 #include "obscura/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace obscura::cli {
@@ -54,6 +55,31 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+std::vector<SettingInfo> voxelGridSettings(const std::string& technique) {
+    return {{"voxel_resolution", "voxels", "8..2048, power of two", technique + ": grid columns along x and y"},
+            {"voxel_slices", "voxels", "128..1024, a multiple of 128", technique + ": grid slices along z (128 per render target)"},
+            {"voxel_traversal", "", "march|exact|hierarchical", technique + ": visibility query"}};
+}
+
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelizerSettings& grid, VoxelTraversal& traversal) {
+    constexpr int kSlicesPerTarget = 128; // one RGBA32UI render target
+    if (key == "voxel_resolution") {
+        grid.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
+    } else if (key == "voxel_slices") {
+        const double slices = parseNumber(key, value, kSlicesPerTarget, 8 * kSlicesPerTarget, "voxels");
+        if (std::fmod(slices, kSlicesPerTarget) != 0.0)
+            throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a multiple of 128 (slices per render target)");
+        grid.targets = static_cast<int>(slices) / kSlicesPerTarget;
+    } else if (key == "voxel_traversal") {
+        traversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
+                                                             {"exact", VoxelTraversal::Exact},
+                                                             {"hierarchical", VoxelTraversal::Hierarchical}});
+    } else {
+        return false;
+    }
+    return true;
+}
+
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b) {
     a.insert(a.end(), b.begin(), b.end());
     return a;
@@ -82,7 +108,11 @@ GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& vi
 // for bias: 3 taps each side at 16 rays, and at 64 rays (half the noise) half as wide,
 // rounded down to 1 (2CylinderEngine 512x512, ao.horizon high_half RMSE 0.083 with 3 taps,
 // 0.061 with 2, 0.051 with 1, against 0.029 at full resolution).
-std::vector<Preset> integratorPresets() {
+//
+// Voxel grids double with each preset, from 128^3 (256 KiB) to 1024^3 (128 MiB): on
+// 2CylinderEngine (128x128) they, more than the rays, set voxel AO's error: RMSE 0.155 at
+// 128^3 whatever the rays, 0.072 at 512^3 and 0.038 at 1024^3 with 256 rays.
+std::vector<Preset> integratorPresets(bool voxelGrid) {
     const std::map<std::string, std::string> blurTaps = {{"medium", "3"}, {"high", "1"}};
     std::vector<Preset> presets = {
         {"low", {{"rays", "8"}, {"steps", "4"}, {"resolution", "half"}, {"blur_radius", "3"}}},
@@ -90,6 +120,11 @@ std::vector<Preset> integratorPresets() {
         {"high", {{"rays", "64"}, {"steps", "16"}}},
         {"ultra", {{"rays", "256"}, {"steps", "32"}}},
     };
+    if (voxelGrid) {
+        const char* grids[] = {"128", "256", "512", "1024"};
+        for (std::size_t i = 0; i < presets.size(); ++i)
+            presets[i].settings.insert(presets[i].settings.end(), {{"voxel_resolution", grids[i]}, {"voxel_slices", grids[i]}});
+    }
     for (const char* name : {"high", "medium"}) {
         const auto full = std::find_if(presets.begin(), presets.end(), [&](const Preset& p) { return p.name == name; });
         Preset halved{full->name + "_half", full->settings};

@@ -7,6 +7,7 @@
 #include "obscura/gbuffer.hpp"
 #include "obscura/reference.hpp"
 #include "obscura/screen_visibility.hpp"
+#include "obscura/voxelizer.hpp"
 
 #include <functional>
 #include <map>
@@ -91,9 +92,10 @@ struct Preset {
 };
 
 //! The quality presets of the ray-based integrators (AO, obscurance, indirect light): low,
-//! medium, high and ultra by rays and steps, and "<preset>_half" for medium and high: the same
-//! rays and steps at half resolution with a 3-tap blur, for the resolution trade-off.
-std::vector<Preset> integratorPresets();
+//! medium, high and ultra by rays and steps (and, with `voxelGrid`, voxel grids of 128^3,
+//! 256^3, 512^3 and 1024^3), and "<preset>_half" for medium and high: the same settings at
+//! half resolution with a blur, for the resolution trade-off.
+std::vector<Preset> integratorPresets(bool voxelGrid);
 
 struct TechniqueInfo {
     std::string name;                  //!< "<module>.<method>", or "gbuffer"
@@ -132,6 +134,11 @@ E parseChoice(const std::string& key, const std::string& value, const std::map<s
 //! "constant|depth_peeling".
 ScreenMarch parseScreenMarch(const std::string& key, const std::string& value);
 ScreenThickness parseScreenThickness(const std::string& key, const std::string& value);
+//! The voxel-grid settings ao.voxel and gi.hybrid share ("voxel_resolution",
+//! "voxel_slices", "voxel_traversal"), for their settings lists.
+std::vector<SettingInfo> voxelGridSettings(const std::string& technique);
+//! Applies one of them; false when `key` is none of them.
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelizerSettings& grid, VoxelTraversal& traversal);
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
 //! "a, b, c": the keys of the settings, for error messages.

@@ -37,7 +37,14 @@ if(rc EQUAL 0 OR NOT err MATCHES "known:.*ao")
   message(FATAL_ERROR "an unknown integrator was not refused clearly: ${err}")
 endif()
 
-run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench"
+# A voxel grid's slices come 128 to a render target: other counts are refused by name.
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.voxel --set voxel_slices=200
+                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "voxel_slices=200.*multiple of 128")
+  message(FATAL_ERROR "voxel_slices=200 was not refused clearly: ${err}")
+endif()
+
+run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench" --images
     --voxels --voxel-triangles 3000 --voxel-resolutions 16 --voxel-targets 1,2 --voxel-segments 4096)
 file(STRINGS "${WORK_DIR}/bench/bench.csv" csv)
 list(GET csv 0 header)
@@ -100,6 +107,12 @@ foreach(i RANGE ${last})
     if(hardPreset AND NOT leak STREQUAL "" AND NOT leak EQUAL 0)
       message(FATAL_ERROR "${technique} row ${i}: a hard mask leaks ${leak} into the umbra")
     endif()
+  endif()
+endforeach()
+# --images: each measured output beside its reference, e.g. voxel AO at its largest grid.
+foreach(image ao.voxel_ultra_ao ao.voxel_ultra_ao_reference gi.hybrid_low_indirect)
+  if(NOT EXISTS "${WORK_DIR}/bench/images/cornell_${image}.exr")
+    message(FATAL_ERROR "obscura bench --images wrote no images/cornell_${image}.exr")
   endif()
 endforeach()
 if(NOT sawShadow)

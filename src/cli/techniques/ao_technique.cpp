@@ -15,7 +15,7 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = {
+const std::vector<SettingInfo> kSettings = joinSettings({
     {"radius", "world units", "(0, inf)", "reach of V_r (default: a tenth of the scene's bounding-box diagonal)"},
     {"rays", "", "[1, 1024]", "directions (points) per pixel; horizon: 2 per slice"},
     {"steps", "", "[1, 256]", "depth samples per ray (per side for horizon; voxel march samples)"},
@@ -30,9 +30,7 @@ const std::vector<SettingInfo> kSettings = {
     {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"bent_normals", "", "0|1", "also compute the bent normal (default 1; not for ao.horizon)"},
-    {"voxel_resolution", "voxels", "8..2048, power of two", "ao.voxel: grid columns per axis (128 slices)"},
-    {"voxel_traversal", "", "march|exact|hierarchical", "ao.voxel: visibility query"},
-};
+}, voxelGridSettings("ao.voxel"));
 
 class AoRun final : public TechniqueRun {
 public:
@@ -67,12 +65,7 @@ public:
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
-        else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
-        else if (key == "voxel_traversal")
-            s.voxelTraversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
-                                                                      {"exact", VoxelTraversal::Exact},
-                                                                      {"hierarchical", VoxelTraversal::Hierarchical}});
-        else throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!setVoxelGridOption(key, value, voxelSettings_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
@@ -150,7 +143,7 @@ TechniqueInfo aoTechnique(const std::string& name, const std::string& descriptio
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
     std::vector<std::string> outputs = {"ao"};
     if (method != AoMethod::Horizon) outputs.push_back("bent_normal");
-    return {name, description, outputs, kSettings, integratorPresets(),
+    return {name, description, outputs, kSettings, integratorPresets(method == AoMethod::Voxel),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }
 

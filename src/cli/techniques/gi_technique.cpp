@@ -24,9 +24,7 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
     {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
-    {"voxel_resolution", "voxels", "8..2048, power of two", "gi.hybrid: grid columns per axis (128 slices)"},
-    {"voxel_traversal", "", "march|exact|hierarchical", "gi.hybrid: visibility query"},
-}, LitGBuffer::settings());
+}, joinSettings(voxelGridSettings("gi.hybrid"), LitGBuffer::settings()));
 
 class GiRun final : public TechniqueRun {
 public:
@@ -47,12 +45,7 @@ public:
         else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
-        else if (key == "voxel_resolution") voxelSettings_.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
-        else if (key == "voxel_traversal")
-            s.voxelTraversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
-                                                                        {"exact", VoxelTraversal::Exact},
-                                                                        {"hierarchical", VoxelTraversal::Hierarchical}});
-        else if (!lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!setVoxelGridOption(key, value, voxelSettings_, s.voxelTraversal) && !lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
@@ -111,7 +104,7 @@ private:
 };
 
 TechniqueInfo giTechnique(const std::string& name, const std::string& description, GiMethod method) {
-    return {name, description, {"indirect"}, kSettings, integratorPresets(),
+    return {name, description, {"indirect"}, kSettings, integratorPresets(method == GiMethod::Hybrid),
             [method](Context& ctx) { return std::make_unique<GiRun>(ctx, method); }};
 }
 
