@@ -19,7 +19,7 @@
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
 //   Hybrid: hits found in the voxel grid (as AoMethod::Voxel), then looked up on screen; a
 //           hit farther than `thickness` from the tangent plane of the surface its pixel
-//           shows (hidden from the camera) contributes nothing.
+//           shows is not on that surface, and contributes nothing.
 //
 // Output `radiance`: GL_RGBA16F, W/(sr m^2), the G-buffer's size; alpha 1 on geometry, and
 // (0, 0, 0, 0) on background pixels.

@@ -34,15 +34,18 @@ layout(binding = GI_OUT_IMAGE, rgba16f) writeonly uniform image2D giOut;
 layout(binding = GI_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
 
 // The radiance leaving the surface at the hit p + w t (w a unit direction, t a distance)
-// toward p, read from the screen: the pixel the hit projects to, if that pixel shows it
-// (the hit within `tolerance` of the pixel's tangent plane: its depth at the pixel's centre
-// would refuse hits on surfaces seen at a grazing angle, whose pixels span more depth than a
-// fine voxel grid's tolerance), its front side faces p, and the ray enters it from the front
-// (w against its normal) no nearer than `entryFrom` to p, where it crosses that plane. The screen march passes the distance of the sample before the
-// hit, less half a step: a ray that went behind the visible surface elsewhere, through a side
-// the camera does not see, hit that side, whose radiance is unknown (reading the visible top
-// of a box for a ray that entered through its unseen back made glowing spots). Otherwise
-// nothing is known: 0.
+// toward p, read from the screen: the pixel the hit projects to, if that pixel shows it, its
+// front side faces p, and the ray enters it from the front (w against its normal) no nearer
+// than `entryFrom` to p, where it crosses the pixel's tangent plane. The screen march passes
+// the distance of the sample before the hit, less half a step: a ray that went behind the
+// visible surface elsewhere, through a side the camera does not see, hit that side, whose
+// radiance is unknown (reading the visible top of a box for a ray that entered through its
+// unseen back made glowing spots). Otherwise nothing is known: 0.
+// "Shows it": the hit lies within `tolerance` of the tangent plane. Comparing depths at the
+// pixel's centre instead refused hits on surfaces seen at a grazing angle, whose pixels span
+// more depth than a fine voxel grid's tolerance. A pixel that shows a surface exactly edge-on
+// (its plane holds the view ray) accepts any hit near that ray: the G-buffer does not say how
+// far such a surface reaches.
 vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance) {
     const vec3 hit = p + w * t;
     ivec2 q;

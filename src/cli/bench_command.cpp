@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -358,8 +359,11 @@ private:
         }
     }
 
-    // OUT/images/NAME.exr and NAME_reference.exr: where the error is, for a look.
-    void writeMeasurementImages(const std::string& name, const Image& value, const Image& expected) const {
+    // OUT/images/NAME.exr and NAME_reference.exr: where the error is, for a look. Scene
+    // names come from files and may hold separators or spaces: those become '_'.
+    void writeMeasurementImages(std::string name, const Image& value, const Image& expected) const {
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
         const std::filesystem::path dir = std::filesystem::path(o_.out) / "images";
         std::filesystem::create_directories(dir);
         assets::writeImage(dir / (name + ".exr"), value);
