@@ -374,14 +374,22 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
     constexpr double radius = 1.8; // > sqrt(h^2 + (a + 0.4)^2): covers the disc from rho < 0.4
     constexpr int rays = 64, steps = 256;
     constexpr double thickness = 0.01; // >= radius / steps: the first sample past the disc is inside
-    VoxelizerSettings voxels;
-    voxels.resolution = 128;
-    voxels.fitBox = false;
-    voxels.boxMin = glm::vec3(-2.0f, -0.5f, -2.0f);
-    voxels.boxMax = glm::vec3(2.0f, 1.5f, 2.0f);
-    const double voxelSide = 4.0 / 128.0, lift = std::sqrt(3.0) * voxelSide;
-    for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel}) {
-        CAPTURE(nameOf(method));
+    // Voxels: grids of 128 and 512 columns and slices (the presets' low and high), whose
+    // window narrows with the voxel side.
+    struct Run {
+        AoMethod method;
+        int resolution;
+    };
+    for (const Run run : {Run{AoMethod::RayMarch, 0}, Run{AoMethod::Voxel, 128}, Run{AoMethod::Voxel, 512}}) {
+        const AoMethod method = run.method;
+        CAPTURE(nameOf(method), run.resolution);
+        VoxelizerSettings voxels;
+        voxels.resolution = std::max(run.resolution, 128);
+        voxels.targets = voxels.resolution / 128;
+        voxels.fitBox = false;
+        voxels.boxMin = glm::vec3(-2.0f, -0.5f, -2.0f);
+        voxels.boxMax = glm::vec3(2.0f, 1.5f, 2.0f);
+        const double voxelSide = 4.0 / voxels.resolution, lift = std::sqrt(3.0) * voxelSide; // the largest side
         AmbientOcclusionSettings s;
         s.method = method;
         s.radius = static_cast<float>(radius);
