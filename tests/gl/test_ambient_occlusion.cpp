@@ -1,7 +1,6 @@
 // Ambient occlusion: closed forms (an open plane, a floor in front of a wall), screen space
 // against voxel space, and stability over sizes, projections and the sky.
-#include "gl_fixture.hpp"
-#include "scene_builders.hpp"
+#include "ao_fixture.hpp"
 
 #include "obscura/assets.hpp"
 #include "obscura/obscura.hpp"
@@ -14,6 +13,8 @@
 #include <functional>
 
 using namespace obscura;
+using test::AoFixture;
+using test::floorScene;
 
 namespace {
 
@@ -29,37 +30,6 @@ const char* nameOf(AoMethod m) {
     case AoMethod::Voxel: return "voxel";
     }
     return "?";
-}
-
-// The G-buffer, the voxel grid and the AO of one scene and camera.
-struct AoFixture {
-    test::GlFixture gl;
-    Context ctx{gl.desc()};
-    GBuffer gbuffer{ctx};
-    Voxelizer voxelizer{ctx};
-    AmbientOcclusion ao{ctx};
-    GBufferView view;
-    Image positions; // view space, alpha = geometry
-
-    void render(const Scene& scene, const Camera& camera, int width, int height) {
-        view = gbuffer.render(scene, camera, {width, height, false, {}});
-        positions = readTexture(ctx, gbuffer.positions(view));
-    }
-
-    Image run(const Scene& scene, AmbientOcclusionSettings s, const VoxelizerSettings& voxels = {}) {
-        if (s.method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(scene, voxels);
-        return readTexture(ctx, ao.run(view, s).ao);
-    }
-
-    bool geometry(int x, int y) const { return positions.at(x, y, 3) > 0.0f; }
-    glm::dvec3 world(int x, int y) const {
-        const glm::dvec4 v(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0);
-        return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
-    }
-};
-
-Scene floorScene(double half = 50.0) {
-    return test::quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
 }
 
 Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode mode = DepthMode::Standard) {

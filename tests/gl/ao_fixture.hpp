@@ -1,0 +1,44 @@
+// What the AO tests share: a G-buffer, a voxel grid and the AO module of one scene and
+// camera, and the open floor they put their occluders on.
+#pragma once
+#include "gl_fixture.hpp"
+#include "scene_builders.hpp"
+
+#include "obscura/obscura.hpp"
+
+#include <glm/glm.hpp>
+
+namespace obscura::test {
+
+struct AoFixture {
+    GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Voxelizer voxelizer{ctx};
+    AmbientOcclusion ao{ctx};
+    GBufferView view;
+    Image positions; // view space, alpha = geometry
+
+    void render(const Scene& scene, const Camera& camera, int width, int height) {
+        view = gbuffer.render(scene, camera, {width, height, false, {}});
+        positions = readTexture(ctx, gbuffer.positions(view));
+    }
+
+    Image run(const Scene& scene, AmbientOcclusionSettings s, const VoxelizerSettings& voxels = {}) {
+        if (s.method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(scene, voxels);
+        return readTexture(ctx, ao.run(view, s).ao);
+    }
+
+    bool geometry(int x, int y) const { return positions.at(x, y, 3) > 0.0f; }
+    glm::dvec3 world(int x, int y) const {
+        const glm::dvec4 v(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2), 1.0);
+        return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
+    }
+};
+
+//! A floor square of half side `half` at y = 0, facing up.
+inline Scene floorScene(double half = 50.0) {
+    return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
+}
+
+} // namespace obscura::test
