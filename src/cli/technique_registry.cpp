@@ -55,21 +55,33 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+namespace {
+constexpr int kSlicesPerTarget = 128; // one RGBA32UI render target
+constexpr int kMaxTargets = 8;
+} // namespace
+
 std::vector<SettingInfo> voxelGridSettings(const std::string& technique) {
-    return {{"voxel_resolution", "voxels", "8..2048, power of two", technique + ": grid columns along x and y (cubic cells: voxel_slices too)"},
+    return {{"voxel_resolution", "voxels", "8..2048, power of two",
+             technique + ": grid columns along x and y; also the slices along z unless voxel_slices is set (cubic cells, 128..1024 slices)"},
             {"voxel_slices", "voxels", "128..1024, a multiple of 128", technique + ": grid slices along z (128 per render target)"},
             {"voxel_traversal", "", "march|exact|hierarchical", technique + ": visibility query"}};
 }
 
-bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelizerSettings& grid, VoxelTraversal& traversal) {
-    constexpr int kSlicesPerTarget = 128; // one RGBA32UI render target
+VoxelizerSettings VoxelGridOptions::settings() const {
+    VoxelizerSettings grid;
+    grid.resolution = resolution;
+    grid.targets = slices ? *slices / kSlicesPerTarget : std::clamp(resolution / kSlicesPerTarget, 1, kMaxTargets);
+    return grid;
+}
+
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal) {
     if (key == "voxel_resolution") {
         grid.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
     } else if (key == "voxel_slices") {
-        const double slices = parseNumber(key, value, kSlicesPerTarget, 8 * kSlicesPerTarget, "voxels");
+        const double slices = parseNumber(key, value, kSlicesPerTarget, kMaxTargets * kSlicesPerTarget, "voxels");
         if (std::fmod(slices, kSlicesPerTarget) != 0.0)
             throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a multiple of 128 (slices per render target)");
-        grid.targets = static_cast<int>(slices) / kSlicesPerTarget;
+        grid.slices = static_cast<int>(slices);
     } else if (key == "voxel_traversal") {
         traversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
                                                              {"exact", VoxelTraversal::Exact},
@@ -123,7 +135,7 @@ std::vector<Preset> integratorPresets(bool voxelGrid) {
     if (voxelGrid) {
         const std::map<std::string, std::string> grids = {{"low", "128"}, {"medium", "256"}, {"high", "512"}, {"ultra", "1024"}};
         for (Preset& p : presets)
-            p.settings.insert(p.settings.end(), {{"voxel_resolution", grids.at(p.name)}, {"voxel_slices", grids.at(p.name)}});
+            p.settings.push_back({"voxel_resolution", grids.at(p.name)}); // cubic: the slices follow
     }
     for (const char* name : {"high", "medium"}) {
         const auto full = std::find_if(presets.begin(), presets.end(), [&](const Preset& p) { return p.name == name; });

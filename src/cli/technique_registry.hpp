@@ -137,8 +137,17 @@ ScreenThickness parseScreenThickness(const std::string& key, const std::string& 
 //! The voxel-grid settings ao.voxel and gi.hybrid share ("voxel_resolution",
 //! "voxel_slices", "voxel_traversal"), for their settings lists.
 std::vector<SettingInfo> voxelGridSettings(const std::string& technique);
+//! The grid as set. Without voxel_slices, in whatever order the settings come, the slices
+//! follow voxel_resolution (a cubic grid, within the 128..1024 slices the voxelizer has), so
+//! that overriding a preset's resolution does not leave it with another's slices.
+struct VoxelGridOptions {
+    int resolution = VoxelizerSettings{}.resolution;
+    std::optional<int> slices;
+    //! The voxelizer's settings for these options (grid placement: its defaults).
+    VoxelizerSettings settings() const;
+};
 //! Applies one of them; false when `key` is none of them.
-bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelizerSettings& grid, VoxelTraversal& traversal);
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal);
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
 //! "a, b, c": the keys of the settings, for error messages.

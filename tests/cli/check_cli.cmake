@@ -44,6 +44,31 @@ if(rc EQUAL 0 OR NOT err MATCHES "voxel_slices=200.*multiple of 128")
   message(FATAL_ERROR "voxel_slices=200 was not refused clearly: ${err}")
 endif()
 
+# voxel_resolution alone makes the grid cubic, also over a preset's larger grid (ultra: 1024^3),
+# and voxel_slices holds in either order: the voxelizer's memory tells the grid apart.
+function(voxelizer_bytes out)
+  run("${OBSCURA}" bench --scene cornell --size 8x8 --frames 20 --spp 4 --techniques ao.voxel ${ARGN}
+      --out "${WORK_DIR}/grid")
+  file(READ "${WORK_DIR}/grid/bench.json" grid)
+  string(JSON rows LENGTH "${grid}" rows)
+  math(EXPR last "${rows} - 1")
+  set(bytes "")
+  foreach(i RANGE ${last})
+    string(JSON b GET "${grid}" rows ${i} memory voxelizer)
+    list(APPEND bytes ${b})
+  endforeach()
+  list(REMOVE_DUPLICATES bytes)
+  set(${out} "${bytes}" PARENT_SCOPE)
+endfunction()
+voxelizer_bytes(cubic --presets low,ultra --set voxel_resolution=128)
+voxelizer_bytes(slicesFirst --presets ultra --set voxel_slices=256 --set voxel_resolution=128)
+voxelizer_bytes(slicesLast --presets ultra --set voxel_resolution=128 --set voxel_slices=256)
+list(LENGTH cubic grids)
+if(NOT grids EQUAL 1 OR NOT slicesFirst EQUAL slicesLast OR NOT slicesFirst GREATER cubic)
+  message(FATAL_ERROR "voxel grids: low and ultra at voxel_resolution=128 hold ${cubic} bytes, with 256 slices "
+                      "${slicesFirst} (slices first) and ${slicesLast} (slices last)")
+endif()
+
 run("${OBSCURA}" bench --scene cornell --size 24x24 --frames 20 --spp 8 --out "${WORK_DIR}/bench" --images
     --voxels --voxel-triangles 3000 --voxel-resolutions 16 --voxel-targets 1,2 --voxel-segments 4096)
 file(STRINGS "${WORK_DIR}/bench/bench.csv" csv)

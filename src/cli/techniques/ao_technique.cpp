@@ -65,7 +65,7 @@ public:
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
-        else if (!setVoxelGridOption(key, value, voxelSettings_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
@@ -73,7 +73,7 @@ public:
         GBufferSettings g{frame.width, frame.height, false, {}};
         g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
         view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
-        if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
+        if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
         result_ = ao_.run(view_, settings_);
     }
 
@@ -133,7 +133,7 @@ private:
     AmbientOcclusion ao_;
     Voxelizer voxelizer_;
     AmbientOcclusionSettings settings_;
-    VoxelizerSettings voxelSettings_;
+    VoxelGridOptions voxelGrid_;
     std::optional<double> radius_;
     GBufferView view_;
     AmbientOcclusionView result_;

@@ -45,7 +45,7 @@ public:
         else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
-        else if (!setVoxelGridOption(key, value, voxelSettings_, s.voxelTraversal) && !lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal) && !lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
     void run(const FrameSetup& frame) override {
@@ -53,7 +53,7 @@ public:
         GBufferSettings g{frame.width, frame.height, true, {}};
         g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
         view_ = lit_.render(frame, g);
-        if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelSettings_);
+        if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
         result_ = gi_.run(view_, settings_);
     }
 
@@ -97,7 +97,7 @@ private:
     IndirectLight gi_;
     Voxelizer voxelizer_;
     IndirectLightSettings settings_;
-    VoxelizerSettings voxelSettings_;
+    VoxelGridOptions voxelGrid_;
     std::optional<double> radius_;
     GBufferView view_;
     IndirectLightView result_;
