@@ -13,7 +13,7 @@ const std::vector<SettingInfo>& LitGBuffer::settings() {
 
 bool LitGBuffer::set(const std::string& key, const std::string& value) {
     if (key == "shadows") enabled_ = parseBool(key, value);
-    else if (key == "shadow_resolution") maps_.resolution = static_cast<int>(parseNumber(key, value, 16, 8192, "texels"));
+    else if (key == "shadow_resolution") maps_.resolution = parseInteger(key, value, 16, 8192, "texels");
     else if (key == "shadow_filter")
         filter_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}});
     else return false;

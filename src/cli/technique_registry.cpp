@@ -55,6 +55,12 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit) {
+    const double v = parseNumber(key, value, lo, hi, unit);
+    if (v != std::floor(v)) throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a whole number");
+    return static_cast<int>(v);
+}
+
 namespace {
 constexpr int kSlicesPerTarget = 128; // one RGBA32UI render target
 constexpr int kMaxTargets = 8;
@@ -76,7 +82,7 @@ VoxelizerSettings VoxelGridOptions::settings() const {
 
 bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal) {
     if (key == "voxel_resolution") {
-        grid.resolution = static_cast<int>(parseNumber(key, value, 8, 2048, "voxels"));
+        grid.resolution = parseInteger(key, value, 8, 2048, "voxels");
     } else if (key == "voxel_slices") {
         const double slices = parseNumber(key, value, kSlicesPerTarget, kMaxTargets * kSlicesPerTarget, "voxels");
         if (std::fmod(slices, kSlicesPerTarget) != 0.0)

@@ -121,6 +121,8 @@ void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues)
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.
 double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
+//! parseNumber for counts: a value with a fraction is refused, not cut.
+int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit);
 //! One of the named values; throws Error{Parse} listing them.
 template <typename E>
 E parseChoice(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {

@@ -37,6 +37,53 @@ if(rc EQUAL 0 OR NOT err MATCHES "known:.*ao")
   message(FATAL_ERROR "an unknown integrator was not refused clearly: ${err}")
 endif()
 
+# The raw AO term as `obscura render` writes it (the issue's example command): one channel,
+# finite, in [0, 1], 1 = unoccluded, darker with a longer radius. The Cornell box is in
+# millimetres: within 0.5 mm almost nothing is in reach of the ray march (the mean stays within
+# 1 % of 1: only pixels at the box's edges can darken); within 100 mm its corners and the
+# blocks' feet are occluded. ao.voxel: the same term with voxel visibility, whose rays start a
+# voxel diagonal (7.6 mm on the default 128^3 grid) off the surface, so that near the box's
+# edges they start inside the other wall's voxels at any radius (about 2 % of this view).
+function(ao_image_stats prefix technique radius)
+  set(image "${WORK_DIR}/${technique}_${radius}.exr")
+  run("${OBSCURA}" render --scene cornell --size 64x48 --technique ${technique} --set radius=${radius} --set rays=64
+      --set steps=32 --output ao --out "${image}")
+  execute_process(COMMAND "${OIIOTOOL}" --stats "${image}" RESULT_VARIABLE rc OUTPUT_VARIABLE info ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT info MATCHES "64 x +48, 1 channel")
+    message(FATAL_ERROR "${image} is not a 64x48 one-channel image: ${info}${err}")
+  endif()
+  foreach(stat Min Max Avg NanCount InfCount)
+    if(NOT info MATCHES "Stats ${stat}: ([-0-9.e+]+)")
+      message(FATAL_ERROR "oiiotool gave no ${stat} for ${image}: ${info}")
+    endif()
+    set(${prefix}_${stat} ${CMAKE_MATCH_1} PARENT_SCOPE)
+  endforeach()
+endfunction()
+foreach(technique ao.raymarch ao.voxel)
+  ao_image_stats(near ${technique} 0.5)
+  ao_image_stats(far ${technique} 100)
+  set(ok FALSE)
+  if(near_NanCount EQUAL 0 AND near_InfCount EQUAL 0 AND far_NanCount EQUAL 0 AND far_InfCount EQUAL 0 AND
+     near_Min GREATER_EQUAL 0 AND far_Min GREATER_EQUAL 0 AND near_Max EQUAL 1 AND far_Max EQUAL 1 AND
+     far_Avg LESS 0.95 AND near_Avg GREATER far_Avg)
+    set(ok TRUE)
+  endif()
+  if(technique STREQUAL "ao.raymarch" AND NOT near_Avg GREATER 0.99)
+    set(ok FALSE)
+  endif()
+  if(NOT ok)
+    message(FATAL_ERROR "${technique} AO: radius 0.5 mm min ${near_Min} max ${near_Max} mean ${near_Avg} "
+                        "(${near_NanCount} NaN, ${near_InfCount} Inf); radius 100 mm min ${far_Min} max ${far_Max} "
+                        "mean ${far_Avg} (${far_NanCount} NaN, ${far_InfCount} Inf)")
+  endif()
+endforeach()
+# Counts are whole numbers: a fraction is refused, not cut.
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.raymarch --set rays=7.9
+                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "rays=7.9.*whole number")
+  message(FATAL_ERROR "rays=7.9 was not refused clearly: ${err}")
+endif()
+
 # A voxel grid's slices come 128 to a render target: other counts are refused by name.
 execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.voxel --set voxel_slices=200
                         --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)

@@ -45,8 +45,8 @@ public:
     void set(const std::string& key, const std::string& value) override {
         auto& s = settings_;
         if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
-        else if (key == "rays") s.rays = static_cast<int>(parseNumber(key, value, 1, 1024, ""));
-        else if (key == "steps") s.steps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
+        else if (key == "rays") s.rays = parseInteger(key, value, 1, 1024, "");
+        else if (key == "steps") s.steps = parseInteger(key, value, 1, 256, "");
         else if (key == "cosine_weighted") s.cosineWeighted = parseBool(key, value);
         else if (key == "falloff")
             s.falloff = parseChoice<ObscuranceFalloff>(key, value, {{"none", ObscuranceFalloff::None},
@@ -60,7 +60,7 @@ public:
             s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
                                                                 {"half", AoResolution::Half},
                                                                 {"quarter", AoResolution::Quarter}});
-        else if (key == "blur_radius") s.blurRadius = static_cast<int>(parseNumber(key, value, 0, 16, "taps"));
+        else if (key == "blur_radius") s.blurRadius = parseInteger(key, value, 0, 16, "taps");
         else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));

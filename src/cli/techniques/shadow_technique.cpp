@@ -66,8 +66,8 @@ public:
 
     void set(const std::string& key, const std::string& value) override {
         if (key == "light") light_ = static_cast<std::size_t>(parseNumber(key, value, 0, 1e6, ""));
-        else if (key == "resolution") maps_.resolution = static_cast<int>(parseNumber(key, value, 16, 8192, "texels"));
-        else if (key == "cascades") maps_.cascades = static_cast<int>(parseNumber(key, value, 1, kMaxShadowCascades, ""));
+        else if (key == "resolution") maps_.resolution = parseInteger(key, value, 16, 8192, "texels");
+        else if (key == "cascades") maps_.cascades = parseInteger(key, value, 1, kMaxShadowCascades, "");
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "depth_bounds") depthBounds_ = parseBool(key, value);
         else if (key == "reflective") maps_.reflective = parseBool(key, value);
@@ -76,7 +76,7 @@ public:
                                                                 {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
                                                                 {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
                                                                 {"msm", ShadowFilter::Msm}, {"pcss", ShadowFilter::Pcss}});
-        else if (key == "pcf_radius") mask_.pcfRadius = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
+        else if (key == "pcf_radius") mask_.pcfRadius = parseInteger(key, value, 0, 8, "texels");
         else if (key == "pcss_blocker_fraction")
             mask_.pcssBlockerFraction = static_cast<float>(parseNumber(key, value, 1e-3, 0.999, ""));
         else if (key == "pcf_kernel")
@@ -90,12 +90,12 @@ public:
         else if (key == "moment_precision")
             mask_.momentPrecision = parseChoice<ShadowMomentPrecision>(
                 key, value, {{"32", ShadowMomentPrecision::Float32}, {"16", ShadowMomentPrecision::Bits16}});
-        else if (key == "moment_blur") mask_.momentBlur = static_cast<int>(parseNumber(key, value, 0, 8, "texels"));
+        else if (key == "moment_blur") mask_.momentBlur = parseInteger(key, value, 0, 8, "texels");
         else if (key == "min_variance") mask_.minVariance = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "light_bleed_reduction")
             mask_.lightBleedReduction = static_cast<float>(parseNumber(key, value, 0, 0.999, ""));
         else if (key == "contact_length") mask_.contactLength = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
-        else if (key == "contact_steps") mask_.contactSteps = static_cast<int>(parseNumber(key, value, 1, 256, ""));
+        else if (key == "contact_steps") mask_.contactSteps = parseInteger(key, value, 1, 256, "");
         else if (key == "contact_thickness")
             mask_.contactThickness = static_cast<float>(parseNumber(key, value, 1e-30, 1e30, "world units"));
         else if (key == "exponent") mask_.exponent = static_cast<float>(parseNumber(key, value, 0, 80, ""));
