@@ -19,8 +19,11 @@ struct AoFixture {
     GBufferView view;
     Image positions; // view space, alpha = geometry
 
-    void render(const Scene& scene, const Camera& camera, int width, int height) {
-        view = gbuffer.render(scene, camera, {width, height, false, {}});
+    //! depthLayers: 2 for ScreenThickness::DepthPeeling.
+    void render(const Scene& scene, const Camera& camera, int width, int height, int depthLayers = 1) {
+        GBufferSettings settings{width, height, false, {}};
+        settings.depthLayers = depthLayers;
+        view = gbuffer.render(scene, camera, settings);
         positions = readTexture(ctx, gbuffer.positions(view));
     }
 

@@ -20,7 +20,16 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-const AoMethod kAllMethods[] = {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel};
+// Every method, and the ray march with each of its depth-buffer marches (their padded Hi-Z
+// pyramid included).
+struct AoVariant {
+    AoMethod method;
+    ScreenMarch march = ScreenMarch::View;
+    ScreenThickness thickness = ScreenThickness::Constant;
+};
+const AoVariant kAllVariants[] = {{AoMethod::RayMarch, ScreenMarch::View}, {AoMethod::RayMarch, ScreenMarch::Texture},
+                                  {AoMethod::RayMarch, ScreenMarch::HiZ},  {AoMethod::Points},
+                                  {AoMethod::Horizon},                     {AoMethod::Voxel}};
 
 const char* nameOf(AoMethod m) {
     switch (m) {
@@ -139,14 +148,16 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution fallof
     };
     for (const Projection& projection : projections) {
         f.render(scene, projection.camera, W, H);
-        for (AoMethod method : kAllMethods)
+        for (const AoVariant variant : kAllVariants)
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter})
                 for (ObscuranceFalloff falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Smooth}) {
                     // The horizon method integrates AO only (no falloff).
-                    if (method == AoMethod::Horizon && falloff != ObscuranceFalloff::None) continue;
-                    CAPTURE(projection.name, nameOf(method), static_cast<int>(resolution), static_cast<int>(falloff));
+                    if (variant.method == AoMethod::Horizon && falloff != ObscuranceFalloff::None) continue;
+                    CAPTURE(projection.name, nameOf(variant.method), static_cast<int>(variant.march),
+                            static_cast<int>(resolution), static_cast<int>(falloff));
                     AmbientOcclusionSettings s;
-                    s.method = method;
+                    s.method = variant.method;
+                    s.march = variant.march;
                     s.radius = 2.0f;
                     // Not a power of two: n / n is where a GPU's division by reciprocal (GLSL
                     // allows 2.5 ULP) falls short of 1.
@@ -188,14 +199,16 @@ TEST_CASE("Post-process mode: on a host's 16-, 24- and 32-bit depth an open plan
             if (hostNormals) host.normal = f.view.normal;
             GBuffer adopter(f.ctx);
             const GBufferView adopted = adopter.adopt(host, camera);
-            for (AoMethod method : kAllMethods) {
+            for (const AoVariant variant : kAllVariants) {
+                const AoMethod method = variant.method;
                 // Not asserted: normals reconstructed from 16-bit depth are themselves off by
                 // degrees, and the horizon method then finds the floor above the tilted
                 // tangent plane within the radius (rays start lifted by that plane's error).
                 if (format == GL_DEPTH_COMPONENT16 && !hostNormals && method == AoMethod::Horizon) continue;
-                CAPTURE(format, hostNormals, nameOf(method));
+                CAPTURE(format, hostNormals, nameOf(method), static_cast<int>(variant.march));
                 AmbientOcclusionSettings s;
                 s.method = method;
+                s.march = variant.march;
                 s.radius = 2.0f;
                 s.rays = 24;
                 if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, {});
@@ -486,30 +499,48 @@ TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orth
         const Camera camera = v.orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, 5000.0f, v.mode)
                                              : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f,
                                                                    v.infiniteFar ? INFINITY : 5000.0f, v.mode);
-        f.render(cornell.scene, camera, v.width, v.height);
-        for (AoMethod method : kAllMethods)
+        f.render(cornell.scene, camera, v.width, v.height, 2); // a back layer for depth peeling
+        if (!v.orthographic && v.width * v.height > 100) {
+            // The back wall faces the camera head-on: view normals of exactly (0, 0, 1), where
+            // a tangent frame built by crossing with the z axis degenerates.
+            const Image normals = readTexture(f.ctx, f.view.normal);
+            int headOn = 0;
+            for (int y = 0; y < v.height; ++y)
+                for (int x = 0; x < v.width; ++x)
+                    headOn += normals.at(x, y, 0) == 0.0f && normals.at(x, y, 1) == 0.0f && normals.at(x, y, 2) == 1.0f;
+            CHECK(headOn > 0);
+        }
+        std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));
+        variants.push_back({AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling});
+        for (const AoVariant variant : variants)
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Quarter}) {
-                CAPTURE(nameOf(method), static_cast<int>(resolution));
+                CAPTURE(nameOf(variant.method), static_cast<int>(variant.march), static_cast<int>(variant.thickness),
+                        static_cast<int>(resolution));
                 AmbientOcclusionSettings s;
-                s.method = method;
+                s.method = variant.method;
+                s.march = variant.march;
+                s.thicknessMode = variant.thickness;
                 s.radius = 100.0f;
                 s.rays = 8;
                 s.resolution = resolution;
                 s.blurRadius = 2;
-                s.bentNormals = method != AoMethod::Horizon;
-                if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(cornell.scene, {});
+                s.bentNormals = variant.method != AoMethod::Horizon;
+                if (variant.method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(cornell.scene, {});
                 const AmbientOcclusionView out = f.ao.run(f.view, s);
                 const Image ao = readTexture(f.ctx, out.ao);
                 REQUIRE(ao.width == v.width);
                 REQUIRE(ao.height == v.height);
-                std::size_t bad = 0, sky = 0;
+                std::size_t bad = 0, sky = 0, skyNotOne = 0;
                 for (int y = 0; y < v.height; ++y)
                     for (int x = 0; x < v.width; ++x) {
                         const float a = ao.at(x, y, 0);
                         bad += !(a >= 0.0f && a <= 1.0f);
-                        if (!f.geometry(x, y)) sky += a == 1.0f;
+                        if (f.geometry(x, y)) continue;
+                        ++sky;
+                        skyNotOne += a != 1.0f; // background pixels are 1 (ambient_occlusion.hpp)
                     }
                 CHECK(bad == 0);
+                CHECK(skyNotOne == 0);
                 if (v.width * v.height > 100) CHECK(sky > 0); // the open side shows the background
                 if (s.bentNormals) {
                     const Image bent = readTexture(f.ctx, out.bentNormal);
