@@ -439,6 +439,62 @@ TEST_CASE("Hybrid indirect light reads a visible face only for rays that enter t
     CHECK(std::abs(meanError / checked) <= meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -11));
 }
 
+TEST_CASE("A lit open plane gives exactly no indirect light for every method march resolution and projection", "[gi]") {
+    // Every ray leaves the plane upward into the empty sky, so E_ind = 0 exactly: the plane's
+    // own radiance must not come back through its tangent-plane tests, at any projection.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    IndirectLight gi(ctx);
+    Voxelizer voxelizer(ctx);
+    Scene scene = test::quadScene({{{glm::dvec3(-50, 0, -50), {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}}}});
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    constexpr int W = 64, H = 48;
+    const LookAt look{{0, 3, 6}, {0, 0, 0}, {0, 1, 0}};
+    const std::pair<const char*, Camera> projections[] = {
+        {"perspective", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 0.05f, 200.0f)},
+        {"reversed-Z, infinite far",
+         Camera::perspective(look, glm::radians(50.0f), float(W) / H, 0.05f, INFINITY, DepthMode::Reversed)},
+        {"orthographic, zero to one", Camera::orthographic(look, 3.0f, float(W) / H, 0.05f, 200.0f, DepthMode::StandardZeroToOne)},
+    };
+    struct Variant {
+        GiMethod method;
+        ScreenMarch march;
+    };
+    for (const auto& [name, camera] : projections) {
+        const GBufferView view = gbuffer.render(scene, camera, {W, H, true, {}});
+        const Image direct = readTexture(ctx, view.directRadiance);
+        for (const Variant variant : {Variant{GiMethod::Screen, ScreenMarch::View}, Variant{GiMethod::Screen, ScreenMarch::Texture},
+                                      Variant{GiMethod::Screen, ScreenMarch::HiZ}, Variant{GiMethod::Hybrid, ScreenMarch::View}})
+            for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter}) {
+                CAPTURE(name, static_cast<int>(variant.method), static_cast<int>(variant.march), static_cast<int>(resolution));
+                IndirectLightSettings s;
+                s.method = variant.method;
+                s.march = variant.march;
+                s.radius = 2.0f;
+                s.rays = 24;
+                s.resolution = resolution;
+                s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
+                VoxelizerSettings grid;
+                grid.resolution = 64;
+                if (variant.method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(scene, grid);
+                const Image radiance = readTexture(ctx, gi.run(view, s).radiance);
+                std::size_t lit = 0, notZero = 0;
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x) {
+                        lit += direct.at(x, y, 0) > 0.0f;
+                        for (int c = 0; c < 3; ++c) notZero += radiance.at(x, y, c) != 0.0f;
+                    }
+                CHECK(lit > std::size_t(W * H / 2)); // the plane is lit: there is light to leak
+                CHECK(notZero == 0);
+            }
+    }
+}
+
 TEST_CASE("Nothing lit gives no indirect light and the sky stays empty", "[gi]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
@@ -475,13 +531,15 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
     Voxelizer voxelizer(ctx);
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     const LookAt look{{278, 273, -800}, {278, 273, 0}, {0, 1, 0}};
-    for (auto [width, height, orthographic, mode] : {std::tuple{1, 1, false, DepthMode::Standard},
-                                                    std::tuple{37, 23, false, DepthMode::Reversed},
-                                                    std::tuple{24, 31, true, DepthMode::StandardZeroToOne}}) {
-        CAPTURE(width, height, orthographic);
+    // The box seen through its open side with sky around it (1 x 1: the box only).
+    for (auto [width, height, orthographic, mode, far] : {std::tuple{1, 1, false, DepthMode::Standard, 5000.0f},
+                                                         std::tuple{37, 23, false, DepthMode::Reversed, 5000.0f},
+                                                         std::tuple{40, 30, false, DepthMode::Reversed, INFINITY},
+                                                         std::tuple{24, 31, true, DepthMode::StandardZeroToOne, 5000.0f}}) {
+        CAPTURE(width, height, orthographic, far);
         const float aspect = float(width) / float(height);
-        const Camera camera = orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, 5000.0f, mode)
-                                           : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f, 5000.0f, mode);
+        const Camera camera = orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, far, mode)
+                                           : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f, far, mode);
         const GBufferView view = gbuffer.render(cornell.scene, camera, {width, height, true, {}});
         for (GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
             IndirectLightSettings s;
@@ -497,6 +555,17 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
                 CHECK(std::isfinite(v));
                 CHECK(v >= 0.0f);
             }
+            // Background pixels are (0, 0, 0, 0) (indirect_light.hpp).
+            const Image positions = readTexture(ctx, gbuffer.positions(view));
+            std::size_t sky = 0, skyNotEmpty = 0;
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    if (positions.at(x, y, 3) > 0.0f) continue;
+                    ++sky;
+                    for (int c = 0; c < 4; ++c) skyNotEmpty += radiance.at(x, y, c) != 0.0f;
+                }
+            CHECK(skyNotEmpty == 0);
+            if (width * height > 100) CHECK(sky > 0);
         }
     }
 }
