@@ -86,8 +86,8 @@ public:
     //! settings out of range or inputs of the wrong size or without radiance/albedo.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
-    //! The combined radiance before tone mapping (GL_RGBA16F, W/(sr m^2)) of the last
-    //! compose call.
+    //! The combined radiance of the last compose call times its `exposure`, as the tone
+    //! mapper receives it (GL_RGBA16F; W/(sr m^2) at exposure 1).
     TextureView radiance() const;
 
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer

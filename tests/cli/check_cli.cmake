@@ -84,6 +84,11 @@ if(rc EQUAL 0 OR NOT err MATCHES "rays=7.9.*whole number")
   message(FATAL_ERROR "rays=7.9 was not refused clearly: ${err}")
 endif()
 
+# Every ComposeSettings field is a key (compose.hpp: the field names in snake case).
+run("${OBSCURA}" render --scene cornell --size 16x12 --technique compose --set formula=thesis --set ambient=0.1
+    --set indirect_scale=0.5 --set exposure=0.05 --set tone_mapper=drago --set drago_max_luminance=5 --set drago_bias=0.7
+    --set drago_display_max=200 --set srgb=0 --set gamma=1.8 --out "${WORK_DIR}/compose.png")
+
 # A voxel grid's slices come 128 to a render target: other counts are refused by name.
 execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.voxel --set voxel_slices=200
                         --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)

@@ -101,45 +101,56 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
 
 TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]") {
     Frame f;
-    for (ToneMapper mapper : {ToneMapper::Aces, ToneMapper::Drago}) {
-        for (bool srgb : {true, false}) {
-            CAPTURE(static_cast<int>(mapper), srgb);
-            ComposeSettings s;
-            s.toneMapper = mapper;
-            s.srgb = srgb;
-            s.gamma = 2.2f;
-            s.exposure = 0.05f;
-            const Image shown = readTexture(f.ctx, f.composer.compose({f.view, {}, {}}, s));
-            const Image radiance = readTexture(f.ctx, f.composer.radiance());
-            double lmax = 0.0;
-            for (int y = 0; y < Frame::H; ++y)
-                for (int x = 0; x < Frame::W; ++x)
-                    lmax = std::max(lmax, luminance({radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)}));
-            REQUIRE(lmax > 0.0);
-            for (int y = 0; y < Frame::H; ++y)
-                for (int x = 0; x < Frame::W; ++x) {
-                    const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
-                    glm::dvec3 mapped;
-                    if (mapper == ToneMapper::Aces) {
-                        for (int c = 0; c < 3; ++c)
-                            mapped[c] = std::clamp(l[c] * (2.51 * l[c] + 0.03) / (l[c] * (2.43 * l[c] + 0.59) + 0.14), 0.0, 1.0);
-                    } else {
-                        const double lw = luminance(l);
-                        const double ld = lw > 0.0 ? (100.0 * 0.01 / std::log10(lmax + 1.0)) * std::log(lw + 1.0) /
-                                                         std::log(2.0 + 8.0 * std::pow(lw / lmax, std::log(0.85) / std::log(0.5)))
-                                                   : 0.0;
-                        mapped = lw > 0.0 ? l * (ld / lw) : glm::dvec3(0.0);
-                    }
-                    for (int c = 0; c < 3; ++c) {
-                        const double v = std::clamp(mapped[c], 0.0, 1.0);
-                        const double encoded = srgb ? (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)
-                                                    : std::pow(v, 1.0 / 2.2);
-                        CAPTURE(x, y, c, v, encoded);
-                        // 8-bit rounding plus float evaluation on the GPU.
-                        CHECK(std::abs(shown.at(x, y, c) - encoded) <= 0.5 / 255.0 + 2e-3);
-                    }
+    // Drago with the frame's own maximum and its defaults, and with a given maximum (below the
+    // frame's: values above it map past 1 and clamp), another bias and display maximum.
+    struct Case {
+        ToneMapper mapper;
+        bool srgb;
+        float gamma = 2.2f, dragoMax = 0.0f, dragoBias = 0.85f, dragoDisplayMax = 100.0f;
+    };
+    for (const Case& k : {Case{ToneMapper::Aces, true}, Case{ToneMapper::Aces, false}, Case{ToneMapper::Aces, false, 1.6f},
+                          Case{ToneMapper::Drago, true}, Case{ToneMapper::Drago, false},
+                          Case{ToneMapper::Drago, false, 3.0f, 0.5f, 0.7f, 250.0f}, Case{ToneMapper::Drago, true, 2.2f, 2.0f, 0.95f, 40.0f}}) {
+        CAPTURE(static_cast<int>(k.mapper), k.srgb, k.gamma, k.dragoMax, k.dragoBias, k.dragoDisplayMax);
+        ComposeSettings s;
+        s.toneMapper = k.mapper;
+        s.srgb = k.srgb;
+        s.gamma = k.gamma;
+        s.exposure = 0.05f;
+        s.dragoMaxLuminance = k.dragoMax;
+        s.dragoBias = k.dragoBias;
+        s.dragoDisplayMax = k.dragoDisplayMax;
+        const Image shown = readTexture(f.ctx, f.composer.compose({f.view, {}, {}}, s));
+        const Image radiance = readTexture(f.ctx, f.composer.radiance());
+        double lmax = 0.0;
+        for (int y = 0; y < Frame::H; ++y)
+            for (int x = 0; x < Frame::W; ++x)
+                lmax = std::max(lmax, luminance({radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)}));
+        REQUIRE(lmax > 0.0);
+        if (k.dragoMax > 0.0f) lmax = k.dragoMax;
+        for (int y = 0; y < Frame::H; ++y)
+            for (int x = 0; x < Frame::W; ++x) {
+                const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+                glm::dvec3 mapped;
+                if (k.mapper == ToneMapper::Aces) {
+                    for (int c = 0; c < 3; ++c)
+                        mapped[c] = std::clamp(l[c] * (2.51 * l[c] + 0.03) / (l[c] * (2.43 * l[c] + 0.59) + 0.14), 0.0, 1.0);
+                } else {
+                    const double lw = luminance(l), bias = k.dragoBias;
+                    const double ld = lw > 0.0 ? (k.dragoDisplayMax * 0.01 / std::log10(lmax + 1.0)) * std::log(lw + 1.0) /
+                                                     std::log(2.0 + 8.0 * std::pow(lw / lmax, std::log(bias) / std::log(0.5)))
+                                               : 0.0;
+                    mapped = lw > 0.0 ? l * (ld / lw) : glm::dvec3(0.0);
                 }
-        }
+                for (int c = 0; c < 3; ++c) {
+                    const double v = std::clamp(mapped[c], 0.0, 1.0);
+                    const double encoded = k.srgb ? (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)
+                                                  : std::pow(v, 1.0 / k.gamma);
+                    CAPTURE(x, y, c, v, encoded);
+                    // 8-bit rounding plus float evaluation on the GPU.
+                    CHECK(std::abs(shown.at(x, y, c) - encoded) <= 0.5 / 255.0 + 2e-3);
+                }
+            }
     }
 }
 

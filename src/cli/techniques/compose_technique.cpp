@@ -19,7 +19,11 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
     {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
     {"tone_mapper", "", "none|drago|aces", "tone mapping operator"},
-    {"srgb", "", "0|1", "sRGB transfer function (else gamma 2.2)"},
+    {"drago_max_luminance", "W/(sr m^2)", "[0, 1e30]", "Drago's largest scene luminance after exposure; 0 = the frame's own"},
+    {"drago_bias", "", "[0.5, 1]", "Drago's bias b"},
+    {"drago_display_max", "cd/m^2", "(0, 1e4]", "Drago's display maximum L_dmax"},
+    {"srgb", "", "0|1", "sRGB transfer function (else x^(1/gamma))"},
+    {"gamma", "", "[1, 4]", "display gamma when srgb=0"},
     {"ao", "", "0|1", "ray-marched AO (medium quality; the physical formula uses it only with gi=0)"},
     {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
     {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
@@ -39,7 +43,11 @@ public:
         else if (key == "tone_mapper") s.toneMapper = parseChoice<ToneMapper>(key, value, {{"none", ToneMapper::None},
                                                                                           {"drago", ToneMapper::Drago},
                                                                                           {"aces", ToneMapper::Aces}});
+        else if (key == "drago_max_luminance") s.dragoMaxLuminance = static_cast<float>(parseNumber(key, value, 0, 1e30, "W/(sr m^2)"));
+        else if (key == "drago_bias") s.dragoBias = static_cast<float>(parseNumber(key, value, 0.5, 1, ""));
+        else if (key == "drago_display_max") s.dragoDisplayMax = static_cast<float>(parseNumber(key, value, 1e-30, 1e4, "cd/m^2"));
         else if (key == "srgb") s.srgb = parseBool(key, value);
+        else if (key == "gamma") s.gamma = static_cast<float>(parseNumber(key, value, 1, 4, ""));
         else if (key == "ao") withAo_ = parseBool(key, value);
         else if (key == "gi") withGi_ = parseBool(key, value);
         else if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
