@@ -50,8 +50,10 @@ void IntegratorControls::drawPanel(const char* title) {
     std::vector<const char*> names;
     for (const auto& m : methods) names.push_back(m.c_str());
     changed |= ImGui::Combo("method", &method, names.data(), static_cast<int>(names.size()));
-    changed |= ImGui::SliderInt("rays", &rays, 1, 256);
-    changed |= ImGui::SliderInt("steps", &steps, 1, 64);
+    // The flags' full ranges, on a log scale so that the small counts stay easy to pick: a
+    // narrower slider would clamp a value given by flag as soon as it is touched.
+    changed |= ImGui::SliderInt("rays", &rays, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::SliderInt("steps", &steps, 1, 256, "%d", ImGuiSliderFlags_Logarithmic);
     changed |= ImGui::DragFloat("radius", &radius, std::max(radius, 1.0f) * 0.01f, 0.0f, 1e6f);
     changed |= ImGui::Combo("resolution", &resolution, kResolutions, 3);
     changed |= ImGui::SliderInt("blur", &blur, 0, 16);
