@@ -181,6 +181,44 @@ def resolution_section(rows):
             "resolution cannot be 2x faster.", ""] + RESOLUTION_HEADER + lines + [""]
 
 
+MARCHES = ("view", "texture", "hiz")
+
+
+def march_section(rows):
+    """ao.raymarch with each screen-space march on the same samples: time against error."""
+    table = defaultdict(dict)
+    for r in rows:
+        if r["technique"] != "ao.raymarch" or r["quantity"] != "ao":
+            continue
+        settings = r.get("settings", {})
+        key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["preset"], settings.get("rays", ""),
+               settings.get("steps", ""))
+        table[key][settings.get("march", "view")] = r
+    lines = []
+    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], int(kv[0][4] or 0))):
+        if any(m not in runs for m in MARCHES):
+            continue
+        ms = {m: own_ms(runs[m]) for m in MARCHES}
+        pyramid = sum(p["median_ms"] for p in runs["hiz"].get("passes", []) if p["pass"].endswith(".hiz"))
+        speedup = ms["texture"] / ms["hiz"] if ms["hiz"] > 0 else float("nan")
+        lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(ms["view"])} | {fmt(ms["texture"])} | '
+                     f'{fmt(ms["hiz"])} | {fmt(pyramid)} | {fmt(speedup, 3)} | '
+                     + " | ".join(fmt(runs[m]["rmse"]) for m in MARCHES) + " |")
+    if not lines:
+        return []
+    return ["## Screen-space marches", "",
+            "`ao.raymarch` with its three depth-buffer marches on the same samples (`scripts/report.sh`): `view` (3D "
+            "samples projected to their pixels), `texture` (the same samples interpolated in texture space) and `hiz` "
+            "(the texture-space march with runs of samples skipped through a min/max view-z pyramid, built each frame: "
+            "pass `ao.hiz`, included in its time). Presets `high` (16 steps) and `ultra` (32), and `high` with 128 "
+            "steps, where the pyramid has runs to skip. Times are the technique's own passes; Hi-Z's RMSE must equal "
+            "the texture-space march's (the same first hit, asserted exactly by the tests), view space's may differ by "
+            "the rounding at pixel edges.", "",
+            "| scene | size | preset | rays | steps | view ms | texture ms | Hi-Z ms | of which pyramid ms | Hi-Z speed-up "
+            "over texture | view RMSE | texture RMSE | Hi-Z RMSE |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+
+
 def row_key(r):
     return (os.path.basename(r["scene"]), r["technique"], r["preset"], r["quantity"], r["width"], r["height"])
 
@@ -313,7 +351,7 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
-def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()):
+def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -369,6 +407,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
+    lines += march_section(list(march_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows))
@@ -382,6 +421,8 @@ def main():
     parser.add_argument("--out", default="docs", help="directory for results.md and results/*.png")
     parser.add_argument("--resolution-study", action="append", default=[],
                         help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
+    parser.add_argument("--march-study", action="append", default=[],
+                        help="bench.json of ao.raymarch with one --set march=view|texture|hiz (screen-space march table only)")
     parser.add_argument("--gpu", action="append", default=[],
                         help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section")
     args = parser.parse_args()
@@ -390,9 +431,11 @@ def main():
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
     study_rows = load(args.resolution_study)[0] if args.resolution_study else []
     sources = [os.path.basename(p) for p in args.inputs] + [f"{p} (resolution study)" for p in args.resolution_study]
+    march_rows = load(args.march_study)[0] if args.march_study else []
+    sources += [f"{p} (march study)" for p in args.march_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
     sources += [f"{p} (GPU)" for p in args.gpu]
-    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows)
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

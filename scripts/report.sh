@@ -2,7 +2,8 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, and the half-resolution trade-off at 512x512, then draws the plots.
+# its traversals, the half-resolution trade-off at 512x512 and the screen-space marches
+# (view, texture, Hi-Z), then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -32,8 +33,24 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+# The screen-space marches on the same samples: view and texture space, and Hi-Z (the
+# texture-space march's first hit with runs of samples skipped), at the presets' 16 and 32
+# steps and at 128, where the pyramid has runs to skip.
+marches=()
+for march in view texture hiz; do
+  for steps in preset 128; do
+    dir="$out/marches/${march}_${steps}"
+    presets=high,ultra steps_set=()
+    [ "$steps" = 128 ] && presets=high steps_set=(--set steps=128)
+    "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+      --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+      --techniques ao.raymarch --presets "$presets" --size 128x128 --frames 20 --spp 1024 \
+      --set march=$march "${steps_set[@]}" --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
+    marches+=(--march-study "$dir/bench.json")
+  done
+done
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section.
 gpu=()
 for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do [ -f "$f" ] && gpu+=(--gpu "$f"); done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
-  --resolution-study "$out/resolution/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  --resolution-study "$out/resolution/bench.json" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

@@ -158,8 +158,21 @@ Image gbufferMask(const GBufferSamples& s) {
 struct Row {
     nlohmann::ordered_json fields;
     nlohmann::json passes;
-    nlohmann::ordered_json memory; //!< bytes per module (shadow techniques: per pass) after the timed frames
+    nlohmann::ordered_json memory;   //!< bytes per module (shadow techniques: per pass) after the timed frames
+    nlohmann::ordered_json settings; //!< the preset's and --set's key: value, the last one set of each key
 };
+
+// What a run was given: the preset's settings, then the --set overrides (a later value of a
+// key replaces an earlier one, as in the run itself).
+nlohmann::ordered_json appliedSettings(const Preset& preset, const std::vector<std::string>& overrides) {
+    nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+    for (const auto& [key, value] : preset.settings) settings[key] = value;
+    for (const std::string& kv : overrides) {
+        const auto [key, value] = splitSetting(kv);
+        settings[key] = value;
+    }
+    return settings;
+}
 
 class Bench {
 public:
@@ -235,6 +248,7 @@ public:
             nlohmann::json j = row.fields;
             j["passes"] = row.passes;
             j["memory"] = row.memory;
+            j["settings"] = row.settings;
             rows.push_back(j);
         }
         nlohmann::json doc = {{"rows", rows}, {"reference_performance", perf_}};
@@ -352,6 +366,7 @@ private:
                 row.fields["false_light"] = wrong.falseLight;
             }
             row.passes = passes;
+            row.settings = appliedSettings(preset, o_.overrides);
             std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g\n",
                         info.name.c_str(), preset.name.c_str(), m.quantity.c_str(), gpu, toString(ctx.profiler().clock()),
                         e.rmse, e.relMse, e.ssim, std::sqrt(noise));
