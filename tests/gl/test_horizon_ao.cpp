@@ -6,8 +6,9 @@
 // in each slice is 0. The depth buffer holds the box's top (its sides are edge-on), so in a
 // direction phi the highest point within the radius r is the nearest point of the top's edge,
 // at horizontal distance t(phi), if it lies within r: its elevation e has
-// sin^2 e = H^2 / (t^2 + H^2). GTAO's arc for a horizon at elevation e, cosine-weighted with
-// the normal at angle 0, is (1 - sin^2 e) / 2 per side, against 1/2 open, so
+// sin^2 e = h^2 / (t^2 + h^2), h the box's height. GTAO's arc for a horizon at elevation e,
+// cosine-weighted with the normal at angle 0, is (1 - sin^2 e) / 2 per side, against 1/2
+// open, so
 //   AO = 1 - (1 / 2pi) Integral_0^2pi sin^2 e(phi) dphi.
 // This is what the method estimates, not AO_r: a direction whose ray would meet the box's
 // side within r while its top edge is beyond r counts as open here. (AO_r itself is tested on
