@@ -67,12 +67,12 @@ const std::map<std::string, IntegratorSpec>& specs() {
         {"shadow",
          {Shadow{},
           {{"light", [](Quantity& q, const std::string& k, const std::string& v) {
-                as<Shadow>(q).light = static_cast<std::size_t>(parseNumber(k, v, 0, 1e6, ""));
+                as<Shadow>(q).light = static_cast<std::size_t>(parseInteger(k, v, 0, 1000000, ""));
             }}}}},
         {"media",
          {SingleScattering{},
           {{"medium", [](Quantity& q, const std::string& k, const std::string& v) {
-                as<SingleScattering>(q).medium = static_cast<std::size_t>(parseNumber(k, v, 0, 1e6, ""));
+                as<SingleScattering>(q).medium = static_cast<std::size_t>(parseInteger(k, v, 0, 1000000, ""));
             }},
            {"shadows",
             [](Quantity& q, const std::string& k, const std::string& v) { as<SingleScattering>(q).shadows = parseBool(k, v); }}}}},

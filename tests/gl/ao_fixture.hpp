@@ -1,5 +1,5 @@
 // What the AO tests share: a G-buffer, a voxel grid and the AO module of one scene and
-// camera, and the open floor they put their occluders on.
+// camera (their open floor is scene_builders.hpp's floorScene).
 #pragma once
 #include "gl_fixture.hpp"
 #include "scene_builders.hpp"
@@ -38,10 +38,5 @@ struct AoFixture {
         return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
     }
 };
-
-//! A floor square of half side `half` at y = 0, facing up.
-inline Scene floorScene(double half = 50.0) {
-    return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
-}
 
 } // namespace obscura::test

@@ -511,7 +511,10 @@ TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orth
             CHECK(headOn > 0);
         }
         std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));
-        variants.push_back({AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling});
+        for (const AoVariant peeled : {AoVariant{AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling},
+                                       AoVariant{AoMethod::RayMarch, ScreenMarch::HiZ, ScreenThickness::DepthPeeling},
+                                       AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::DepthPeeling}})
+            variants.push_back(peeled);
         for (const AoVariant variant : variants)
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Quarter}) {
                 CAPTURE(nameOf(variant.method), static_cast<int>(variant.march), static_cast<int>(variant.thickness),

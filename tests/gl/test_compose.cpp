@@ -127,7 +127,12 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
             for (int x = 0; x < Frame::W; ++x)
                 lmax = std::max(lmax, luminance({radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)}));
         REQUIRE(lmax > 0.0);
-        if (k.dragoMax > 0.0f) lmax = k.dragoMax;
+        if (k.dragoMax > 0.0f) {
+            // The given maxima straddle the frame's own, so that values past it clamp.
+            if (k.dragoMax < 1.0f) CHECK(lmax > k.dragoMax);
+            else CHECK(lmax < k.dragoMax);
+            lmax = k.dragoMax;
+        }
         for (int y = 0; y < Frame::H; ++y)
             for (int x = 0; x < Frame::W; ++x) {
                 const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));

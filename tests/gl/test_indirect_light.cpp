@@ -447,7 +447,7 @@ TEST_CASE("A lit open plane gives exactly no indirect light for every method mar
     GBuffer gbuffer(ctx);
     IndirectLight gi(ctx);
     Voxelizer voxelizer(ctx);
-    Scene scene = test::quadScene({{{glm::dvec3(-50, 0, -50), {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}}}});
+    Scene scene = test::floorScene(50.0);
     Light sun;
     sun.type = LightType::Directional;
     sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);

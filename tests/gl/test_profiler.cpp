@@ -12,7 +12,6 @@
 using namespace obscura;
 
 namespace {
-Scene floorScene() { return test::quadScene({{{{{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}}}}); }
 Camera floorCamera() { return Camera::perspective({{0, 2, 2}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f); }
 } // namespace
 
@@ -26,7 +25,7 @@ TEST_CASE("On llvmpipe passes are timed by glFinish and a steady clock and that 
     }
     REQUIRE(ctx.profiler().clock() == ClockSource::WallClockFinish);
     GBuffer gbuffer(ctx);
-    const Scene scene = floorScene();
+    const Scene scene = test::floorScene(1.0);
     constexpr int frames = 20;
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < frames; ++i) gbuffer.render(scene, floorCamera(), {256, 256, true, {}});
@@ -57,7 +56,7 @@ TEST_CASE("GPU timestamp queries are collected without stalling and completely w
     Context ctx(gl.desc());
     ctx.profiler().setClock(ClockSource::GpuTimestamp);
     GBuffer gbuffer(ctx);
-    const Scene scene = floorScene();
+    const Scene scene = test::floorScene(1.0);
     for (int i = 0; i < 25; ++i) {
         gbuffer.render(scene, floorCamera(), {64, 64, true, {}});
         for (const auto& t : ctx.profiler().latest()) CHECK((std::isfinite(t.ms) && t.ms >= 0.0));
@@ -92,7 +91,7 @@ TEST_CASE("Passes are KHR_debug groups and objects carry the pass names", "[prof
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     Context ctx(gl.desc());
     GBuffer gbuffer(ctx);
-    const GBufferView v = gbuffer.render(floorScene(), floorCamera(), {16, 16, true, {}});
+    const GBufferView v = gbuffer.render(test::floorScene(1.0), floorCamera(), {16, 16, true, {}});
     gbuffer.positions(v);
     CHECK(groups.pushed == std::vector<std::string>{"gbuffer.render", "gbuffer.positions"});
     char label[64] = {};

@@ -99,6 +99,10 @@ Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo) {
     return s;
 }
 
+Scene floorScene(double half) {
+    return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
+}
+
 glm::dvec2 pixelNdc(int x, int y, int width, int height) {
     return {(x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0};
 }

@@ -25,6 +25,8 @@ struct AnalyticQuad {
 
 //! Scene of the given quads, one grey material (albedo 0.5) and no lights.
 Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::vec3(0.5f));
+//! A floor square of half side `half` at y = 0, facing up (quadScene's material).
+Scene floorScene(double half = 50.0);
 
 //! Closed meshes (every edge on exactly two triangles, outward winding), indexed.
 //! The unit cube [0, 1]^3: 8 vertices, 12 triangles.

@@ -65,7 +65,7 @@ public:
     }
 
     void set(const std::string& key, const std::string& value) override {
-        if (key == "light") light_ = static_cast<std::size_t>(parseNumber(key, value, 0, 1e6, ""));
+        if (key == "light") light_ = static_cast<std::size_t>(parseInteger(key, value, 0, 1000000, ""));
         else if (key == "resolution") maps_.resolution = parseInteger(key, value, 16, 8192, "texels");
         else if (key == "cascades") maps_.cascades = parseInteger(key, value, 1, kMaxShadowCascades, "");
         else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
