@@ -1,6 +1,7 @@
 // What the blur and the upsampling share: the parameter block, the low-resolution images and
 // the guide weights. RGB: the value is rgba16f (else r16f); DIRECTION: a second image of unit
-// vectors filtered with the same weights and renormalized.
+// vectors (bent normals) filtered with the same weights as offsets from their normals
+// (directionOffset).
 #include "../common/math.glsl"
 #include "filter_bindings.h"
 
@@ -32,6 +33,16 @@ int filterScale() { return filterParams.sizes.z; }
 bool insideLow(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, filterLowSize())); }
 
 FILTER_VALUE loadValue(ivec2 q) { return FILTER_VALUE_OF(imageLoad(valueIn, q)); }
+
+#ifdef DIRECTION
+// Directions are filtered as their offsets from the normal of the pixel they belong to, and
+// the mean offset is added to the normal of the pixel written. On a curved surface the
+// neighbours' bent normals differ by the turn of their own normals, which a mean of the
+// directions themselves carries into the result: duck at 128x128, ao.voxel high_half, bent
+// normal RMSE 0.044 that way against 0.015 at full resolution.
+vec3 directionOffset(ivec2 q, vec3 normal) { return imageLoad(directionIn, q).xyz - normal; }
+vec3 directionFromOffset(vec3 normal, vec3 meanOffset) { return safeNormalize(normal + meanOffset, normal); }
+#endif
 
 // A weighted mean as `anchor` plus the weighted offsets from it over their total weight. A
 // plain sum / total of equal values can come out below them: GLSL 4.50 (4.7.1) allows

@@ -22,7 +22,7 @@ void main() {
     const FILTER_VALUE centre = loadValue(pixel);
     FILTER_VALUE offsets = FILTER_VALUE(0.0); // sum of w (value - centre), see weightedMean
 #ifdef DIRECTION
-    vec3 direction = imageLoad(directionIn, pixel).xyz;
+    vec3 offset = directionOffset(pixel, c.xyz); // summed as `offsets` is
 #endif
     float total = 1.0;
     for (int k = -taps; k <= taps; ++k) {
@@ -33,12 +33,12 @@ void main() {
         const float w = exp2(-0.5 * kLog2E * float(k * k) / (sigma * sigma) + guideLog2Weight(c.xyz, c.w, g.xyz, g.w));
         offsets += w * (loadValue(q) - centre);
 #ifdef DIRECTION
-        direction += w * imageLoad(directionIn, q).xyz;
+        offset += w * directionOffset(q, g.xyz);
 #endif
         total += w;
     }
     imageStore(valueOut, pixel, vec4(filterFinish(weightedMean(centre, offsets, total))));
 #ifdef DIRECTION
-    imageStore(directionOut, pixel, vec4(safeNormalize(direction, c.xyz), 1.0));
+    imageStore(directionOut, pixel, vec4(directionFromOffset(c.xyz, offset / total), 1.0));
 #endif
 }

@@ -22,7 +22,8 @@
 layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
 
 // The running weighted sums for one G-buffer pixel (of the values' offsets from the quad's
-// first usable neighbour's, see weightedMean), and the neighbour nearest in depth.
+// first usable neighbour's, see weightedMean; of the directions' offsets from their normals,
+// see directionOffset), and the neighbour nearest in depth.
 struct Blend {
     FILTER_VALUE offsets, nearest;
     vec3 direction, nearestDirection;
@@ -42,9 +43,9 @@ Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
     return Target(normalTexel.xyz, background ? 1.0 : viewZFromDepth(depth), f, background);
 }
 
-Blend startBlend(Target t) { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), t.n, 0.0, 1e30); }
+Blend startBlend(Target t) { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), vec3(0.0), 0.0, 1e30); }
 
-// Adds neighbour `corner` (0 or 1 per axis) with its guide, value and direction to a blend.
+// Adds neighbour `corner` (0 or 1 per axis) with its guide, value and direction offset to a blend.
 void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE value, FILTER_VALUE anchor, vec3 direction) {
     const vec2 bilinear = mix(1.0 - t.f, t.f, vec2(corner));
     const bool usable = guide.w != 0.0;
@@ -72,7 +73,7 @@ void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
     if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.weights.z) : blended));
 #ifdef DIRECTION
     if (inside) {
-        const vec3 direction = safeNormalize(weighted ? b.direction : b.nearestDirection, t.n);
+        const vec3 direction = directionFromOffset(t.n, weighted ? b.direction / b.total : b.nearestDirection);
         imageStore(directionOut, pixel, t.background ? vec4(0.0) : vec4(direction, 1.0));
     }
 #endif
@@ -112,7 +113,7 @@ void main() {
         const vec4 guide = imageLoad(guideIn, q);
         const FILTER_VALUE value = loadValue(q);
 #ifdef DIRECTION
-        const vec3 direction = imageLoad(directionIn, q).xyz;
+        const vec3 direction = directionOffset(q, guide.xyz);
 #else
         const vec3 direction = vec3(0.0);
 #endif

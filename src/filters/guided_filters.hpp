@@ -24,7 +24,8 @@ struct GuidedFilterSettings {
 };
 
 //! The images one integrator filters: a value (GL_R16F, or GL_RGBA16F with `rgb`) and an
-//! optional direction (GL_RGBA16F unit vectors, renormalized), at the low resolution.
+//! optional direction (GL_RGBA16F unit vectors, filtered as offsets from their pixels' normals),
+//! at the low resolution.
 struct FilterImages {
     GLuint guide = 0;
     GLuint value = 0;
