@@ -18,7 +18,9 @@
 // Output: `ao` holds AO_r or W in [0, 1] (1 = open) at the G-buffer's resolution, GL_R16F
 // (11-bit mantissa: values are rounded by at most 2^-12); background pixels are 1.
 // `bentNormal` (when asked for) holds the view-space bent normal, GL_RGBA16F, alpha 1 on
-// geometry.
+// geometry. The blur and the upsampling average bent normals as offsets from their pixels'
+// normals and add the mean to the normal of the pixel they write, so that where nothing
+// occludes, a curved surface keeps its own normals.
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/screen_visibility.hpp"
