@@ -1,6 +1,7 @@
 // Joint bilateral upsampling to the G-buffer's resolution: the four low-resolution pixels
 // around each G-buffer pixel, weighted bilinearly and by guideWeight against the pixel's own
-// view depth and normal. Where no neighbour is similar, the one nearest in depth is taken.
+// view depth and normal. Where no neighbour is similar, the one nearest in depth is taken
+// (for directions, its offset from its normal, see directionOffset).
 // Background pixels get the background value (and no direction). REFINE: pixels whose
 // similar neighbours carry less than the threshold's share of the bilinear weight are listed
 // for the integrator to compute instead (refine_list.glsl); they are not written here.
@@ -43,7 +44,7 @@ Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
     return Target(normalTexel.xyz, background ? 1.0 : viewZFromDepth(depth), f, background);
 }
 
-Blend startBlend(Target t) { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), vec3(0.0), 0.0, 1e30); }
+Blend startBlend() { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), vec3(0.0), 0.0, 1e30); }
 
 // Adds neighbour `corner` (0 or 1 per axis) with its guide, value and direction offset to a blend.
 void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE value, FILTER_VALUE anchor, vec3 direction) {
@@ -100,7 +101,7 @@ void main() {
     const Target t10 = makeTarget(depth.z, vec4(nx.z, ny.z, nz.z, na.z), f00 + vec2(step.x, 0.0));
     const Target t01 = makeTarget(depth.x, vec4(nx.x, ny.x, nz.x, na.x), f00 + vec2(0.0, step.y));
     const Target t11 = makeTarget(depth.y, vec4(nx.y, ny.y, nz.y, na.y), f00 + step);
-    Blend b00 = startBlend(t00), b10 = startBlend(t10), b01 = startBlend(t01), b11 = startBlend(t11);
+    Blend b00 = startBlend(), b10 = startBlend(), b01 = startBlend(), b11 = startBlend();
     // A loop, not straight code, so that on llvmpipe a SIMD batch of background quads skips
     // the loads: straight-line loads are speculated and paid for masked-off lanes too.
     const bool geometry = !(t00.background && t10.background && t01.background && t11.background);

@@ -206,8 +206,8 @@ TEST_CASE("Voxel AO in a box room lies between the reference's AO of the room an
     // the room from there meets a set voxel no later, and a ray that meets a set voxel meets
     // the room grown by a side. So its expectation lies between the reference's AO_r from the
     // lifted start in the grown room (0 where the start is inside it) and in the room itself.
-    // (The voxelizer grows the boxes it tests by 1e-5 voxels against float rounding: far
-    // below the sampling tolerance.) Here the walls lie on voxel faces, so both neighbours
+    // (The voxelizer grows the boxes it tests against float rounding by 1e-5 voxels plus a
+    // few ulps of the triangle's extent, at most 2.5e-4 voxels here: no further voxel is set.) Here the walls lie on voxel faces, so both neighbours
     // are set and the voxels are nearly the grown room: the means sit at the windows' lower
     // edges. Measured when written: rays cut to 0.85 r fail the mean at 512; half the lift
     // fails every pixel.
