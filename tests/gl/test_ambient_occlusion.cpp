@@ -114,20 +114,6 @@ double discAo(double rho, double a, double h) {
     return 1.0 - 0.5 * (1.0 - (h * h + rho * rho - a * a) / std::sqrt(s * s - 4.0 * a * a * rho * rho));
 }
 
-// A disc of radius a at height h (a 256-gon with the disc's area), both sides.
-Scene withDisc(Scene scene, double a, double h) {
-    auto disc = std::make_shared<MeshData>();
-    constexpr int n = 256;
-    const double r = a * std::sqrt(2.0 * kPi / n / std::sin(2.0 * kPi / n)); // equal area
-    disc->positions.push_back(glm::vec3(0.0f, float(h), 0.0f));
-    for (int i = 0; i < n; ++i)
-        disc->positions.push_back(glm::vec3(float(r * std::cos(2.0 * kPi * i / n)), float(h), float(r * std::sin(2.0 * kPi * i / n))));
-    for (int i = 0; i < n; ++i)
-        for (const std::uint32_t v : {0u, std::uint32_t(1 + i), std::uint32_t(1 + (i + 1) % n)}) disc->indices.push_back(v);
-    scene.meshes.push_back({disc, glm::mat4(1.0f), 0, "disc"});
-    return scene;
-}
-
 } // namespace
 
 TEST_CASE("An open plane gives AO = 1 exactly for every method resolution falloff and projection", "[ao]") {
@@ -348,7 +334,7 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
 TEST_CASE("AO under a disc matches one minus its view factor within the march and voxel bounds", "[ao]") {
     AoFixture f;
     constexpr double a = 1.0, h = 1.0;
-    const Scene scene = withDisc(floorScene(20.0), a, h);
+    const Scene scene = test::withDisc(floorScene(20.0), a, h);
     // Seen from below the disc, so that the floor under it and its underside are both on
     // screen (the whole disc within the image: nothing is lost at the border).
     constexpr int W = 128, H = 128;

@@ -1,5 +1,6 @@
 #include "scene_builders.hpp"
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
@@ -101,6 +102,20 @@ Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo) {
 
 Scene floorScene(double half) {
     return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
+}
+
+Scene withDisc(Scene scene, double a, double h) {
+    auto disc = std::make_shared<MeshData>();
+    constexpr int n = 256;
+    const double pi = glm::pi<double>();
+    const double r = a * std::sqrt(2.0 * pi / n / std::sin(2.0 * pi / n)); // equal area
+    disc->positions.push_back(glm::vec3(0.0f, float(h), 0.0f));
+    for (int i = 0; i < n; ++i)
+        disc->positions.push_back(glm::vec3(float(r * std::cos(2.0 * pi * i / n)), float(h), float(r * std::sin(2.0 * pi * i / n))));
+    for (int i = 0; i < n; ++i)
+        for (const std::uint32_t v : {0u, std::uint32_t(1 + i), std::uint32_t(1 + (i + 1) % n)}) disc->indices.push_back(v);
+    scene.meshes.push_back({disc, glm::mat4(1.0f), 0, "disc"});
+    return scene;
 }
 
 glm::dvec2 pixelNdc(int x, int y, int width, int height) {
