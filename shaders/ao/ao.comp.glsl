@@ -77,9 +77,10 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     return e;
 }
 #elif METHOD == AO_METHOD_POINTS
-// Crytek-style: points uniform in the ball of radius r cut to the normal's hemisphere (the
-// distance from p as r u^(1/3), u the 3D Hammersley set's third coordinate); a hidden point
-// counts as occluded at its distance.
+// Crytek-style: points in the ball of radius r cut to the normal's hemisphere, along the
+// directions aoDirection weighs (uniform ones make the points uniform in the half-ball) at
+// distance r u^(1/3), u the 3D Hammersley set's third coordinate; a hidden point counts as
+// occluded at its distance.
 Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);

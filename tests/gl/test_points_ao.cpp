@@ -1,6 +1,6 @@
 // Point-sampled AO (AoMethod::Points, Crytek-style) under a disc against its own integral.
 // Points does not estimate AO_r: it counts the share of sample points behind the depth buffer,
-// the points at distance r u^(1/3) (u uniform: uniform in the ball's volume) along cosine-
+// the points at distance r u^(1/3) (u uniform: a uniform ball's radial law) along cosine-
 // weighted directions of the normal's hemisphere. Seen from below, a point above a floor point
 // is behind the depth buffer exactly when it lies above the disc's plane and the eye's ray to
 // it crosses the disc first (with the default thickness, the radius, any such point is within
@@ -81,8 +81,10 @@ double hiddenShare(const glm::dvec3& p, double a, int rings) {
 // floor point p that the depth buffer hides: as screenHidden (screen_march.glsl) judges, a
 // point is hidden when the pixel it projects to shows the disc (the floor's and the sky's
 // hide nothing above the floor) and it lies beyond the disc's plane (the default thickness,
-// the radius, holds all of the ball). Points within float rounding of a pixel's edge may go
-// to either pixel: a share of order 1e-6, left out.
+// the radius, holds all of the ball). Left out, each below the half float's rounding: points
+// within float rounding of a pixel's edge, which may go to either pixel (a share of order
+// 1e-6); points within the plane test's tolerance of the disc's plane (about 2e-5 world units:
+// a share below 1e-4); the half-float normals' tilt, which scales `behind` but never flips it.
 double hiddenByPixels(const test::AoFixture& f, const glm::dvec3& p, int samples, std::uint64_t seed) {
     const glm::dmat4 toClip = glm::dmat4(f.view.camera.projection) * glm::dmat4(f.view.camera.view);
     const int width = f.positions.width, height = f.positions.height;
@@ -140,7 +142,10 @@ TEST_CASE("Points AO under a disc matches its own integral within the pixel and 
             const double lo = 1.0 - hiddenShare(p, kDiscRadius + rim, rings) - quadrature;
             const double hi = 1.0 - hiddenShare(p, kDiscRadius - rim, rings) + quadrature;
             // As in the other AO tests: five standard deviations of a mean of `rays` samples
-            // in [0, 1] and the half float's rounding.
+            // in [0, 1] and the half float's rounding. The GPU's samples are a quasi-random
+            // set rotated per pixel, not independent: the binomial sigma bounds their error
+            // in practice, and the means over the pixels take them as independent (the
+            // rotations repeat every 64 pixels, wider than most of the region).
             const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
             const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
             CAPTURE(x, y, value, lo, hi, 1.0 - exact);
@@ -158,9 +163,10 @@ TEST_CASE("Points AO under a disc matches its own integral within the pixel and 
           meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -12));
 
     // Against the depth buffer's own pixels: five standard deviations of the GPU's and of the
-    // expectation's means, per pixel and over the pixels. Measured when written: distances
-    // r u^(1/2) instead of r u^(1/3), or 0.93 r, fail this mean (by 0.0167 and -0.0064 against
-    // a bound of about 0.0063); the window above is too wide for either.
+    // expectation's means, per pixel and over the pixels (sigmas as above). Measured when
+    // written: distances r u^(1/2) instead of r u^(1/3) fail this mean by 0.0167 against a
+    // bound of about 0.0063, and 0.93 r, at -0.0064, is about the least change it detects;
+    // the window above is too wide for either.
     constexpr int samples = 16384;
     int compared = 0;
     double pixelError = 0.0, sumSigma2 = 0.0;

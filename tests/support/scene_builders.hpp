@@ -28,7 +28,7 @@ Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::
 //! A floor square of half side `half` at y = 0, facing up (quadScene's material).
 Scene floorScene(double half = 50.0);
 //! `scene` with a horizontal disc of radius a at height h added: a 256-gon of the disc's area
-//! (its inscribed radius a (1 - 6e-5), its corners a (1 + 1e-4)), seen from both sides.
+//! (its edges' midpoints at a (1 - 2.5e-5), its corners at a (1 + 5e-5)), seen from both sides.
 Scene withDisc(Scene scene, double a, double h);
 
 //! Closed meshes (every edge on exactly two triangles, outward winding), indexed.
