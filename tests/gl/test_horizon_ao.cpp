@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -159,6 +161,34 @@ AoWindow aoWindow(double x, double z, const std::vector<glm::dvec2>& directions,
     return {1.0 - w.most.mean - w.most.variation * strata, 1.0 - w.least.mean + w.least.variation * strata};
 }
 
+// Checks pixels' AO against their windows, plus the half float's rounding (to nearest), and
+// keeps what the tests report: the mean error from the windows' centres and the windows' mean
+// half-width over the occluded pixels (which must stay small, or a wrong horizon or arc could
+// pass unnoticed).
+struct WindowTally {
+    int checked = 0, occluded = 0;
+    double meanError = 0.0, occludedWindow = 0.0;
+
+    void check(double value, AoWindow w) {
+        const double rounding = std::ldexp(1.0, -12);
+        CHECK(value >= w.lo - rounding);
+        CHECK(value <= w.hi + rounding);
+        meanError += value - 0.5 * (w.lo + w.hi);
+        ++checked;
+        if (w.hi < 1.0) {
+            occludedWindow += 0.5 * (w.hi - w.lo);
+            ++occluded;
+        }
+    }
+    double halfWidth() const { return occludedWindow / occluded; }
+    std::string summary() const {
+        std::ostringstream out;
+        out << "mean error " << meanError / checked << " from the window's centre over " << checked
+            << " floor pixels; " << occluded << " of them occluded, their window +-" << halfWidth();
+        return out.str();
+    }
+};
+
 } // namespace
 
 TEST_CASE("Horizon AO beside a box seen from above matches its slice integral within the sampling bounds", "[ao]") {
@@ -177,8 +207,7 @@ TEST_CASE("Horizon AO beside a box seen from above matches its slice integral wi
     s.steps = v.steps;
     const Image ao = f.run(scene, s);
     const std::vector<glm::dvec2> directions = nodeDirections(4096);
-    int checked = 0, occluded = 0;
-    double occludedWindow = 0.0, meanError = 0.0;
+    WindowTally tally;
     for (int y = 0; y < v.size; ++y)
         for (int x = 0; x < v.size; ++x) {
             const glm::dvec3 p = f.world(x, y);
@@ -186,25 +215,14 @@ TEST_CASE("Horizon AO beside a box seen from above matches its slice integral wi
             // Within two pixels of the box the first samples (at least one pixel out) may
             // already be on it.
             if (footprintDistance(p.x, p.z, v) < 2.0 * v.pixel()) continue;
-            const auto [lo, hi] = aoWindow(p.x, p.z, directions, v);
-            const double value = ao.at(x, y, 0), rounding = std::ldexp(1.0, -12); // half float, to nearest
-            CAPTURE(x, y, p.x, p.z, value, lo, hi);
-            CHECK(value >= lo - rounding);
-            CHECK(value <= hi + rounding);
-            meanError += value - 0.5 * (lo + hi);
-            ++checked;
-            if (hi < 1.0) {
-                occludedWindow += 0.5 * (hi - lo);
-                ++occluded;
-            }
+            const AoWindow w = aoWindow(p.x, p.z, directions, v);
+            CAPTURE(x, y, p.x, p.z, ao.at(x, y, 0), w.lo, w.hi);
+            tally.check(ao.at(x, y, 0), w);
         }
-    INFO("mean error " << meanError / checked << " from the window's centre over " << checked << " floor pixels; "
-                       << occluded << " of them occluded, their window +-" << occludedWindow / occluded);
-    CHECK(checked > 5000);
-    CHECK(occluded > 1000);
-    // The window must stay a small part of the occlusion it checks (1 - AO reaches about
-    // 0.3 beside the box), or a wrong elevation or arc could pass unnoticed.
-    CHECK(occludedWindow / occluded < 0.015);
+    INFO(tally.summary());
+    CHECK(tally.checked > 5000);
+    CHECK(tally.occluded > 1000);
+    CHECK(tally.halfWidth() < 0.015); // 1 - AO reaches about 0.3 beside the box
 }
 
 // A floor before a wall, seen obliquely from the front: the view direction v leans 40 degrees
@@ -451,32 +469,22 @@ TEST_CASE("Horizon AO before a wall seen obliquely matches its slice integral wi
     wall.normal = glm::normalize(glm::dmat3(wall.view) * glm::dvec3(0.0, 0.0, 1.0));
     wall.point = glm::dvec3(wall.view * glm::dvec4(0.0, 0.0, 0.0, 1.0));
     const int margin = static_cast<int>(std::ceil(v.reachPixels())) + 2; // every sample inside the image
-    int checked = 0, occluded = 0;
-    double occludedWindow = 0.0, meanError = 0.0;
+    WindowTally tally;
     for (int y = margin; y < v.size - margin; ++y)
         for (int x = margin; x < v.size - margin; ++x) {
             const glm::dvec3 world = f.world(x, y);
             if (!f.geometry(x, y) || std::abs(world.y) > 1e-3) continue; // the floor only
             const glm::dvec3 p(f.positions.at(x, y, 0), f.positions.at(x, y, 1), f.positions.at(x, y, 2));
             const glm::dvec3 n = glm::normalize(glm::dvec3(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)));
-            const auto [lo, hi] = obliqueWindow(p, n, wall, v, 1024);
-            const double value = ao.at(x, y, 0), rounding = std::ldexp(1.0, -12);
-            CAPTURE(x, y, world.z, value, lo, hi);
-            CHECK(value >= lo - rounding);
-            CHECK(value <= hi + rounding);
-            meanError += value - 0.5 * (lo + hi);
-            ++checked;
-            if (hi < 1.0) {
-                occludedWindow += 0.5 * (hi - lo);
-                ++occluded;
-            }
+            const AoWindow w = obliqueWindow(p, n, wall, v, 1024);
+            CAPTURE(x, y, world.z, ao.at(x, y, 0), w.lo, w.hi);
+            tally.check(ao.at(x, y, 0), w);
         }
-    INFO("mean error " << meanError / checked << " from the window's centre over " << checked << " floor pixels; "
-                       << occluded << " of them occluded, their window +-" << occludedWindow / occluded);
-    CHECK(checked > 5000);
-    CHECK(occluded > 4000);
-    // As in the box test, the window must stay small against the occlusion (1 - AO up to
-    // about 0.5 here): with the weight of every slice taken as 1 (0.64 to 1 here) the mean
-    // moves by 0.008 and 943 pixels leave their window (at 0.97 r, 320; with g x 0.9, 3694).
-    CHECK(occludedWindow / occluded < 0.02);
+    INFO(tally.summary());
+    CHECK(tally.checked > 5000);
+    CHECK(tally.occluded > 4000);
+    // 1 - AO is up to about 0.5 here. With the weight of every slice taken as 1 (0.64 to 1
+    // here) the mean moves by 0.008 and 943 pixels leave their window (at 0.97 r, 320; with
+    // g x 0.9, 3694).
+    CHECK(tally.halfWidth() < 0.02);
 }
