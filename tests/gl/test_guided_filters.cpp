@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <string>
 
 using namespace obscura;
@@ -295,6 +296,32 @@ struct FilterFixture {
     }
 };
 
+// One setup of the filters under test: the resolution, blur taps each side and refinement
+// threshold, and the integrator's settings (AmbientOcclusionSettings or
+// IndirectLightSettings) that ask for it.
+struct FilterCase {
+    AoResolution resolution;
+    int taps;
+    float refine;
+
+    template <class Settings> Settings settings() const {
+        Settings s;
+        s.resolution = resolution;
+        s.blurRadius = taps;
+        s.refineThreshold = refine;
+        return s;
+    }
+};
+
+// Half and quarter resolution, each with every taps and refinement threshold given.
+std::vector<FilterCase> filterCases(std::initializer_list<int> taps, std::initializer_list<float> refines) {
+    std::vector<FilterCase> cases;
+    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
+        for (const int t : taps)
+            for (const float refine : refines) cases.push_back({resolution, t, refine});
+    return cases;
+}
+
 } // namespace
 
 TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent normals compute the documented "
@@ -308,33 +335,29 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
     // Refined pixels hold the overridden estimate at their own G-buffer pixel.
     const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0)); },
                               [](int x, int y) { return glm::vec4(toHalf(directionOf(x, y)), 1.0f); }};
-    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-        for (const int taps : {0, 1, 3})
-            for (const float refine : {0.0f, 0.25f, 1.0f}) {
-                CAPTURE(static_cast<int>(resolution), taps, refine);
-                AmbientOcclusionSettings s;
-                s.resolution = resolution;
-                s.blurRadius = taps;
-                s.bentNormals = true;
-                s.refineThreshold = refine;
-                const AmbientOcclusionView out = ao.run(f.view, s);
-                Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
-                m.refineThreshold = refine;
-                LowImages low;
-                for (int j = 0; j < m.lowHeight(); ++j)
-                    for (int i = 0; i < m.lowWidth(); ++i) {
-                        const bool background = m.lowGuide(i, j).z == 0.0;
-                        low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
-                        low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
-                    }
-                if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
-                const Expected expected = upsample(m, low, full);
-                int refined = 0;
-                CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
-                CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
-                      kDirectionTolerance);
-                checkRefinedCount(m, expected, refined);
+    for (const FilterCase setup : filterCases({0, 1, 3}, {0.0f, 0.25f, 1.0f})) {
+        const auto [resolution, taps, refine] = setup;
+        CAPTURE(static_cast<int>(resolution), taps, refine);
+        AmbientOcclusionSettings s = setup.settings<AmbientOcclusionSettings>();
+        s.bentNormals = true;
+        const AmbientOcclusionView out = ao.run(f.view, s);
+        Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
+        m.refineThreshold = refine;
+        LowImages low;
+        for (int j = 0; j < m.lowHeight(); ++j)
+            for (int i = 0; i < m.lowWidth(); ++i) {
+                const bool background = m.lowGuide(i, j).z == 0.0;
+                low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
+                low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
             }
+        if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+        const Expected expected = upsample(m, low, full);
+        int refined = 0;
+        CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
+        CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
+              kDirectionTolerance);
+        checkRefinedCount(m, expected, refined);
+    }
 }
 
 TEST_CASE("The blur and upsampling keep an open faceted sphere's bent normals on its own normals", "[filters][ao]") {
@@ -358,28 +381,23 @@ TEST_CASE("The blur and upsampling keep an open faceted sphere's bent normals on
     const Image normals = readTexture(ctx, view.normal);
     AmbientOcclusion ao(ctx);
     const double tolerance = std::sqrt(3.0) * 4.0 * kUlp + 1e-5;
-    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-        for (const int taps : {0, 1, 3})
-            for (const float refine : {0.0f, 0.25f}) {
-                CAPTURE(static_cast<int>(resolution), taps, refine);
-                AmbientOcclusionSettings s;
-                s.resolution = resolution;
-                s.blurRadius = taps;
-                s.bentNormals = true;
-                s.refineThreshold = refine;
-                const Image bent = readTexture(ctx, ao.run(view, s).bentNormal);
-                int geometry = 0;
-                double worst = 0.0;
-                for (int y = 0; y < kHeight; ++y)
-                    for (int x = 0; x < kWidth; ++x) {
-                        if (normals.at(x, y, 3) == 0.0f) continue;
-                        ++geometry;
-                        const glm::dvec3 n = glm::normalize(glm::dvec3(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)));
-                        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(bent.at(x, y, c)) - n[c]));
-                    }
-                CHECK(geometry > kWidth * kHeight / 3);
-                CHECK(worst <= tolerance);
+    for (const FilterCase setup : filterCases({0, 1, 3}, {0.0f, 0.25f})) {
+        CAPTURE(static_cast<int>(setup.resolution), setup.taps, setup.refine);
+        AmbientOcclusionSettings s = setup.settings<AmbientOcclusionSettings>();
+        s.bentNormals = true;
+        const Image bent = readTexture(ctx, ao.run(view, s).bentNormal);
+        int geometry = 0;
+        double worst = 0.0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                if (normals.at(x, y, 3) == 0.0f) continue;
+                ++geometry;
+                const glm::dvec3 n = glm::normalize(glm::dvec3(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2)));
+                for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(bent.at(x, y, c)) - n[c]));
             }
+        CHECK(geometry > kWidth * kHeight / 3);
+        CHECK(worst <= tolerance);
+    }
 }
 
 TEST_CASE("The half and quarter resolution blur and upsampling of indirect light compute the documented guided "
@@ -392,31 +410,27 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
     IndirectLight gi(f.ctx);
     const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0), valueOf(x, y, 1), valueOf(x, y, 2), 1.0f); },
                               [](int, int) { return glm::vec4(0.0f); }};
-    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-        for (const int taps : {0, 2})
-            for (const float refine : {0.0f, 0.25f}) {
-                CAPTURE(static_cast<int>(resolution), taps, refine);
-                IndirectLightSettings s;
-                s.resolution = resolution;
-                s.blurRadius = taps;
-                s.refineThreshold = refine;
-                const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
-                Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
-                m.refineThreshold = refine;
-                LowImages low;
-                for (int j = 0; j < m.lowHeight(); ++j)
-                    for (int i = 0; i < m.lowWidth(); ++i) {
-                        const bool background = m.lowGuide(i, j).z == 0.0;
-                        low.value.push_back(background ? glm::vec4(0.0f)
-                                                       : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
-                        low.direction.push_back(glm::vec3(0.0f));
-                    }
-                if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
-                const Expected expected = upsample(m, low, full);
-                int refined = 0;
-                CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
-                checkRefinedCount(m, expected, refined);
+    for (const FilterCase setup : filterCases({0, 2}, {0.0f, 0.25f})) {
+        const auto [resolution, taps, refine] = setup;
+        CAPTURE(static_cast<int>(resolution), taps, refine);
+        const IndirectLightSettings s = setup.settings<IndirectLightSettings>();
+        const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
+        Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
+        m.refineThreshold = refine;
+        LowImages low;
+        for (int j = 0; j < m.lowHeight(); ++j)
+            for (int i = 0; i < m.lowWidth(); ++i) {
+                const bool background = m.lowGuide(i, j).z == 0.0;
+                low.value.push_back(background ? glm::vec4(0.0f)
+                                               : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
+                low.direction.push_back(glm::vec3(0.0f));
             }
+        if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+        const Expected expected = upsample(m, low, full);
+        int refined = 0;
+        CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
+        checkRefinedCount(m, expected, refined);
+    }
 }
 
 TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLSL division and half stores allow",
@@ -450,36 +464,23 @@ TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLS
             IndirectLight gi(f.ctx);
             const glm::vec4 expected = indirect ? glm::vec4(kRed, kGreen, kBlue, 256) / 256.0f : glm::vec4(kAo / 256.0f);
             const int channels = indirect ? 3 : 1;
-            for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter})
-                for (const int taps : {1, 3})
-                    for (const float refine : {0.0f, 0.25f}) {
-                        CAPTURE(static_cast<int>(resolution), taps, refine);
-                        Image out;
-                        if (indirect) {
-                            IndirectLightSettings s;
-                            s.resolution = resolution;
-                            s.blurRadius = taps;
-                            s.refineThreshold = refine;
-                            out = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
-                        } else {
-                            AmbientOcclusionSettings s;
-                            s.resolution = resolution;
-                            s.blurRadius = taps;
-                            s.refineThreshold = refine;
-                            out = glRows(readTexture(f.ctx, ao.run(f.view, s).ao));
-                        }
-                        const Model m = f.model(static_cast<int>(resolution), taps, !indirect, indirect ? 0.0f : 1.0f);
-                        int geometry = 0, changed = 0;
-                        for (int y = 0; y < kHeight; ++y)
-                            for (int x = 0; x < kWidth; ++x) {
-                                if (m.isBackground(x, y)) continue;
-                                ++geometry;
-                                bool same = true;
-                                for (int c = 0; c < channels; ++c) same = same && out.at(x, y, c) == expected[c];
-                                changed += same ? 0 : 1;
-                            }
-                        CHECK(geometry > kWidth * kHeight / 2);
-                        CHECK(changed == 0);
+            for (const FilterCase setup : filterCases({1, 3}, {0.0f, 0.25f})) {
+                const auto [resolution, taps, refine] = setup;
+                CAPTURE(static_cast<int>(resolution), taps, refine);
+                const Image out = indirect ? glRows(readTexture(f.ctx, gi.run(f.view, setup.settings<IndirectLightSettings>()).radiance))
+                                           : glRows(readTexture(f.ctx, ao.run(f.view, setup.settings<AmbientOcclusionSettings>()).ao));
+                const Model m = f.model(static_cast<int>(resolution), taps, !indirect, indirect ? 0.0f : 1.0f);
+                int geometry = 0, changed = 0;
+                for (int y = 0; y < kHeight; ++y)
+                    for (int x = 0; x < kWidth; ++x) {
+                        if (m.isBackground(x, y)) continue;
+                        ++geometry;
+                        bool same = true;
+                        for (int c = 0; c < channels; ++c) same = same && out.at(x, y, c) == expected[c];
+                        changed += same ? 0 : 1;
                     }
+                CHECK(geometry > kWidth * kHeight / 2);
+                CHECK(changed == 0);
+            }
         }
 }
