@@ -109,6 +109,20 @@ struct LowImages {
     std::vector<glm::vec3> direction;
 };
 
+// The integrator's low-resolution images as the model sees them: `value` and `direction` at
+// pixels with geometry, `background` and no direction elsewhere.
+LowImages lowImages(const Model& m, glm::vec4 background, const std::function<glm::vec4(int, int)>& value,
+                    const std::function<glm::vec3(int, int)>& direction) {
+    LowImages low;
+    for (int j = 0; j < m.lowHeight(); ++j)
+        for (int i = 0; i < m.lowWidth(); ++i) {
+            const bool geometry = m.lowGuide(i, j).z != 0.0;
+            low.value.push_back(geometry ? value(i, j) : background);
+            low.direction.push_back(geometry ? direction(i, j) : glm::vec3(0.0f));
+        }
+    return low;
+}
+
 // One separable pass: taps along `step`, background pixels left as they are. Directions are
 // averaged as offsets from their own pixel's normal and added to the centre's.
 LowImages blurPass(const Model& m, const LowImages& in, glm::ivec2 step) {
@@ -343,13 +357,8 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
         const AmbientOcclusionView out = ao.run(f.view, s);
         Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
         m.refineThreshold = refine;
-        LowImages low;
-        for (int j = 0; j < m.lowHeight(); ++j)
-            for (int i = 0; i < m.lowWidth(); ++i) {
-                const bool background = m.lowGuide(i, j).z == 0.0;
-                low.value.push_back(glm::vec4(background ? 1.0f : valueOf(i, j, 0)));
-                low.direction.push_back(background ? glm::vec3(0.0f) : toHalf(directionOf(i, j)));
-            }
+        LowImages low = lowImages(m, glm::vec4(1.0f), [](int i, int j) { return glm::vec4(valueOf(i, j, 0)); },
+                                  [](int i, int j) { return toHalf(directionOf(i, j)); });
         if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
         const Expected expected = upsample(m, low, full);
         int refined = 0;
@@ -417,14 +426,9 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
         const Image radiance = glRows(readTexture(f.ctx, gi.run(f.view, s).radiance));
         Model m = f.model(static_cast<int>(resolution), taps, false, 0.0f);
         m.refineThreshold = refine;
-        LowImages low;
-        for (int j = 0; j < m.lowHeight(); ++j)
-            for (int i = 0; i < m.lowWidth(); ++i) {
-                const bool background = m.lowGuide(i, j).z == 0.0;
-                low.value.push_back(background ? glm::vec4(0.0f)
-                                               : glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f));
-                low.direction.push_back(glm::vec3(0.0f));
-            }
+        LowImages low = lowImages(
+            m, glm::vec4(0.0f), [](int i, int j) { return glm::vec4(valueOf(i, j, 0), valueOf(i, j, 1), valueOf(i, j, 2), 1.0f); },
+            [](int, int) { return glm::vec3(0.0f); });
         if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
         const Expected expected = upsample(m, low, full);
         int refined = 0;
