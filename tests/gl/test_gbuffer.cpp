@@ -52,8 +52,6 @@ double relativeError(const glm::dvec3& a, const glm::dvec3& b) { return glm::len
 // ulp of a float value in [0, 1]
 double floatUlp(double v) { return std::nextafter(static_cast<float>(v), 2.0f) - static_cast<float>(v); }
 
-glm::dvec3 texel3(const Image& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
-
 } // namespace
 
 TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (near/far 0.1/1000)", "[gbuffer]") {
@@ -80,7 +78,7 @@ TEST_CASE("View-space positions are reconstructed from depth to 1e-5 relative (n
         for (int x = 0; x < W; ++x) {
             const auto truth = scene.trace(test::pixelRay(camera, x, y, W, H));
             const double d = depth.at(x, y, 0);
-            const glm::dvec3 gpu = texel3(positions, x, y);
+            const glm::dvec3 gpu = test::texel3(positions, x, y);
             if (!truth) {
                 CHECK(d == info.clearDepth);
                 CHECK(positions.at(x, y, 3) == 0.0f);
@@ -144,7 +142,7 @@ TEST_CASE("Orthographic reconstruction is exact to the depth buffer's resolution
         for (int x = 0; x < W; ++x) {
             REQUIRE(positions.at(x, y, 3) == 1.0f);
             const glm::dvec3 ref = viewPositionFromDepth(camera, test::pixelNdc(x, y, W, H), depth.at(x, y, 0));
-            CHECK(glm::length(texel3(positions, x, y) - ref) < bound);
+            CHECK(glm::length(test::texel3(positions, x, y) - ref) < bound);
             const auto t = slope.intersect(test::pixelRay(camera, x, y, W, H).origin, {0, 0, -1});
             REQUIRE(t);
             CHECK(std::abs(ref.z + *t) < bound);
@@ -168,14 +166,14 @@ TEST_CASE("Normals are unit face normals turned toward the camera - background i
     int floorPixels = 0, wallPixels = 0, sky = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
-            const glm::dvec3 n = texel3(normals, x, y);
+            const glm::dvec3 n = test::texel3(normals, x, y);
             if (normals.at(x, y, 3) == 0.0f) {
                 ++sky;
                 CHECK(n == glm::dvec3(0.0));
                 continue;
             }
             CHECK(std::abs(glm::length(n) - 1.0) < 2 * kHalfRelative);
-            const glm::dvec3 p = texel3(positions, x, y);
+            const glm::dvec3 p = test::texel3(positions, x, y);
             CHECK(glm::dot(n, -p) > 0.0);
             const glm::dvec3 up = viewRotation * glm::dvec3(0, 1, 0), towardCamera = viewRotation * glm::dvec3(0, 0, 1);
             if (glm::length(n - up) < 2e-3) ++floorPixels;
@@ -222,7 +220,7 @@ TEST_CASE("Direct radiance follows Lambert's law for directional point and spot 
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             REQUIRE(positions.at(x, y, 3) == 1.0f);
-            const glm::dvec3 p = glm::dvec3(inverseView * glm::dvec4(texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = glm::dvec3(inverseView * glm::dvec4(test::texel3(positions, x, y), 1.0));
             double e;
             if (light.type == LightType::Directional) {
                 e = light.intensity * std::max(0.0, -glm::normalize(glm::dvec3(light.direction)).y);
@@ -337,7 +335,7 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx)
                     if (expected.at(x + dx, y + dy, 3) == 0.0f ||
-                        texel3(expected, x + dx, y + dy) != texel3(expected, x, y))
+                        test::texel3(expected, x + dx, y + dy) != test::texel3(expected, x, y))
                         return false;
             return true;
         };
@@ -346,13 +344,13 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
             for (int x = 0; x < W; ++x) {
                 CHECK(n.at(x, y, 3) == expected.at(x, y, 3));
                 if (expected.at(x, y, 3) == 0.0f) continue;
-                const glm::dvec3 got = texel3(n, x, y);
+                const glm::dvec3 got = test::texel3(n, x, y);
                 // Everywhere: unit length, facing the camera.
                 CHECK(std::abs(glm::length(got) - 1.0) < 2 * kHalfRelative);
-                CHECK(glm::dot(got, -texel3(p, x, y)) >= 0.0);
+                CHECK(glm::dot(got, -test::texel3(p, x, y)) >= 0.0);
                 if (x == 0 || y == 0 || x == W - 1 || y == H - 1 || !sameNormal(x, y)) continue;
                 ++interior;
-                CHECK(glm::length(got - texel3(expected, x, y)) < 4 * kHalfRelative);
+                CHECK(glm::length(got - test::texel3(expected, x, y)) < 4 * kHalfRelative);
             }
         CHECK(interior > W * H / 3);
     }
@@ -361,7 +359,7 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
         std::vector<std::uint8_t> bytes(static_cast<std::size_t>(W * H * 4));
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
-                const glm::dvec3 w = toWorld * texel3(expected, x, y);
+                const glm::dvec3 w = toWorld * test::texel3(expected, x, y);
                 for (int c = 0; c < 3; ++c)
                     bytes[static_cast<std::size_t>(((H - 1 - y) * W + x) * 4 + c)] =
                         static_cast<std::uint8_t>(std::lround((w[c] * 0.5 + 0.5) * 255));
@@ -380,7 +378,7 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
             for (int x = 0; x < W; ++x) {
                 if (expected.at(x, y, 3) == 0.0f) continue;
                 // 8-bit encoding: half a step (1/255) per component.
-                CHECK(glm::length(texel3(n, x, y) - texel3(expected, x, y)) < 2.0 / 255 * std::sqrt(3.0));
+                CHECK(glm::length(test::texel3(n, x, y) - test::texel3(expected, x, y)) < 2.0 / 255 * std::sqrt(3.0));
             }
         glDeleteTextures(1, &tex);
     }
@@ -488,8 +486,8 @@ TEST_CASE("The built-in Cornell box renders its walls with their published colou
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             if (positions.at(x, y, 3) == 0.0f) continue;
-            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(texel3(positions, x, y), 1.0));
-            const glm::dvec3 a = texel3(albedo, x, y);
+            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(test::texel3(positions, x, y), 1.0));
+            const glm::dvec3 a = test::texel3(albedo, x, y);
             // The red wall is x ~ 550 (image left), the green wall x = 0 (image right); the
             // back wall (z = 559.2), floor and ceiling share their edges.
             const bool inside = p.y > 1 && p.y < 547 && p.z < 558;
@@ -558,7 +556,7 @@ TEST_CASE("Area lights - a rectangle matches the view-factor closed form and a s
     const glm::dmat4 toWorld = glm::inverse(glm::dmat4(camera.view));
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
-            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(test::texel3(positions, x, y), 1.0));
             double e;
             if (rect) {
                 e = kPi * light.intensity * rectViewFactor(-0.5, 1.5, -0.75, 0.25, 1.5, p.x, p.z);
@@ -662,7 +660,7 @@ TEST_CASE("Positions from a sloped floor's depth lie within the rasterizer's sub
             double change = 0;
             for (const glm::dvec2 shift : {glm::dvec2(step, 0), glm::dvec2(-step, 0), glm::dvec2(0, step), glm::dvec2(0, -step)})
                 change = std::max(change, std::abs(hitDepth(ndc + shift * glm::dvec2(2.0 / W, 2.0 / H)) - z));
-            const glm::dvec3 p = texel3(positions, x, y);
+            const glm::dvec3 p = test::texel3(positions, x, y);
             const double off = std::abs(glm::dot(normal, p) - offset);
             const double bound = change / std::abs(d.z) * std::abs(glm::dot(normal, d)) + 1e-5 * glm::length(p);
             worstOff = std::max(worstOff, off);

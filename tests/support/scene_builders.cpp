@@ -122,6 +122,8 @@ glm::dvec2 pixelNdc(int x, int y, int width, int height) {
     return {(x + 0.5) / width * 2.0 - 1.0, 1.0 - (y + 0.5) / height * 2.0};
 }
 
+glm::dvec3 texel3(const Image& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+
 ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height) {
     const glm::dvec2 ndc = pixelNdc(x, y, width, height);
     const glm::dmat4 p(camera.projection);

@@ -2,6 +2,7 @@
 // Small scenes built in code for tests with a closed-form answer.
 #include "obscura/camera.hpp"
 #include "obscura/scene.hpp"
+#include "obscura/texture.hpp"
 
 #include <array>
 #include <memory>
@@ -48,5 +49,7 @@ struct ViewRay {
 ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height);
 //! NDC of the centre of pixel (x, y), row 0 at the top.
 glm::dvec2 pixelNdc(int x, int y, int width, int height);
+//! The first three channels of pixel (x, y).
+glm::dvec3 texel3(const Image& image, int x, int y);
 
 } // namespace obscura::test
