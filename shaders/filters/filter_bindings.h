@@ -23,6 +23,7 @@ using ivec4 = glm::ivec4;
 #define FILTER_VALUE_IN_IMAGE 3      // read: the value
 #define FILTER_DIRECTION_IN_IMAGE 4  // read: the direction, with DIRECTION
 #define FILTER_REFINE_SSBO 6         // the pixels to refine (refine_list.glsl), with REFINE
+#define FILTER_MODULATE_UNIT 12      // read: a G-buffer-sized factor of the last step's rgb, with MODULATE
 
 #define FILTER_LOC_STEP 0 // blur: ivec2 pixel step of this pass
 

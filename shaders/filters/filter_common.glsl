@@ -1,7 +1,8 @@
 // What the blur and the upsampling share: the parameter block, the low-resolution images and
 // the guide weights. RGB: the value is rgba16f (else r16f); DIRECTION: a second image of unit
 // vectors (bent normals) filtered with the same weights as offsets from their normals
-// (directionOffset).
+// (directionOffset); MODULATE (with RGB): the last step multiplies each G-buffer pixel's rgb
+// by its own texel of a G-buffer-sized texture (indirect light's albedo, see modulated).
 #include "../common/math.glsl"
 #include "filter_bindings.h"
 
@@ -33,6 +34,22 @@ int filterScale() { return filterParams.sizes.z; }
 bool insideLow(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, filterLowSize())); }
 
 FILTER_VALUE loadValue(ivec2 q) { return FILTER_VALUE_OF(imageLoad(valueIn, q)); }
+
+#ifdef MODULATE
+layout(binding = FILTER_MODULATE_UNIT) uniform sampler2D filterModulate;
+
+// A filtered value times the factor at G-buffer pixel `pixel`. Indirect light is filtered
+// without its albedo, whose texture edges the guide does not see, and gets each pixel's own
+// albedo here: after the blur at full resolution, in the upsampling otherwise.
+// The clamp: the upsampling's quads of odd sizes reach a column or row past the image, which
+// they do not write.
+FILTER_VALUE modulated(ivec2 pixel, FILTER_VALUE v) {
+    const ivec2 texel = min(pixel, textureSize(filterModulate, 0) - 1);
+    return vec4(v.rgb * texelFetch(filterModulate, texel, 0).rgb, v.a);
+}
+#else
+FILTER_VALUE modulated(ivec2 pixel, FILTER_VALUE v) { return v; }
+#endif
 
 #ifdef DIRECTION
 // Directions are filtered as their offsets from the normal of the pixel they belong to, and

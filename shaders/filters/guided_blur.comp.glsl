@@ -4,8 +4,10 @@
 //
 // Background pixels (guide z = 0) are neither read nor written: no tap reads them, so the
 // horizontal pass leaves them out of its temporary, and the vertical pass leaves the value
-// the integrator wrote there.
+// the integrator wrote there. MODULATE: the vertical pass of a full-resolution blur, the
+// last step (filter_common.glsl).
 //! variant: RGB
+//! variant: RGB MODULATE
 //! variant: DIRECTION
 #include "filter_common.glsl"
 
@@ -37,7 +39,7 @@ void main() {
 #endif
         total += w;
     }
-    imageStore(valueOut, pixel, vec4(filterFinish(weightedMean(centre, offsets, total))));
+    imageStore(valueOut, pixel, vec4(filterFinish(modulated(pixel, weightedMean(centre, offsets, total)))));
 #ifdef DIRECTION
     imageStore(directionOut, pixel, vec4(directionFromOffset(c.xyz, offset / total), 1.0));
 #endif

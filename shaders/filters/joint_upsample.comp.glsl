@@ -2,7 +2,8 @@
 // around each G-buffer pixel, weighted bilinearly and by guideWeight against the pixel's own
 // view depth and normal. Where no neighbour is similar, the one nearest in depth is taken
 // (for directions, its offset from its normal, see directionOffset).
-// Background pixels get the background value (and no direction). REFINE: pixels whose
+// Background pixels get the background value (and no direction). MODULATE: each written
+// pixel's value times its own texel of the factor (filter_common.glsl). REFINE: pixels whose
 // similar neighbours carry less than the threshold's share of the bilinear weight are listed
 // for the integrator to compute instead (refine_list.glsl); they are not written here.
 //
@@ -14,6 +15,8 @@
 //! variant: REFINE
 //! variant: DIRECTION REFINE
 //! variant: RGB REFINE
+//! variant: RGB MODULATE
+//! variant: RGB REFINE MODULATE
 #include "../visibility/screen_march.glsl"
 #include "filter_common.glsl"
 #ifdef REFINE
@@ -66,7 +69,7 @@ void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE 
 // voxel_traversal.glsl).
 void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
     const bool weighted = b.total > 1e-6;
-    const FILTER_VALUE blended = filterFinish(weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest);
+    const FILTER_VALUE blended = filterFinish(modulated(pixel, weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest));
     bool inside = all(lessThan(pixel, frameSize())); // odd sizes: the quad's far half is outside
 #ifdef REFINE
     if (inside && !t.background && b.total < filterParams.weights.w && refineAppend(pixel)) inside = false;

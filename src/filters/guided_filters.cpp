@@ -14,10 +14,17 @@ namespace {
 
 GLenum valueFormat(const FilterImages& images) { return images.rgb ? GL_RGBA16F : GL_R16F; }
 
-std::vector<std::string> variant(const FilterImages& images) {
+// The shader variant for the images; `lastStep`: the step that multiplies by
+// images.modulate, which it binds.
+std::vector<std::string> variant(ContextImpl& ctx, const FilterImages& images, bool lastStep) {
     std::vector<std::string> defines;
     if (images.rgb) defines.push_back("RGB");
     if (images.direction) defines.push_back("DIRECTION");
+    if (lastStep && images.modulate) {
+        defines.push_back("MODULATE");
+        ctx.state.bindTexture(ctx, FILTER_MODULATE_UNIT, images.modulate);
+        ctx.state.bindSampler(ctx, FILTER_MODULATE_UNIT, ctx.nearestClampSampler());
+    }
     return defines;
 }
 
@@ -69,10 +76,12 @@ void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const Gui
     const GLuint valueTemp = valueTemp_.ensure(ctx, format, images.size.x, images.size.y, "filters.blur_value");
     const GLuint directionTemp =
         images.direction ? directionTemp_.ensure(ctx, GL_RGBA16F, images.size.x, images.size.y, "filters.blur_direction") : 0;
-    const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images));
-    ctx.gl.UseProgram(program);
     for (int d = 0; d < 2; ++d) { // horizontal into the temporaries, vertical back
         const bool horizontal = d == 0;
+        // At full resolution the vertical pass is the last step.
+        const bool lastStep = !horizontal && images.scale == 1;
+        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(ctx, images, lastStep));
+        ctx.gl.UseProgram(program);
         if (horizontal) bindImages(ctx, images, images.value, images.direction, valueTemp, directionTemp);
         else bindImages(ctx, images, valueTemp, directionTemp, images.value, images.direction);
         ctx.gl.ProgramUniform2i(program, FILTER_LOC_STEP, horizontal ? 1 : 0, horizontal ? 0 : 1);
@@ -85,7 +94,7 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
                              GLuint fullDirection, glm::ivec2 fullSize, const char* passName) {
     PassScope pass(ctx, passName);
     upload(ctx, images, s);
-    std::vector<std::string> defines = variant(images);
+    std::vector<std::string> defines = variant(ctx, images, true);
     if (s.refineThreshold > 0.0f) {
         startRefineList(ctx, fullSize);
         defines.push_back("REFINE");

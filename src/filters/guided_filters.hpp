@@ -33,6 +33,10 @@ struct FilterImages {
     bool rgb = false;
     glm::ivec2 size{0};   //!< low resolution
     int scale = 1;        //!< to the full resolution
+    //! With `rgb`: a texture of the G-buffer's size whose rgb the last step (the upsampling,
+    //! or at full resolution the blur's second pass) multiplies each written pixel's rgb by;
+    //! 0: none. Indirect light's albedo, which the guide does not see.
+    GLuint modulate = 0;
 };
 
 //! Whether a result at 1 / `scale` of the G-buffer's resolution with `taps` of blur is

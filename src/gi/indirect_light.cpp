@@ -140,7 +140,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         d.batches.run(ctx, program, [&] { dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP); });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const FilterImages images{guide, radiance, 0, true, size, scale};
+    const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
     const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold};
     d.filters.blur(ctx, images, filter, "gi.blur");
     IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};

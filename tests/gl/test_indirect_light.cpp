@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -179,6 +180,101 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
                 ++checked;
             }
         CHECK(checked > 200);
+    }
+}
+
+namespace {
+
+// A floor y = 0, x in [-3, 3], z in [-1, 2.9], of square cells of side 0.15 in a checkerboard:
+// the cells of one colour in the first mesh, the others in the second, so that two scenes
+// can differ in the cells' albedo alone.
+std::array<std::shared_ptr<MeshData>, 2> checkerFloor() {
+    constexpr double side = 0.15;
+    std::array<std::shared_ptr<MeshData>, 2> meshes = {std::make_shared<MeshData>(), std::make_shared<MeshData>()};
+    for (int i = 0; i < 40; ++i)
+        for (int k = 0; k < 26; ++k) {
+            MeshData& m = *meshes[(i + k) % 2];
+            const double x = -3.0 + i * side, z = -1.0 + k * side;
+            const auto first = static_cast<std::uint32_t>(m.positions.size());
+            for (const glm::dvec2 c : {glm::dvec2(x, z), {x, z + side}, {x + side, z + side}, {x + side, z}}) {
+                m.positions.emplace_back(c.x, 0.0, c.y);
+                m.normals.emplace_back(0.0f, 1.0f, 0.0f);
+            }
+            m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+        }
+    return meshes;
+}
+
+} // namespace
+
+TEST_CASE("Filtered indirect light takes each pixel's own albedo", "[gi][filters]") {
+    // The filters weigh by depth and normal, which do not see an albedo texture's edges, so
+    // indirect light is filtered without its albedo and multiplied by each G-buffer pixel's
+    // own after the last step. Two scenes of the same geometry, a floor of small cells lit
+    // only by an emissive wall: all cells white, or every other one black. The floor's
+    // albedo changes nothing it receives (its rays leave it upward; unlit, it reflects
+    // nothing), so wherever the cells are white the two results must be the same bits, and
+    // wherever they are black exactly 0, at every resolution, blur and refinement. Multiplied
+    // before the filters, a black cell took light from its white neighbours and a white one
+    // lost it to black ones.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    IndirectLight gi(ctx);
+    const auto cells = checkerFloor();
+    Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
+    scene.materials[0].albedo = glm::vec3(0.0f);
+    scene.materials[0].emission = glm::vec3(2.0f, 1.0f, 0.5f); // the wall
+    Material white, black;
+    white.albedo = glm::vec3(1.0f);
+    black.albedo = glm::vec3(0.0f);
+    scene.materials.push_back(white);
+    scene.materials.push_back(black);
+    for (const auto& mesh : cells) scene.meshes.push_back(Mesh{mesh, glm::mat4(1.0f), 1, "cells"});
+    Scene checkered = scene;
+    checkered.meshes.back().material = 2;
+    constexpr int W = 64, H = 48;
+    const Camera camera = wallCamera(W, H);
+    struct Setup {
+        AoResolution resolution;
+        int taps;
+        float refine;
+    };
+    for (const Setup setup : {Setup{AoResolution::Full, 2, 0.0f}, Setup{AoResolution::Half, 0, 0.0f}, Setup{AoResolution::Half, 2, 0.25f},
+                              Setup{AoResolution::Quarter, 1, 0.0f}, Setup{AoResolution::Quarter, 2, 0.25f}}) {
+        CAPTURE(static_cast<int>(setup.resolution), setup.taps, setup.refine);
+        IndirectLightSettings s;
+        s.radius = 1.0f;
+        s.rays = 64;
+        s.steps = 16;
+        s.resolution = setup.resolution;
+        s.blurRadius = setup.taps;
+        s.refineThreshold = setup.refine;
+        const GBufferView whiteView = gbuffer.render(scene, camera, {W, H, false, {}});
+        const Image allWhite = readTexture(ctx, gi.run(whiteView, s).radiance);
+        const GBufferView checkeredView = gbuffer.render(checkered, camera, {W, H, false, {}});
+        const Image albedo = readTexture(ctx, checkeredView.albedo);
+        const Image positions = readTexture(ctx, gbuffer.positions(checkeredView));
+        const Image result = readTexture(ctx, gi.run(checkeredView, s).radiance);
+        int whiteLit = 0, blackUnderLight = 0, wrong = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (positions.at(x, y, 3) == 0.0f) continue; // the sky (the wall is black: it receives nothing)
+                const bool isWhite = albedo.at(x, y, 0) == 1.0f, isBlack = albedo.at(x, y, 0) == 0.0f;
+                REQUIRE((isWhite || isBlack));
+                bool same = true;
+                for (int c = 0; c < 4; ++c) {
+                    const float expected = isWhite || c == 3 ? allWhite.at(x, y, c) : 0.0f;
+                    same = same && result.at(x, y, c) == expected;
+                }
+                wrong += same ? 0 : 1;
+                whiteLit += isWhite && allWhite.at(x, y, 0) > 0.0f;
+                blackUnderLight += isBlack && allWhite.at(x, y, 0) > 0.0f;
+            }
+        CHECK(wrong == 0);
+        // Enough of both colours under the wall's light for a mix-up to show.
+        CHECK(whiteLit > 100);
+        CHECK(blackUnderLight > 100);
     }
 }
 
