@@ -59,7 +59,10 @@ struct IndirectLightSettings {
     //! Screen: View, Texture or HiZ (as AmbientOcclusionSettings::march; pass "gi.hiz").
     ScreenMarch march = ScreenMarch::View;
     AoResolution resolution = AoResolution::Full;
-    int blurRadius = 0;          //!< geometry-aware separable blur taps each side, [0, 16]
+    //! Geometry-aware separable blur taps each side, [0, 16]. The blur and the upsampling
+    //! filter the incident light alone; each G-buffer pixel's own albedo multiplies it after
+    //! them, so albedo (texture) edges stay sharp.
+    int blurRadius = 0;
     float blurDepthSigma = 0.05f;  //!< as AmbientOcclusionSettings, (0, 1]
     float blurNormalPower = 16.0f; //!< as AmbientOcclusionSettings, [0, 256]
     float refineThreshold = 0.25f; //!< as AmbientOcclusionSettings (pass "gi.refine"), [0, 1]
