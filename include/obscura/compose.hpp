@@ -81,8 +81,9 @@ public:
     Composer& operator=(const Composer&) = delete;
 
     //! Combines and tone maps into a GL_RGBA8 texture of display values (sRGB-encoded when
-    //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.luminance" (Drago with
-    //! an automatic maximum) and "compose.tonemap". Throws Error{InvalidArgument} for
+    //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also
+    //! finds the frame's largest luminance, for Drago with an automatic maximum) and
+    //! "compose.tonemap". Throws Error{InvalidArgument} for enumerators or
     //! settings out of range or inputs of the wrong size or without radiance/albedo.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 

@@ -38,6 +38,13 @@ const char* passName(AoMethod m) {
 }
 
 void validateSettings(const AmbientOcclusionSettings& s) {
+    requireEnumerator(s.method, {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel},
+                      "AmbientOcclusionSettings::method");
+    requireEnumerator(s.falloff,
+                      {ObscuranceFalloff::None, ObscuranceFalloff::Linear, ObscuranceFalloff::Quadratic, ObscuranceFalloff::Smooth},
+                      "AmbientOcclusionSettings::falloff");
+    validateResolution(static_cast<int>(s.resolution), "AmbientOcclusionSettings");
+    validateScreenModes(s.march, s.thicknessMode, "AmbientOcclusionSettings");
     if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
         throw Error(ErrorCode::InvalidArgument,
                     "AmbientOcclusionSettings::radius must be in (0, inf) world units, got " + std::to_string(s.radius));

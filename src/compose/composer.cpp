@@ -18,6 +18,8 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ComposeSettings& s) {
+    requireEnumerator(s.formula, {CombineFormula::Thesis, CombineFormula::Physical}, "ComposeSettings::formula");
+    requireEnumerator(s.toneMapper, {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}, "ComposeSettings::toneMapper");
     requireFinite(s.ambient, "ComposeSettings::ambient");
     for (int c = 0; c < 3; ++c) requireInRange(s.ambient[c], 0.0, 65504.0, "ComposeSettings::ambient", "W/(sr m^2)");
     requireInRange(s.indirectScale, 0.0, 1e6, "ComposeSettings::indirectScale", "");
@@ -131,6 +133,7 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     const TextureInfo info = queryTexture2D(ctx, source.name, "drawToHost source");
     if (info.integer || info.depth)
         throw Error(ErrorCode::InvalidArgument, "drawToHost: the source must be a float or normalized colour texture");
+    requireEnumerator(target.blend, {HostBlend::Overwrite, HostBlend::Multiply}, "HostTarget::blend");
     if (target.width < 1 || target.height < 1)
         throw Error(ErrorCode::InvalidArgument, "HostTarget: width and height must be >= 1 pixel, got " +
                                                     std::to_string(target.width) + "x" + std::to_string(target.height));

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 
 namespace obscura::detail {
@@ -46,6 +47,16 @@ inline void requireInRange(double value, double lo, double hi, const std::string
     if (!(value >= lo && value <= hi))
         throw Error(ErrorCode::InvalidArgument, what + " must be in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]" +
                                                     (unit.empty() ? "" : " " + unit) + ", got " + shortNumber(value));
+}
+
+//! One of the enumerators listed: a value cast from an integer outside them (through the C++
+//! API) would otherwise pick a shader path by accident or divide by a zero scale.
+template <typename E>
+void requireEnumerator(E value, std::initializer_list<E> allowed, const std::string& what) {
+    for (const E e : allowed)
+        if (value == e) return;
+    throw Error(ErrorCode::InvalidArgument,
+                what + " is not one of its enumerators, got " + std::to_string(static_cast<long long>(value)));
 }
 
 //! A render-target size: [1, maxSize] on each axis.

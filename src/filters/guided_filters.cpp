@@ -52,6 +52,12 @@ void validateBlurSettings(int taps, float depthSigma, float normalPower, const s
     requireInRange(normalPower, 0.0, 256.0, owner + "::blurNormalPower", "");
 }
 
+void validateResolution(int scale, const std::string& owner) {
+    if (scale != 1 && scale != 2 && scale != 4)
+        throw Error(ErrorCode::InvalidArgument, owner + "::resolution must be Full, Half or Quarter, got the scale " +
+                                                    std::to_string(scale));
+}
+
 void validateRefineThreshold(float threshold, const std::string& owner) {
     if (!(threshold >= 0.0f && threshold <= 1.0f))
         throw Error(ErrorCode::InvalidArgument, owner + "::refineThreshold must be in [0, 1], got " + std::to_string(threshold));

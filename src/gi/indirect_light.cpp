@@ -27,6 +27,9 @@ namespace {
 using namespace detail;
 
 void validateSettings(const IndirectLightSettings& s) {
+    requireEnumerator(s.method, {GiMethod::Screen, GiMethod::Hybrid}, "IndirectLightSettings::method");
+    validateResolution(static_cast<int>(s.resolution), "IndirectLightSettings");
+    validateScreenModes(s.march, s.thicknessMode, "IndirectLightSettings");
     if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
         throw Error(ErrorCode::InvalidArgument,
                     "IndirectLightSettings::radius must be in (0, inf) world units, got " + std::to_string(s.radius));

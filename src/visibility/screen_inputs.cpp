@@ -2,6 +2,7 @@
 
 #include "core/context_impl.hpp"
 #include "core/texture_info.hpp"
+#include "core/validate.hpp"
 #include "obscura/error.hpp"
 #include "shaders/visibility/visibility_bindings.h"
 
@@ -45,6 +46,11 @@ void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled) {
     bindNearest(ctx, VIS_DEPTH_UNIT, view.depth.name);
     bindNearest(ctx, VIS_NORMAL_UNIT, view.normal.name);
     if (peeled) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
+}
+
+void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner) {
+    requireEnumerator(march, {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}, owner + "::march");
+    requireEnumerator(thickness, {ScreenThickness::Constant, ScreenThickness::DepthPeeling}, owner + "::thicknessMode");
 }
 
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness) {

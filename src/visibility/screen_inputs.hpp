@@ -22,5 +22,8 @@ void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBuffe
 void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
 //! The defines that make screen_march.glsl march with `march` and `thickness`.
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness);
+//! Throws Error{InvalidArgument} for a march or thickness mode outside their enumerators;
+//! `owner` names the settings struct.
+void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner);
 
 } // namespace obscura::detail

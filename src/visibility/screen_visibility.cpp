@@ -26,6 +26,7 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ScreenTraceSettings& s) {
+    validateScreenModes(s.march, s.thicknessMode, "ScreenTraceSettings");
     requireInRange(s.steps, 1, 4096, "ScreenTraceSettings::steps", "samples");
     if (!(s.jitter >= 0.0f && s.jitter < 1.0f))
         throw Error(ErrorCode::InvalidArgument,

@@ -1,6 +1,7 @@
 #include "voxel/voxel_queries.hpp"
 
 #include "core/context_impl.hpp"
+#include "core/validate.hpp"
 #include "obscura/error.hpp"
 #include "shaders/voxel/voxel_bindings.h"
 
@@ -10,6 +11,8 @@
 namespace obscura::detail {
 
 void requireVoxelGrid(const VoxelGrid* grid, VoxelTraversal traversal, const std::string& owner) {
+    requireEnumerator(traversal, {VoxelTraversal::March, VoxelTraversal::Exact, VoxelTraversal::Hierarchical},
+                      owner + "::voxelTraversal");
     if (!grid || grid->texture == 0)
         throw Error(ErrorCode::InvalidArgument, "the voxel-space method needs " + owner +
                                                     "::voxels, a grid from Voxelizer::voxelize of the same scene");

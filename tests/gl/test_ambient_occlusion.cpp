@@ -554,7 +554,15 @@ TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-i
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.rays = 7; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.cosineWeighted = false; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.falloff = ObscuranceFalloff::Linear; },
-             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Voxel; }}) {
+             [](AmbientOcclusionSettings& s) { s.method = AoMethod::Voxel; },
+             // Integers outside the enumerators (a division by a zero scale, an odd one the
+             // upsampling cannot take, shader paths picked by accident).
+             [](AmbientOcclusionSettings& s) { s.resolution = static_cast<AoResolution>(0); },
+             [](AmbientOcclusionSettings& s) { s.resolution = static_cast<AoResolution>(3); },
+             [](AmbientOcclusionSettings& s) { s.method = static_cast<AoMethod>(4); },
+             [](AmbientOcclusionSettings& s) { s.falloff = static_cast<ObscuranceFalloff>(-1); },
+             [](AmbientOcclusionSettings& s) { s.march = static_cast<ScreenMarch>(3); },
+             [](AmbientOcclusionSettings& s) { s.thicknessMode = static_cast<ScreenThickness>(2); }}) {
         AmbientOcclusionSettings s;
         change(s);
         CHECK_THROWS_AS(f.ao.run(f.view, s), Error);

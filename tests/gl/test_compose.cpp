@@ -187,6 +187,7 @@ TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour a
     CHECK(test::drainGlErrors().empty());
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 0, 10}), Error);
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {12345, 0, 0, 10, 10}), Error);
+    CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 10, 10, static_cast<HostBlend>(2)}), Error);
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &color);
 }
@@ -197,7 +198,9 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size", "[compose
     for (auto change : std::vector<void (*)(ComposeSettings&)>{
              [](ComposeSettings& s) { s.exposure = 0.0f; }, [](ComposeSettings& s) { s.gamma = 5.0f; },
              [](ComposeSettings& s) { s.ambient.x = -1.0f; }, [](ComposeSettings& s) { s.dragoBias = 0.1f; },
-             [](ComposeSettings& s) { s.dragoMaxLuminance = NAN; }}) {
+             [](ComposeSettings& s) { s.dragoMaxLuminance = NAN; },
+             [](ComposeSettings& s) { s.formula = static_cast<CombineFormula>(2); },
+             [](ComposeSettings& s) { s.toneMapper = static_cast<ToneMapper>(3); }}) {
         ComposeSettings s;
         change(s);
         CHECK_THROWS_AS(f.composer.compose({f.view, {}, {}}, s), Error);

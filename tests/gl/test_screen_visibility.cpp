@@ -290,6 +290,9 @@ TEST_CASE("Screen visibility rejects bad settings and survives NaN segments", "[
     bad = s;
     bad.thicknessMode = ScreenThickness::DepthPeeling; // this G-buffer has one layer
     CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
+    bad = s;
+    bad.march = static_cast<ScreenMarch>(3); // an integer outside the enumerators
+    CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
 
     const float nan = std::nanf("");
     const std::vector<ScreenSegment> broken = {{{nan, 0, -500}, {0, 0, -900}}, {{0, 0, -500}, {0, INFINITY, -900}}};
