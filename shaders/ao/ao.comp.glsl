@@ -3,10 +3,12 @@
 // (view normal, view z) that the blur and the upsampling weigh with. REFINE: one invocation
 // per G-buffer pixel the upsampling listed (refine_list.glsl), computed as at full
 // resolution and written into the full-resolution images.
+//! Every permutation the module compiles (validated by glslangValidator at build time):
 //! variant: METHOD=0 SCREEN_MARCH=0
-//! variant: METHOD=0 SCREEN_MARCH=1
-//! variant: METHOD=0 SCREEN_MARCH=2
 //! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=1
+//! variant: METHOD=0 SCREEN_MARCH=1 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=2
 //! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED
 //! variant: METHOD=1 SCREEN_MARCH=0
 //! variant: METHOD=1 SCREEN_MARCH=0 SCREEN_PEELED
@@ -15,8 +17,16 @@
 //! variant: METHOD=3 TRAVERSAL=1
 //! variant: METHOD=3 TRAVERSAL=2
 //! variant: METHOD=0 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED REFINE
+//! variant: METHOD=0 SCREEN_MARCH=1 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=1 SCREEN_PEELED REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED REFINE
 //! variant: METHOD=1 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=1 SCREEN_MARCH=0 SCREEN_PEELED REFINE
 //! variant: METHOD=2 REFINE
+//! variant: METHOD=3 TRAVERSAL=0 REFINE
+//! variant: METHOD=3 TRAVERSAL=1 REFINE
 //! variant: METHOD=3 TRAVERSAL=2 REFINE
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"

@@ -2,15 +2,24 @@
 // G-buffer pixel of its block; when the result is filtered, also writes the guide for the
 // filters. REFINE: one invocation per G-buffer pixel the upsampling listed
 // (refine_list.glsl), computed as at full resolution into the full-resolution image.
+//! Every permutation the module compiles (validated by glslangValidator at build time):
 //! variant: METHOD=0 SCREEN_MARCH=0
-//! variant: METHOD=0 SCREEN_MARCH=1
-//! variant: METHOD=0 SCREEN_MARCH=2
 //! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=1
+//! variant: METHOD=0 SCREEN_MARCH=1 SCREEN_PEELED
+//! variant: METHOD=0 SCREEN_MARCH=2
 //! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED
 //! variant: METHOD=1 TRAVERSAL=0
 //! variant: METHOD=1 TRAVERSAL=1
 //! variant: METHOD=1 TRAVERSAL=2
 //! variant: METHOD=0 SCREEN_MARCH=0 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED REFINE
+//! variant: METHOD=0 SCREEN_MARCH=1 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=1 SCREEN_PEELED REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED REFINE
+//! variant: METHOD=1 TRAVERSAL=0 REFINE
+//! variant: METHOD=1 TRAVERSAL=1 REFINE
 //! variant: METHOD=1 TRAVERSAL=2 REFINE
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
