@@ -24,6 +24,8 @@ public:
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);
 
     GBuffer& gbuffer() { return gbuffer_; }
+    //! Whether the direct light is shadowed where the scene's lights cast shadows ("shadows").
+    bool shadowed() const { return enabled_; }
     const GBufferView& view() const { return view_; }
     //! GPU memory of the G-buffer and of the shadow maps, bytes.
     std::vector<std::pair<std::string, std::size_t>> memory() const {

@@ -231,6 +231,30 @@ if(NOT report MATCHES "## Voxelizer" OR NOT report MATCHES "## Visibility in vox
   message(FATAL_ERROR "results.md lacks the voxelizer sections")
 endif()
 
+# Indirect light's own error ("indirect_unshadowed": against the gathering of unshadowed light)
+# is measured only when the G-buffer it gathers is unshadowed too (shadows=0); with the default
+# shadow-mapped G-buffer only "indirect", against the true one-bounce light.
+foreach(shadows 1 0)
+  run("${OBSCURA}" bench --scene cornell --size 8x8 --frames 20 --spp 4 --techniques gi.screen --presets low
+      --set shadows=${shadows} --out "${WORK_DIR}/bench_gi_${shadows}")
+  file(READ "${WORK_DIR}/bench_gi_${shadows}/bench.json" bench)
+  string(JSON rowCount LENGTH "${bench}" rows)
+  set(quantities "")
+  math(EXPR last "${rowCount} - 1")
+  foreach(i RANGE ${last})
+    string(JSON quantity GET "${bench}" rows ${i} quantity)
+    list(APPEND quantities ${quantity})
+  endforeach()
+  if(shadows)
+    set(expected "indirect")
+  else()
+    set(expected "indirect;indirect_unshadowed")
+  endif()
+  if(NOT quantities STREQUAL expected)
+    message(FATAL_ERROR "gi.screen with shadows=${shadows} measured ${quantities}, expected ${expected}")
+  endif()
+endforeach()
+
 # --set overrides every preset's settings (here the maps' size: six 256^2 32F layers, plus the
 # lights' records, a few KiB; the low preset's own 512^2 maps would be four times as much),
 # and --no-cache leaves no reference files behind.

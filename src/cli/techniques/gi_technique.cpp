@@ -81,13 +81,19 @@ public:
     }
 
     std::vector<Measurement> measurements() override {
-        // The G-buffer's direct light has no shadows yet: "indirect" is the error against the
-        // true one-bounce light, "indirect_unshadowed" against the same gathering of the
-        // unshadowed direct light the technique is given (its own error).
+        // "indirect": against the true one-bounce light (with shadows=0 that includes the
+        // shadows the gathered light lacks). "indirect_unshadowed", only with shadows=0:
+        // against the gathering of the same unshadowed direct light the technique is given,
+        // its own error. With shadows the G-buffer's light is shadowed, and "indirect" is that
+        // error plus the shadow maps' own.
         const Image radiance = rgbOf(readTexture(ctx_, result_.radiance));
-        reference::IndirectLight unshadowed{settings_.radius};
-        unshadowed.directVisibility = false;
-        return {{"indirect", radiance, reference::IndirectLight{settings_.radius}}, {"indirect_unshadowed", radiance, unshadowed}};
+        std::vector<Measurement> out = {{"indirect", radiance, reference::IndirectLight{settings_.radius}}};
+        if (!lit_.shadowed()) {
+            reference::IndirectLight unshadowed{settings_.radius};
+            unshadowed.directVisibility = false;
+            out.push_back({"indirect_unshadowed", radiance, unshadowed});
+        }
+        return out;
     }
 
 private:
