@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 using namespace obscura;
@@ -23,9 +24,11 @@ struct ScreenFixture {
     GBufferView view;
     Image positions, normals; // view space; positions' alpha = geometry
 
-    ScreenFixture(const std::string& sceneName, int width, int height, int depthLayers = 1) {
+    //! cameraOf: the camera from the scene's own spec (default: as makeCamera gives it).
+    ScreenFixture(const std::string& sceneName, int width, int height, int depthLayers = 1,
+                  const std::function<Camera(const assets::CameraSpec&)>& cameraOf = {}) {
         const assets::LoadedScene s = assets::builtinScene(sceneName);
-        const Camera camera = assets::makeCamera(s.camera, width, height);
+        const Camera camera = cameraOf ? cameraOf(s.camera) : assets::makeCamera(s.camera, width, height);
         GBufferSettings settings{width, height, true, {}}; // lit: indirect light gathers it
         settings.depthLayers = depthLayers;
         view = gbuffer.render(s.scene, camera, settings);
@@ -105,33 +108,53 @@ TEST_CASE("Texture-space and view-space marching classify the same samples alike
 }
 
 TEST_CASE("Hi-Z finds exactly the first hidden sample of the texture-space march with fewer fetches", "[visibility]") {
-    ScreenFixture f("cornell", 80, 64);
-    std::vector<ScreenSegment> segments = f.surfaceSegments(3000, 600.0f, 11);
-    // Segments from anywhere: outside the image, behind the camera, across the near plane.
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> coord(-2000.0f, 2000.0f);
-    for (int i = 0; i < 1000; ++i)
-        segments.push_back({{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)}});
-    for (const int steps : {8, 64, 512}) {
-        ScreenTraceSettings s;
-        s.steps = steps;
-        s.thickness = 30.0f;
-        s.march = ScreenMarch::Texture;
-        const auto texture = f.visibility.trace(f.view, segments, s);
-        s.march = ScreenMarch::HiZ;
-        const auto hiz = f.visibility.trace(f.view, segments, s);
-        std::uint64_t textureFetches = 0, hizFetches = 0;
-        for (std::size_t i = 0; i < segments.size(); ++i) {
-            textureFetches += texture[i].fetches;
-            hizFetches += hiz[i].fetches;
+    // In every projection the pyramid's bounds must hold: its level 0 bounds the view z of a
+    // pixel's piece of surface from the depth (perspective) or along parallel rays
+    // (orthographic), whichever way depth runs (reversed, infinite far plane).
+    constexpr int W = 80, H = 64;
+    const std::pair<const char*, std::function<Camera(const assets::CameraSpec&)>> projections[] = {
+        {"perspective", {}},
+        {"reversed-Z, infinite far", [](const assets::CameraSpec& c) {
+             return Camera::perspective(c.lookAt, glm::radians(c.fovyDegrees), float(W) / H, c.nearPlane, INFINITY,
+                                        DepthMode::Reversed);
+         }},
+        {"orthographic, zero to one", [](const assets::CameraSpec& c) {
+             return Camera::orthographic(c.lookAt, 330.0f, float(W) / H, c.nearPlane, c.farPlane, DepthMode::StandardZeroToOne);
+         }},
+        {"orthographic, reversed", [](const assets::CameraSpec& c) {
+             return Camera::orthographic(c.lookAt, 330.0f, float(W) / H, c.nearPlane, c.farPlane, DepthMode::Reversed);
+         }},
+    };
+    for (const auto& [name, cameraOf] : projections) {
+        CAPTURE(name);
+        ScreenFixture f("cornell", W, H, 1, cameraOf);
+        std::vector<ScreenSegment> segments = f.surfaceSegments(3000, 600.0f, 11);
+        // Segments from anywhere: outside the image, behind the camera, across the near plane.
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> coord(-2000.0f, 2000.0f);
+        for (int i = 0; i < 1000; ++i)
+            segments.push_back({{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)}});
+        for (const int steps : {8, 64, 512}) {
+            ScreenTraceSettings s;
+            s.steps = steps;
+            s.thickness = 30.0f;
+            s.march = ScreenMarch::Texture;
+            const auto texture = f.visibility.trace(f.view, segments, s);
+            s.march = ScreenMarch::HiZ;
+            const auto hiz = f.visibility.trace(f.view, segments, s);
+            std::uint64_t textureFetches = 0, hizFetches = 0;
+            for (std::size_t i = 0; i < segments.size(); ++i) {
+                textureFetches += texture[i].fetches;
+                hizFetches += hiz[i].fetches;
+            }
+            INFO(steps << " steps: " << hitCount(texture) << " hits; fetches " << textureFetches << " texture-space, "
+                       << hizFetches << " Hi-Z");
+            CHECK(hitCount(texture) > segments.size() / 10);
+            CHECK(differingSamples(texture, hiz) == 0);
+            // Where rays run far past surfaces the pyramid skips runs of samples; with a few
+            // samples per pixel the saving must show (with 8 steps it need not).
+            if (steps >= 64) CHECK(hizFetches < textureFetches);
         }
-        INFO(steps << " steps: " << hitCount(texture) << " hits; fetches " << textureFetches << " texture-space, "
-                   << hizFetches << " Hi-Z");
-        CHECK(hitCount(texture) > segments.size() / 10);
-        CHECK(differingSamples(texture, hiz) == 0);
-        // Where rays run far past surfaces the pyramid skips runs of samples; with a few
-        // samples per pixel the saving must show (with 8 steps it need not).
-        if (steps >= 64) CHECK(hizFetches < textureFetches);
     }
 }
 
