@@ -519,20 +519,27 @@ TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orth
         int width, height;
         DepthMode mode;
         bool infiniteFar, orthographic;
+        // 1400: the far plane cuts through the box at z = 200 of its 0..559 and through the
+        // short block, so pixels of them lie at the far plane, next to clipped ones.
+        float farPlane = 5000.0f;
     };
     for (const View& v : {View{1, 1, DepthMode::Standard, false, false}, View{37, 23, DepthMode::Standard, false, false},
                           View{23, 41, DepthMode::Reversed, false, false}, View{40, 30, DepthMode::Reversed, true, false},
                           View{33, 33, DepthMode::StandardZeroToOne, false, true},
-                          View{30, 20, DepthMode::Reversed, false, true}}) {
-        CAPTURE(v.width, v.height, static_cast<int>(v.mode), v.infiniteFar, v.orthographic);
+                          View{30, 20, DepthMode::Reversed, false, true},
+                          View{37, 29, DepthMode::Standard, false, false, 1400.0f},
+                          View{29, 31, DepthMode::Reversed, false, false, 1400.0f},
+                          View{31, 27, DepthMode::StandardZeroToOne, false, true, 1400.0f}}) {
+        CAPTURE(v.width, v.height, static_cast<int>(v.mode), v.infiniteFar, v.orthographic, v.farPlane);
         const float aspect = float(v.width) / float(v.height);
         // Looking out of the box's open side too, so the sky (background) is in view.
         const LookAt look{{278, 273, -1200}, {278, 273, 0}, {0, 1, 0}};
-        const Camera camera = v.orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, 5000.0f, v.mode)
+        const Camera camera = v.orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, v.farPlane, v.mode)
                                              : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f,
-                                                                   v.infiniteFar ? INFINITY : 5000.0f, v.mode);
+                                                                   v.infiniteFar ? INFINITY : v.farPlane, v.mode);
         f.render(cornell.scene, camera, v.width, v.height, 2); // a back layer for depth peeling
-        if (!v.orthographic && v.width * v.height > 100) {
+        if (v.farPlane < 2000.0f) CHECK_FALSE(f.geometry(v.width / 2, v.height / 2)); // the tall block and the back wall are cut off
+        if (!v.orthographic && v.width * v.height > 100 && v.farPlane > 2000.0f) {
             // The back wall faces the camera head-on: view normals of exactly (0, 0, 1), where
             // a tangent frame built by crossing with the z axis degenerates.
             const Image normals = readTexture(f.ctx, f.view.normal);

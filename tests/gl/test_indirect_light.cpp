@@ -627,16 +627,21 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
     Voxelizer voxelizer(ctx);
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     const LookAt look{{278, 273, -800}, {278, 273, 0}, {0, 1, 0}};
-    // The box seen through its open side with sky around it (1 x 1: the box only).
+    // The box seen through its open side with sky around it (1 x 1: the box only); far 1000:
+    // the far plane cuts through the box at z = 200 of its 0..559 and through the short block.
     for (auto [width, height, orthographic, mode, far] : {std::tuple{1, 1, false, DepthMode::Standard, 5000.0f},
                                                          std::tuple{37, 23, false, DepthMode::Reversed, 5000.0f},
                                                          std::tuple{40, 30, false, DepthMode::Reversed, INFINITY},
-                                                         std::tuple{24, 31, true, DepthMode::StandardZeroToOne, 5000.0f}}) {
+                                                         std::tuple{24, 31, true, DepthMode::StandardZeroToOne, 5000.0f},
+                                                         std::tuple{33, 25, false, DepthMode::Standard, 1000.0f},
+                                                         std::tuple{27, 29, true, DepthMode::Reversed, 1000.0f}}) {
         CAPTURE(width, height, orthographic, far);
         const float aspect = float(width) / float(height);
         const Camera camera = orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, far, mode)
                                            : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f, far, mode);
         const GBufferView view = gbuffer.render(cornell.scene, camera, {width, height, true, {}});
+        if (far < 2000.0f) // the tall block and the back wall are cut off
+            CHECK(readTexture(ctx, gbuffer.positions(view)).at(width / 2, height / 2, 3) == 0.0f);
         for (GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
             IndirectLightSettings s;
             s.method = method;
