@@ -389,15 +389,19 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
     constexpr double radius = 1.8; // > sqrt(h^2 + (a + 0.4)^2): covers the disc from rho < 0.4
     constexpr int rays = 64, steps = 256;
     constexpr double thickness = 0.01; // >= radius / steps: the first sample past the disc is inside
-    // Voxels: grids of 128 and 512 columns and slices (the presets' low and high), whose
-    // window narrows with the voxel side.
+    // The ray march with view-space samples and with texture-space ones (the same points up
+    // to rounding, so the same window) and Hi-Z (exactly the texture-space march's first
+    // hit); voxels: grids of 128 and 512 columns and slices (the presets' low and high),
+    // whose window narrows with the voxel side.
     struct Run {
         AoMethod method;
         int resolution;
+        ScreenMarch march = ScreenMarch::View;
     };
-    for (const Run run : {Run{AoMethod::RayMarch, 0}, Run{AoMethod::Voxel, 128}, Run{AoMethod::Voxel, 512}}) {
+    for (const Run run : {Run{AoMethod::RayMarch, 0}, Run{AoMethod::RayMarch, 0, ScreenMarch::Texture},
+                          Run{AoMethod::RayMarch, 0, ScreenMarch::HiZ}, Run{AoMethod::Voxel, 128}, Run{AoMethod::Voxel, 512}}) {
         const AoMethod method = run.method;
-        CAPTURE(nameOf(method), run.resolution);
+        CAPTURE(nameOf(method), run.resolution, static_cast<int>(run.march));
         VoxelizerSettings voxels;
         voxels.resolution = std::max(run.resolution, 128);
         voxels.targets = voxels.resolution / 128;
@@ -407,6 +411,7 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
         const double voxelSide = 4.0 / voxels.resolution, lift = std::sqrt(3.0) * voxelSide; // the largest side
         AmbientOcclusionSettings s;
         s.method = method;
+        s.march = run.march;
         s.radius = static_cast<float>(radius);
         s.rays = rays;
         s.steps = steps;
