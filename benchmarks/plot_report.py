@@ -22,9 +22,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def measures_own_error(row):
-    """False for an "indirect_unshadowed" row of a shadowed G-buffer: runs before the bench
-    emitted that quantity only with shadows=0 compared a shadowed gathering with the unshadowed
-    reference, which is not the method's own error it was meant to be."""
+    """False for an "indirect_unshadowed" row of a shadowed G-buffer. Before the bench emitted it
+    only with shadows=0, runs compared a shadowed gathering with the unshadowed reference, which
+    is not the method's own error the quantity stands for."""
     return row["quantity"] != "indirect_unshadowed" or row.get("settings", {}).get("shadows") in ("0", "false", "off")
 
 

@@ -109,9 +109,9 @@ public:
     AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
 
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
-    //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range, a
-    //! G-buffer without depth or normal (or without backDepth for DepthPeeling), or the Voxel
-    //! method without a grid. The view stays valid until the next run.
+    //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
+    //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
+    //! DepthPeeling), or the Voxel method without a grid. The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     std::size_t memoryBytes() const;

@@ -7,8 +7,8 @@
 //   directions of L at the first hit y within the radius,
 // where L is the G-buffer's direct radiance: emission and the lights, shadowed where
 // GBufferSettings::shadows has maps for them (the bench's "indirect" compares with the
-// reference's shadowed hits; "indirect_unshadowed" with the gathering of unshadowed light,
-// the method's own error when the G-buffer is rendered without shadows). The radiance
+// reference's shadowed hits; "indirect_unshadowed", measured only with `--set shadows=0`,
+// with the gathering of unshadowed light: the method's own error). The radiance
 // at a hit is read from the screen, so only hits the camera sees, on their visible side,
 // contribute; others (hidden, behind the image border, seen from behind) count as dark. The
 // ray must go into the surface it reads from the front, and cross its tangent plane no
@@ -84,7 +84,7 @@ public:
 
     //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
     //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
-    //! out of range, a G-buffer without depth, normal, albedo or direct radiance (adopted host
+    //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct radiance (adopted host
     //! buffers have no radiance to gather), without backDepth for DepthPeeling, or the hybrid
     //! method without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);

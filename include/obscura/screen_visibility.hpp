@@ -69,7 +69,7 @@ public:
 
     //! Traces view-space segments against the G-buffer's depth (passes "visibility.hiz" for
     //! the pyramid and "visibility.trace"). Throws Error{InvalidArgument} for settings out of
-    //! range, a G-buffer without depth or normals, or DepthPeeling without a back layer.
+    //! range (enumerators included), a G-buffer without depth or normals, or DepthPeeling without a back layer.
     std::vector<ScreenHit> trace(const GBufferView& view, const std::vector<ScreenSegment>& segments,
                                  const ScreenTraceSettings& settings);
     //! Whether each view-space point is hidden (screenHidden, with the settings' thickness).

@@ -43,7 +43,8 @@ void validateSettings(const AmbientOcclusionSettings& s) {
     requireEnumerator(s.falloff,
                       {ObscuranceFalloff::None, ObscuranceFalloff::Linear, ObscuranceFalloff::Quadratic, ObscuranceFalloff::Smooth},
                       "AmbientOcclusionSettings::falloff");
-    validateResolution(static_cast<int>(s.resolution), "AmbientOcclusionSettings");
+    requireEnumerator(s.resolution, {AoResolution::Full, AoResolution::Half, AoResolution::Quarter},
+                      "AmbientOcclusionSettings::resolution");
     validateScreenModes(s.march, s.thicknessMode, "AmbientOcclusionSettings");
     if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
         throw Error(ErrorCode::InvalidArgument,

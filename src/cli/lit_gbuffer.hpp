@@ -24,7 +24,8 @@ public:
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);
 
     GBuffer& gbuffer() { return gbuffer_; }
-    //! Whether the direct light is shadowed where the scene's lights cast shadows ("shadows").
+    //! Whether the direct light, when the G-buffer computes it, is shadowed where the scene's
+    //! lights cast shadows (the "shadows" setting).
     bool shadowed() const { return enabled_; }
     const GBufferView& view() const { return view_; }
     //! GPU memory of the G-buffer and of the shadow maps, bytes.

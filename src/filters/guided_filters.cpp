@@ -14,18 +14,20 @@ namespace {
 
 GLenum valueFormat(const FilterImages& images) { return images.rgb ? GL_RGBA16F : GL_R16F; }
 
-// The shader variant for the images; `lastStep`: the step that multiplies by
-// images.modulate, which it binds.
-std::vector<std::string> variant(ContextImpl& ctx, const FilterImages& images, bool lastStep) {
+// The shader variant for the images; `lastStep`: the step that multiplies by images.modulate.
+std::vector<std::string> variant(const FilterImages& images, bool lastStep) {
     std::vector<std::string> defines;
     if (images.rgb) defines.push_back("RGB");
     if (images.direction) defines.push_back("DIRECTION");
-    if (lastStep && images.modulate) {
-        defines.push_back("MODULATE");
-        ctx.state.bindTexture(ctx, FILTER_MODULATE_UNIT, images.modulate);
-        ctx.state.bindSampler(ctx, FILTER_MODULATE_UNIT, ctx.nearestClampSampler());
-    }
+    if (lastStep && images.modulate) defines.push_back("MODULATE");
     return defines;
+}
+
+// The factor the last step multiplies by (MODULATE), if any.
+void bindModulation(ContextImpl& ctx, const FilterImages& images) {
+    if (!images.modulate) return;
+    ctx.state.bindTexture(ctx, FILTER_MODULATE_UNIT, images.modulate);
+    ctx.state.bindSampler(ctx, FILTER_MODULATE_UNIT, ctx.nearestClampSampler());
 }
 
 void bindImage(ContextImpl& ctx, int unit, GLuint texture, GLenum access, GLenum format) {
@@ -50,12 +52,6 @@ void validateBlurSettings(int taps, float depthSigma, float normalPower, const s
     if (!(depthSigma > 0.0f && depthSigma <= 1.0f))
         throw Error(ErrorCode::InvalidArgument, owner + "::blurDepthSigma must be in (0, 1], got " + std::to_string(depthSigma));
     requireInRange(normalPower, 0.0, 256.0, owner + "::blurNormalPower", "");
-}
-
-void validateResolution(int scale, const std::string& owner) {
-    if (scale != 1 && scale != 2 && scale != 4)
-        throw Error(ErrorCode::InvalidArgument, owner + "::resolution must be Full, Half or Quarter, got the scale " +
-                                                    std::to_string(scale));
 }
 
 void validateRefineThreshold(float threshold, const std::string& owner) {
@@ -86,7 +82,8 @@ void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const Gui
         const bool horizontal = d == 0;
         // At full resolution the vertical pass is the last step.
         const bool lastStep = !horizontal && images.scale == 1;
-        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(ctx, images, lastStep));
+        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images, lastStep));
+        if (lastStep) bindModulation(ctx, images);
         ctx.gl.UseProgram(program);
         if (horizontal) bindImages(ctx, images, images.value, images.direction, valueTemp, directionTemp);
         else bindImages(ctx, images, valueTemp, directionTemp, images.value, images.direction);
@@ -100,7 +97,8 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
                              GLuint fullDirection, glm::ivec2 fullSize, const char* passName) {
     PassScope pass(ctx, passName);
     upload(ctx, images, s);
-    std::vector<std::string> defines = variant(ctx, images, true);
+    std::vector<std::string> defines = variant(images, true);
+    bindModulation(ctx, images);
     if (s.refineThreshold > 0.0f) {
         startRefineList(ctx, fullSize);
         defines.push_back("REFINE");

@@ -28,7 +28,8 @@ using namespace detail;
 
 void validateSettings(const IndirectLightSettings& s) {
     requireEnumerator(s.method, {GiMethod::Screen, GiMethod::Hybrid}, "IndirectLightSettings::method");
-    validateResolution(static_cast<int>(s.resolution), "IndirectLightSettings");
+    requireEnumerator(s.resolution, {AoResolution::Full, AoResolution::Half, AoResolution::Quarter},
+                      "IndirectLightSettings::resolution");
     validateScreenModes(s.march, s.thicknessMode, "IndirectLightSettings");
     if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
         throw Error(ErrorCode::InvalidArgument,

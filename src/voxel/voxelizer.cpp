@@ -7,6 +7,7 @@
 #include "core/segment_batch.hpp"
 #include "core/shader_library.hpp"
 #include "core/validate.hpp"
+#include "voxel/voxel_queries.hpp"
 #include "obscura/context.hpp"
 #include "shaders/voxel/voxel_bindings.h"
 
@@ -361,14 +362,13 @@ std::vector<VoxelHit> Voxelizer::trace(const std::vector<VoxelSegment>& segments
     auto& d = *impl_;
     if (!d.built) throw Error(ErrorCode::InvalidState, "Voxelizer::trace: voxelize a scene first");
     requireInRange(settings.marchSteps, 1, 4096, "TraversalSettings::marchSteps", "samples");
+    requireEnumerator(settings.method, {VoxelTraversal::March, VoxelTraversal::Exact, VoxelTraversal::Hierarchical},
+                      "TraversalSettings::method");
     if (settings.method == VoxelTraversal::Hierarchical && d.grid.levels == 0)
         throw Error(ErrorCode::InvalidState, "hierarchical traversal needs the octree: VoxelizerSettings::octree = true");
     std::vector<VoxelHit> hits(segments.size());
     if (segments.empty()) return hits;
-    const int method = settings.method == VoxelTraversal::March ? VOXEL_METHOD_MARCH
-                       : settings.method == VoxelTraversal::Exact ? VOXEL_METHOD_EXACT
-                                                                   : VOXEL_METHOD_HIERARCHICAL;
-    const std::vector<glm::uvec4> raw = d.runQueries(segments, method, settings);
+    const std::vector<glm::uvec4> raw = d.runQueries(segments, voxelTraversalCode(settings.method), settings);
     for (std::size_t i = 0; i < raw.size(); ++i) {
         VoxelHit& h = hits[i];
         h.hit = raw[i].x != 0;

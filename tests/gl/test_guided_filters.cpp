@@ -37,9 +37,9 @@ vec3 filterTestDirection(ivec2 q) {
 }
 )";
 
-// The filters' last step multiplies indirect light by each pixel's albedo (MODULATE), whose
-// sRGB decoding in the shader the model does not repeat exactly: left out where the filters'
-// arithmetic is checked.
+// The filters' last step multiplies indirect light by each pixel's albedo (MODULATE). The
+// model has no albedo (and could not repeat the texture unit's sRGB decoding exactly): the
+// step is left out where the filters' arithmetic is checked.
 const test::ShaderEdit kNoModulation{"filters/filter_common.glsl",
                                      "return vec4(v.rgb * texelFetch(filterModulate, texel, 0).rgb, v.a);", "return v;", ""};
 
