@@ -235,6 +235,8 @@ TEST_CASE("Traversal rejects misuse and answers non-finite segments with a miss"
     voxelizer.voxelize(test::singleMeshScene(test::cubeMesh()), s);
     CHECK_THROWS_AS(traceWith(voxelizer, one, VoxelTraversal::Hierarchical), Error);
     CHECK_THROWS_AS(traceWith(voxelizer, one, VoxelTraversal::March, 0), Error);
+    // An integer outside the enumerators would skip the octree check and run the hierarchical shader.
+    CHECK_THROWS_AS(traceWith(voxelizer, one, static_cast<VoxelTraversal>(3)), Error);
     const float nan = std::nanf(""), inf = INFINITY;
     const std::vector<VoxelSegment> bad = {{glm::vec3(nan, 1, 1), glm::vec3(8.0f)},
                                            {glm::vec3(1.0f), glm::vec3(inf, 1, 1)},
