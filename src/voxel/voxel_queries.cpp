@@ -11,13 +11,16 @@
 namespace obscura::detail {
 
 void requireVoxelGrid(const VoxelGrid* grid, VoxelTraversal traversal, const std::string& owner) {
-    requireEnumerator(traversal, {VoxelTraversal::March, VoxelTraversal::Exact, VoxelTraversal::Hierarchical},
-                      owner + "::voxelTraversal");
+    requireTraversal(traversal, owner + "::voxelTraversal");
     if (!grid || grid->texture == 0)
         throw Error(ErrorCode::InvalidArgument, "the voxel-space method needs " + owner +
                                                     "::voxels, a grid from Voxelizer::voxelize of the same scene");
     if (traversal == VoxelTraversal::Hierarchical && grid->octree == 0)
         throw Error(ErrorCode::InvalidArgument, "hierarchical voxel traversal needs the grid's octree (VoxelizerSettings::octree)");
+}
+
+void requireTraversal(VoxelTraversal traversal, const std::string& what) {
+    requireEnumerator(traversal, {VoxelTraversal::March, VoxelTraversal::Exact, VoxelTraversal::Hierarchical}, what);
 }
 
 int voxelTraversalCode(VoxelTraversal t) {

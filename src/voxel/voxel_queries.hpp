@@ -16,6 +16,8 @@ struct ContextImpl;
 void requireVoxelGrid(const VoxelGrid* grid, VoxelTraversal traversal, const std::string& owner);
 //! VOXEL_METHOD_* of the traversal (the TRAVERSAL permutation of the integrator shaders).
 int voxelTraversalCode(VoxelTraversal traversal);
+//! Throws Error{InvalidArgument} for a traversal outside its enumerators; `what` names the field.
+void requireTraversal(VoxelTraversal traversal, const std::string& what);
 //! Binds the grid's parameter block and textures where voxel_traversal.glsl reads them.
 void bindVoxelGrid(ContextImpl& ctx, const VoxelGrid& grid);
 //! A voxel's diagonal with the largest side, world units: rays start this far off a surface

@@ -362,8 +362,7 @@ std::vector<VoxelHit> Voxelizer::trace(const std::vector<VoxelSegment>& segments
     auto& d = *impl_;
     if (!d.built) throw Error(ErrorCode::InvalidState, "Voxelizer::trace: voxelize a scene first");
     requireInRange(settings.marchSteps, 1, 4096, "TraversalSettings::marchSteps", "samples");
-    requireEnumerator(settings.method, {VoxelTraversal::March, VoxelTraversal::Exact, VoxelTraversal::Hierarchical},
-                      "TraversalSettings::method");
+    requireTraversal(settings.method, "TraversalSettings::method");
     if (settings.method == VoxelTraversal::Hierarchical && d.grid.levels == 0)
         throw Error(ErrorCode::InvalidState, "hierarchical traversal needs the octree: VoxelizerSettings::octree = true");
     std::vector<VoxelHit> hits(segments.size());
