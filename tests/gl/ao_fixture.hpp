@@ -8,6 +8,10 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
 namespace obscura::test {
 
 struct AoFixture {
@@ -38,5 +42,56 @@ struct AoFixture {
         return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
     }
 };
+
+//! The AO tests' camera: 50 degrees vertical field of view, near 0.05, far 200.
+inline Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode mode = DepthMode::Standard) {
+    return Camera::perspective({eye, target, {0, 1, 0}}, glm::radians(50.0f), float(width) / float(height), 0.05f, 200.0f, mode);
+}
+
+// A floor (y = 0) and, facing the camera, a wall in the plane z = -1: floor points at z lie
+// D = z + 1 from it. Seen from above the wall's reach, nothing on a floor point's rays is
+// hidden from the camera.
+inline Scene wallScene() {
+    return quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
+                      {{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
+}
+inline Camera wallCamera(int width, int height) { return lookAt({0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, width, height); }
+
+//! A 128^3 grid over a fixed box (a test's region of interest, not the scene's bounds).
+inline VoxelizerSettings boxVoxels(glm::vec3 boxMin, glm::vec3 boxMax) {
+    VoxelizerSettings voxels;
+    voxels.resolution = 128;
+    voxels.fitBox = false;
+    voxels.boxMin = boxMin;
+    voxels.boxMax = boxMax;
+    return voxels;
+}
+
+//! A grid that covers the wall scene's floor points within 1 m of the wall finely.
+constexpr double kWallVoxelSide = 4.0 / 128.0; // m
+inline VoxelizerSettings wallVoxels() { return boxVoxels({-2.0f, -0.5f, -1.5f}, {2.0f, 3.5f, 2.5f}); }
+
+// The mean over a floor point's hemisphere of `atHit(d)` for the directions that reach an
+// infinite wall at distance d <= reach, and of 1 for the others, the point being `distance`
+// from the wall. A direction's component u toward the wall decides: d = distance / u. Cosine-
+// weighted directions project uniformly onto the unit disc, where u has density
+// 2 sqrt(1 - u^2) / pi; uniform ones have u uniform in [-1, 1] (Archimedes' theorem). So
+// mean = 1 - Integral_{distance/reach}^1 (1 - atHit(distance / u)) density(u) du, by
+// Simpson's rule on 4096 intervals (atHit is smooth there; the density's square root at u = 1
+// leaves an error of order h^1.5, about 1e-6).
+inline double wallMean(double distance, double reach, bool cosine, const std::function<double(double)>& atHit) {
+    const double c = distance / reach;
+    if (c >= 1.0) return 1.0;
+    constexpr int n = 4096;
+    const double h = (1.0 - c) / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double u = c + h * i;
+        const double density = cosine ? 2.0 * std::sqrt(std::max(0.0, 1.0 - u * u)) / 3.14159265358979323846 : 0.5;
+        const double f = u > 0.0 ? (1.0 - atHit(distance / u)) * density : density;
+        sum += f * (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0);
+    }
+    return 1.0 - sum * h / 3.0;
+}
 
 } // namespace obscura::test

@@ -1,5 +1,6 @@
-// Ambient occlusion: closed forms (an open plane, a floor in front of a wall), screen space
-// against voxel space, and stability over sizes, projections and the sky.
+// Ambient occlusion: closed forms (an open plane, a floor in front of a wall, a disc), post-process
+// mode, and stability over sizes, projections and the sky (screen against voxel space:
+// test_ao_screen_voxel.cpp).
 #include "ao_fixture.hpp"
 
 #include "obscura/assets.hpp"
@@ -10,11 +11,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 using namespace obscura;
 using test::AoFixture;
 using test::floorScene;
+using test::lookAt;
+using test::wallMean;
 
 namespace {
 
@@ -41,10 +43,6 @@ const char* nameOf(AoMethod m) {
     return "?";
 }
 
-Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode mode = DepthMode::Standard) {
-    return Camera::perspective({eye, target, {0, 1, 0}}, glm::radians(50.0f), float(width) / float(height), 0.05f, 200.0f, mode);
-}
-
 // rho(t) of an obscurance falloff (AO: 0, a hit is fully occluded).
 double falloffOf(ObscuranceFalloff f, double t) {
     switch (f) {
@@ -69,29 +67,6 @@ double pointsOccluded(ObscuranceFalloff f, double tau) {
     case ObscuranceFalloff::None: break;
     }
     return moment(0);
-}
-
-// The mean over a floor point's hemisphere of `atHit(d)` for the directions that reach an
-// infinite wall at distance d <= reach, and of 1 for the others, the point being `distance`
-// from the wall. A direction's component u toward the wall decides: d = distance / u. Cosine-
-// weighted directions project uniformly onto the unit disc, where u has density
-// 2 sqrt(1 - u^2) / pi; uniform ones have u uniform in [-1, 1] (Archimedes' theorem). So
-// mean = 1 - Integral_{distance/reach}^1 (1 - atHit(distance / u)) density(u) du, by
-// Simpson's rule on 4096 intervals (atHit is smooth there; the density's square root at u = 1
-// leaves an error of order h^1.5, about 1e-6).
-double wallMean(double distance, double reach, bool cosine, const std::function<double(double)>& atHit) {
-    const double c = distance / reach;
-    if (c >= 1.0) return 1.0;
-    constexpr int n = 4096;
-    const double h = (1.0 - c) / n;
-    double sum = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        const double u = c + h * i;
-        const double density = cosine ? 2.0 * std::sqrt(std::max(0.0, 1.0 - u * u)) / kPi : 0.5;
-        const double f = u > 0.0 ? (1.0 - atHit(distance / u)) * density : density;
-        sum += f * (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0);
-    }
-    return 1.0 - sum * h / 3.0;
 }
 
 // The angle from the floor's normal toward +z, away from the wall, of the bent normal (the
@@ -267,20 +242,14 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
           "sampling error", "[ao]") {
     AoFixture f;
     // The wall's plane z = -1 faces the camera; floor points at distance D = z + 1 from it.
-    const Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
-                                         {{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
+    const Scene scene = test::wallScene();
     constexpr int W = 96, H = 72;
-    f.render(scene, lookAt({0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, W, H), W, H);
+    f.render(scene, test::wallCamera(W, H), W, H);
     const glm::dmat3 toWorld(glm::inverse(glm::dmat4(f.view.camera.view)));
     constexpr double radius = 1.0;
     constexpr int rays = 1024, steps = 32;
-    // The voxel grid covers the region around the floor points finely: voxel sides 4/128 m.
-    VoxelizerSettings voxels;
-    voxels.resolution = 128;
-    voxels.fitBox = false;
-    voxels.boxMin = glm::vec3(-2.0f, -0.5f, -1.5f);
-    voxels.boxMax = glm::vec3(2.0f, 3.5f, 2.5f);
-    const double voxelSide = 4.0 / 128.0;
+    const VoxelizerSettings voxels = test::wallVoxels();
+    const double voxelSide = test::kWallVoxelSide;
     struct Quantity {
         ObscuranceFalloff falloff;
         bool cosine;
@@ -462,59 +431,6 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
         CHECK(std::abs(meanError / checked) <=
               meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -12));
     }
-}
-
-TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ where something is", "[ao]") {
-    AoFixture f;
-    // A thin ceiling slab at y = 1 over part of the floor, seen exactly edge-on: the depth
-    // buffer never holds it, the voxel grid does.
-    Scene scene = floorScene(10.0);
-    const Scene slab = test::quadScene({{{glm::dvec3(-3, 1, -6), {3, 1, -6}, {3, 1, -2}, {-3, 1, -2}}},
-                                        {{glm::dvec3(-3, 1, -2), {3, 1, -2}, {3, 1, -6}, {-3, 1, -6}}}});
-    for (const Mesh& m : slab.meshes) scene.meshes.push_back(m);
-    constexpr int W = 96, H = 64;
-    f.render(scene, lookAt({0, 1, 4}, {0, 1, -4}, W, H), W, H);
-    VoxelizerSettings voxels;
-    voxels.resolution = 128;
-    voxels.fitBox = false;
-    voxels.boxMin = glm::vec3(-4.0f, -0.5f, -8.0f);
-    voxels.boxMax = glm::vec3(4.0f, 3.5f, 0.0f);
-    AmbientOcclusionSettings s;
-    s.radius = 1.5f;
-    s.rays = 256;
-    s.steps = 32;
-    const Image screen = f.run(scene, s);
-    s.method = AoMethod::Voxel;
-    const Image voxel = f.run(scene, s, voxels);
-    // The voxel rays start lifted by a voxel diagonal (sqrt(3) x 8/128) and the slab's voxels
-    // reach down by up to a voxel (4/128): the ceiling is effectively h in [0.861, 0.892].
-    const double lift = std::sqrt(3.0) * 8.0 / 128.0, hMax = 1.0 - lift, hMin = hMax - 4.0 / 128.0;
-    int open = 0, covered = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            if (!f.geometry(x, y)) continue;
-            const glm::dvec3 p = f.world(x, y);
-            if (std::abs(p.y) > 1e-3) continue;
-            CAPTURE(x, y, p.x, p.z, screen.at(x, y, 0), voxel.at(x, y, 0));
-            if (p.z > -0.4 && p.z < 0.0 && std::abs(p.x) < 2.0) {
-                // More than the radius from the slab (sqrt(1.6^2 + 1) > 1.5): open in both.
-                ++open;
-                CHECK(screen.at(x, y, 0) == 1.0f);
-                CHECK(voxel.at(x, y, 0) == 1.0f);
-            } else if (p.z > -4.8 && p.z < -3.2 && std::abs(p.x) < 1.8) {
-                // The slab covers every direction that reaches height h within the radius
-                // (horizontal reach r sqrt(1 - (h/r)^2) < 1.2): AO_r = (h / r)^2 for the
-                // cosine-weighted hemisphere. Screen space does not see the slab at all.
-                ++covered;
-                const double lo = std::pow(hMin / 1.5, 2.0), hi = std::pow(hMax / 1.5, 2.0);
-                const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -12);
-                CHECK(screen.at(x, y, 0) == 1.0f);
-                CHECK(voxel.at(x, y, 0) >= lo - tolerance);
-                CHECK(voxel.at(x, y, 0) <= hi + tolerance);
-            }
-        }
-    CHECK(open > 10);
-    CHECK(covered > 10);
 }
 
 TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orthographic views and the sky", "[ao][stability]") {

@@ -1,0 +1,136 @@
+// Screen space against voxel space: where nothing on the rays is hidden from the camera the two
+// classify the same directions alike, up to each one's geometric error; where something is
+// hidden, only the voxels see it.
+#include "ao_fixture.hpp"
+
+#include "obscura/obscura.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace obscura;
+using test::AoFixture;
+using test::floorScene;
+using test::lookAt;
+using test::wallMean;
+
+TEST_CASE("Screen and voxel AO of a floor in front of a visible wall differ only by the directions within their "
+          "geometric error", "[ao]") {
+    // The ray march and the voxel traversal take the same directions per pixel (aoDirection
+    // with the pixel's rotation): a direction with component u toward the wall meets it at
+    // t = D / u. The march calls it occluded iff t is at most its last sample, in
+    // [r (1 - 1/steps), r]; the voxels iff the wall's voxels, up to a voxel side nearer
+    // (conservative voxelization), are within r: t' = D' / u with D' in [D - side, D]. So
+    // every direction the march finds occluded the voxels do too (screen AO >= voxel AO, per
+    // pixel), and they can differ only for u in [(D - side) / r, D / (r (1 - 1/steps))], whose
+    // cosine-weighted share is p = wallMean(D, r (1 - 1/steps)) - wallMean(D - side, r). The
+    // camera looks down on the wall's face from above every ray's reach, so the depth buffer
+    // holds every surface the rays meet.
+    AoFixture f;
+    const Scene scene = test::wallScene();
+    constexpr int W = 96, H = 72;
+    f.render(scene, test::wallCamera(W, H), W, H);
+    constexpr double radius = 1.0;
+    constexpr int rays = 1024, steps = 32;
+    AmbientOcclusionSettings s;
+    s.radius = static_cast<float>(radius);
+    s.rays = rays;
+    s.steps = steps;
+    s.method = AoMethod::Voxel;
+    const Image voxel = f.run(scene, s, test::wallVoxels());
+    s.method = AoMethod::RayMarch;
+    const auto never = [](double) { return 0.0; }; // AO: a hit occludes fully
+    for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}) {
+        CAPTURE(static_cast<int>(march));
+        s.march = march;
+        const Image screen = f.run(scene, s);
+        int checked = 0, differing = 0;
+        double meanDifference = 0.0, meanShare = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (!f.geometry(x, y)) continue;
+                const glm::dvec3 p = f.world(x, y);
+                // Floor points whose radius lies inside the grid and whose rays stay on screen
+                // (as in the wall test).
+                if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
+                const double distance = p.z + 1.0;
+                const double share = wallMean(distance, radius * (1.0 - 1.0 / steps), true, never) -
+                                     wallMean(std::max(distance - test::kWallVoxelSide, 0.0), radius, true, never);
+                // The number of a pixel's directions in that band, taken as binomial (the rotated
+                // Hammersley set is stratified, so this is conservative): 5 sigma; and each
+                // value's rounding to a half float (2^-12 below 1). The stratification also keeps
+                // two rotations' estimates closer than this, so the bound checks where the two
+                // geometries put the wall (a voxel ray 5 % short fails it), not that the
+                // directions are shared.
+                const double sigma = std::sqrt(std::max(share * (1.0 - share), 1.0 / rays) / rays);
+                const double rounding = 2.0 * std::ldexp(1.0, -12);
+                const double difference = double(screen.at(x, y, 0)) - voxel.at(x, y, 0);
+                CAPTURE(x, y, distance, screen.at(x, y, 0), voxel.at(x, y, 0), share);
+                CHECK(difference >= -rounding);
+                CHECK(difference <= share + 5.0 * sigma + rounding);
+                differing += difference != 0.0;
+                meanDifference += difference;
+                meanShare += share;
+                ++checked;
+            }
+        INFO(checked << " floor pixels, " << differing << " differ; mean difference " << meanDifference / checked
+                     << ", mean share of uncertain directions " << meanShare / checked);
+        CHECK(checked > 200);
+        // The mean difference is at most the mean share (every uncertain direction classified
+        // apart), plus 5 sigma of the pixels' mean (independent rotations).
+        CHECK(meanDifference / checked <= meanShare / checked + 5.0 * std::sqrt(meanShare / checked / (double(rays) * checked)) +
+                                              2.0 * std::ldexp(1.0, -12));
+    }
+}
+
+TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ where something is", "[ao]") {
+    AoFixture f;
+    // A thin ceiling slab at y = 1 over part of the floor, seen exactly edge-on: the depth
+    // buffer never holds it, the voxel grid does.
+    Scene scene = floorScene(10.0);
+    const Scene slab = test::quadScene({{{glm::dvec3(-3, 1, -6), {3, 1, -6}, {3, 1, -2}, {-3, 1, -2}}},
+                                        {{glm::dvec3(-3, 1, -2), {3, 1, -2}, {3, 1, -6}, {-3, 1, -6}}}});
+    for (const Mesh& m : slab.meshes) scene.meshes.push_back(m);
+    constexpr int W = 96, H = 64;
+    f.render(scene, lookAt({0, 1, 4}, {0, 1, -4}, W, H), W, H);
+    const VoxelizerSettings voxels = test::boxVoxels({-4.0f, -0.5f, -8.0f}, {4.0f, 3.5f, 0.0f});
+    AmbientOcclusionSettings s;
+    s.radius = 1.5f;
+    s.rays = 256;
+    s.steps = 32;
+    const Image screen = f.run(scene, s);
+    s.method = AoMethod::Voxel;
+    const Image voxel = f.run(scene, s, voxels);
+    // The voxel rays start lifted by a voxel diagonal (sqrt(3) x 8/128) and the slab's voxels
+    // reach down by up to a voxel (4/128): the ceiling is effectively h in [0.861, 0.892].
+    const double lift = std::sqrt(3.0) * 8.0 / 128.0, hMax = 1.0 - lift, hMin = hMax - 4.0 / 128.0;
+    int open = 0, covered = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (!f.geometry(x, y)) continue;
+            const glm::dvec3 p = f.world(x, y);
+            if (std::abs(p.y) > 1e-3) continue;
+            CAPTURE(x, y, p.x, p.z, screen.at(x, y, 0), voxel.at(x, y, 0));
+            if (p.z > -0.4 && p.z < 0.0 && std::abs(p.x) < 2.0) {
+                // More than the radius from the slab (sqrt(1.6^2 + 1) > 1.5): open in both.
+                ++open;
+                CHECK(screen.at(x, y, 0) == 1.0f);
+                CHECK(voxel.at(x, y, 0) == 1.0f);
+            } else if (p.z > -4.8 && p.z < -3.2 && std::abs(p.x) < 1.8) {
+                // The slab covers every direction that reaches height h within the radius
+                // (horizontal reach r sqrt(1 - (h/r)^2) < 1.2): AO_r = (h / r)^2 for the
+                // cosine-weighted hemisphere. Screen space does not see the slab at all.
+                ++covered;
+                const double lo = std::pow(hMin / 1.5, 2.0), hi = std::pow(hMax / 1.5, 2.0);
+                const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -12);
+                CHECK(screen.at(x, y, 0) == 1.0f);
+                CHECK(voxel.at(x, y, 0) >= lo - tolerance);
+                CHECK(voxel.at(x, y, 0) <= hi + tolerance);
+            }
+        }
+    CHECK(open > 10);
+    CHECK(covered > 10);
+}
+
