@@ -195,11 +195,7 @@ public:
                 std::printf("  %-10s skipped: %s\n", name.c_str(), why.c_str());
                 continue;
             }
-            for (const Preset& preset : info.presets) {
-                const auto wanted = split(o_.presets);
-                if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), preset.name) == wanted.end()) continue;
-                runTechnique(ctx, r, rays, cameraPoints, info, preset);
-            }
+            for (const std::vector<const Preset*>& group : presetGroups(info)) runTechnique(ctx, r, rays, cameraPoints, info, group);
         }
     }
 
@@ -282,40 +278,104 @@ private:
         }
     }
 
-    void runTechnique(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
-                      const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset) {
-        auto run = info.create(ctx);
-        for (const auto& [key, value] : preset.settings) run->set(key, value);
-        applySettings(*run, o_.overrides);
-        const FrameSetup frame{r.scene, r.camera, r.width, r.height};
+    // The wanted presets of a technique, each alone, except that a preset X and X_half (the
+    // same rays at half resolution) are timed together: their ratio is the half-resolution
+    // study's verdict, so they take their frames in turn and share the machine's drift.
+    std::vector<std::vector<const Preset*>> presetGroups(const TechniqueInfo& info) const {
+        const auto wanted = split(o_.presets);
+        const auto isWanted = [&](const std::string& name) {
+            return wanted.empty() || std::find(wanted.begin(), wanted.end(), name) != wanted.end();
+        };
+        const auto find = [&](const std::string& name) -> const Preset* {
+            for (const Preset& p : info.presets)
+                if (p.name == name && isWanted(name)) return &p;
+            return nullptr;
+        };
+        std::vector<std::vector<const Preset*>> groups;
+        for (const Preset& preset : info.presets) {
+            if (!isWanted(preset.name)) continue;
+            const std::string suffix = "_half";
+            const bool half = preset.name.size() > suffix.size() && preset.name.ends_with(suffix);
+            if (half && find(preset.name.substr(0, preset.name.size() - suffix.size()))) continue; // timed with X
+            std::vector<const Preset*> group{&preset};
+            if (const Preset* partner = half ? nullptr : find(preset.name + suffix)) group.push_back(partner);
+            groups.push_back(group);
+        }
+        return groups;
+    }
+
+    struct Timing {
+        double gpuMs = 0.0;      //!< the sum of the passes' medians
+        double cpuMs = 0.0;      //!< median wall time of a frame's calls
+        nlohmann::json passes;   //!< per pass: median, min, max over the frames
+    };
+
+    // Warms each run up, then times `frames` frames of each, the runs taking turns frame by
+    // frame. The profiler is read and reset after every frame, so each pass's samples are
+    // its own run's.
+    std::vector<Timing> timeInTurn(Context& ctx, const std::vector<std::unique_ptr<TechniqueRun>>& runs, const FrameSetup& frame) {
         // Warm-up, not timed: compilation and allocation, and on a GPU half a second of
         // frames, so that its clocks have left the idle state the CPU reference put it in
         // (an H100 timed from idle gave the same G-buffer pass 0.26 ms in one row, 1.48 in another).
         const double warmupMs = ctx.profiler().clock() == ClockSource::GpuTimestamp ? 500.0 : 0.0;
-        const auto warmupStart = std::chrono::steady_clock::now();
-        do {
-            run->run(frame);
-            ctx.profiler().statistics(/*wait=*/true);
-        } while (std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - warmupStart).count() < warmupMs);
+        for (const auto& run : runs) {
+            const auto warmupStart = std::chrono::steady_clock::now();
+            do {
+                run->run(frame);
+                ctx.profiler().statistics(/*wait=*/true);
+            } while (std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - warmupStart).count() < warmupMs);
+        }
         ctx.profiler().reset();
-        std::vector<double> cpu;
-        for (int i = 0; i < o_.frames; ++i) {
-            const auto t0 = std::chrono::steady_clock::now();
-            run->run(frame);
-            cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        std::vector<std::vector<double>> cpu(runs.size());
+        std::vector<std::vector<std::pair<std::string, std::vector<double>>>> passes(runs.size()); // first-seen order
+        for (int i = 0; i < o_.frames; ++i)
+            for (std::size_t k = 0; k < runs.size(); ++k) {
+                const auto t0 = std::chrono::steady_clock::now();
+                runs[k]->run(frame);
+                cpu[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                for (const PassStatistics& s : ctx.profiler().statistics(/*wait=*/true)) {
+                    auto it = std::find_if(passes[k].begin(), passes[k].end(), [&](const auto& p) { return p.first == s.name; });
+                    if (it == passes[k].end()) it = passes[k].insert(passes[k].end(), {s.name, {}});
+                    it->second.push_back(s.medianMs); // this frame's only sample
+                }
+                ctx.profiler().reset();
+            }
+        std::vector<Timing> out(runs.size());
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            out[k].cpuMs = median(cpu[k]);
+            out[k].passes = nlohmann::json::array();
+            for (const auto& [name, ms] : passes[k]) {
+                out[k].gpuMs += median(ms);
+                out[k].passes.push_back({{"pass", name}, {"median_ms", median(ms)},
+                                         {"min_ms", *std::min_element(ms.begin(), ms.end())},
+                                         {"max_ms", *std::max_element(ms.begin(), ms.end())}, {"samples", ms.size()}});
+            }
         }
-        double gpu = 0.0;
-        nlohmann::json passes = nlohmann::json::array();
-        for (const PassStatistics& s : ctx.profiler().statistics(/*wait=*/true)) {
-            gpu += s.medianMs;
-            passes.push_back({{"pass", s.name}, {"median_ms", s.medianMs}, {"min_ms", s.minMs}, {"max_ms", s.maxMs},
-                              {"samples", s.samples}});
+        return out;
+    }
+
+    void runTechnique(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
+                      const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info,
+                      const std::vector<const Preset*>& presets) {
+        std::vector<std::unique_ptr<TechniqueRun>> runs;
+        for (const Preset* preset : presets) {
+            runs.push_back(info.create(ctx));
+            for (const auto& [key, value] : preset->settings) runs.back()->set(key, value);
+            applySettings(*runs.back(), o_.overrides);
         }
-        const GBufferSamples samples = run->samples();
+        const std::vector<Timing> timings = timeInTurn(ctx, runs, FrameSetup{r.scene, r.camera, r.width, r.height});
+        for (std::size_t k = 0; k < runs.size(); ++k) measure(ctx, r, rays, cameraPoints, info, *presets[k], *runs[k], timings[k]);
+    }
+
+    void measure(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
+                 const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset,
+                 TechniqueRun& run, const Timing& timing) {
+        const double gpu = timing.gpuMs;
+        const GBufferSamples samples = run.samples();
         const Image samplesMask = gbufferMask(samples);
         const reference::ShadingPoints gbufferPoints =
             reference::fromGBuffer(rays, r.camera, samples.viewPositions, samples.viewNormals);
-        for (const Measurement& m : run->measurements()) {
+        for (const Measurement& m : run.measurements()) {
             Image mask = samplesMask, expected;
             double noise = 0.0;
             int spp = 0;
@@ -341,7 +401,7 @@ private:
             row.fields = {{"scene", r.scene.name},   {"technique", info.name},  {"preset", preset.name},
                           {"width", r.width},        {"height", r.height},      {"quantity", m.quantity},
                           {"clock", toString(ctx.profiler().clock())},       {"gpu_ms", gpu},
-                          {"cpu_ms", median(cpu)},   {"rmse", e.rmse},          {"relmse", e.relMse},
+                          {"cpu_ms", timing.cpuMs},   {"rmse", e.rmse},          {"relmse", e.relMse},
                           {"ssim", e.ssim},          {"max_abs", e.maxAbs},     {"nan_count", e.nanCount},
                           {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
@@ -350,7 +410,7 @@ private:
             if (m.shimmer) row.fields["shimmer"] = *m.shimmer;
             std::size_t memoryBytes = 0;
             nlohmann::ordered_json memory = nlohmann::ordered_json::object();
-            for (const auto& [module, bytes] : run->memory()) {
+            for (const auto& [module, bytes] : run.memory()) {
                 memory[module] = bytes;
                 memoryBytes += bytes;
             }
@@ -365,7 +425,7 @@ private:
                 row.fields["false_shadow"] = wrong.falseShadow;
                 row.fields["false_light"] = wrong.falseLight;
             }
-            row.passes = passes;
+            row.passes = timing.passes;
             row.settings = appliedSettings(preset, o_.overrides);
             std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g\n",
                         info.name.c_str(), preset.name.c_str(), m.quantity.c_str(), gpu, toString(ctx.profiler().clock()),
@@ -430,7 +490,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--scene", o->scenes, "Scene(s): built-in name, JSON scene or mesh file (repeatable)")
         ->capture_default_str();
     cmd->add_option("--techniques", o->techniques, "Glob of technique names")->capture_default_str();
-    cmd->add_option("--presets", o->presets, "Comma-separated presets (default: all of each technique)");
+    cmd->add_option("--presets", o->presets, "Comma-separated presets (default: all of each technique); X and X_half, when both run, take their timed frames in turn");
     cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
     cmd->add_option("--frames", o->frames, "Timed frames after the warm-up (one frame; half a second of frames on a GPU) (>= 20)")->capture_default_str();
     cmd->add_option("--spp", o->spp, "Reference samples per pixel")->capture_default_str();

@@ -258,6 +258,37 @@ foreach(shadows 1 0)
   endif()
 endforeach()
 
+# A preset X and X_half take their timed frames in turn; each row's passes are still its own:
+# every pass timed once per frame, and the filters only in the half-resolution row.
+run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques ao.points
+    --presets medium_half,medium --set bent_normals=0 --out "${WORK_DIR}/bench_paired")
+file(READ "${WORK_DIR}/bench_paired/bench.json" bench)
+string(JSON rowCount LENGTH "${bench}" rows)
+if(NOT rowCount EQUAL 2)
+  message(FATAL_ERROR "medium and medium_half gave ${rowCount} rows, expected 2")
+endif()
+foreach(i 0 1)
+  string(JSON preset GET "${bench}" rows ${i} preset)
+  string(JSON passCount LENGTH "${bench}" rows ${i} passes)
+  set(names "")
+  math(EXPR lastPass "${passCount} - 1")
+  foreach(j RANGE ${lastPass})
+    string(JSON name GET "${bench}" rows ${i} passes ${j} pass)
+    string(JSON samples GET "${bench}" rows ${i} passes ${j} samples)
+    if(NOT samples EQUAL 20)
+      message(FATAL_ERROR "${preset}: pass ${name} has ${samples} samples for 20 frames")
+    endif()
+    list(APPEND names ${name})
+  endforeach()
+  if(preset STREQUAL "medium" AND NOT names STREQUAL "gbuffer.render;ao.points")
+    message(FATAL_ERROR "medium timed ${names}, expected gbuffer.render;ao.points")
+  endif()
+  list(FIND names ao.upsample upsample)
+  if(preset STREQUAL "medium_half" AND upsample EQUAL -1)
+    message(FATAL_ERROR "medium_half timed ${names}, without its upsampling")
+  endif()
+endforeach()
+
 # --set overrides every preset's settings (here the maps' size: six 256^2 32F layers, plus the
 # lights' records, a few KiB; the low preset's own 512^2 maps would be four times as much),
 # and --no-cache leaves no reference files behind.
