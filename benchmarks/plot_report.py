@@ -191,7 +191,7 @@ def resolution_section(rows):
             "resolution: `refine_threshold`, pass `<module>.refine`), at the "
             "size of the tables above and, where a resolution study was run (`scripts/report.sh`: 512x512), at that "
             "size. Times are the technique's own passes (the G-buffer and its shadow maps, which they share, "
-            "excluded); on llvmpipe each pass also pays a glFinish, which weighs most at small sizes. The goal: at "
+            "excluded), X and X_half timed in turn, frame by frame; on llvmpipe each pass also pays a glFinish, which weighs most at small sizes. The goal: at "
             "least 2x faster at less than 2x the RMSE. Half resolution saves the integrator's work per pixel, but the "
             "upsampling pays again, at full resolution, what any pass pays per G-buffer pixel (reading depth and "
             "normal, writing the results), so where the integrator does little more per pixel than that, half "
@@ -240,7 +240,7 @@ def row_key(r):
     return (os.path.basename(r["scene"]), r["technique"], r["preset"], r["quantity"], r["width"], r["height"])
 
 
-def gpu_section(gpu_rows, cpu_rows):
+def gpu_section(gpu_rows, cpu_rows, provenance=()):
     """The same bench on a GPU: its half-resolution study, and its rows beside llvmpipe's (time and error)."""
     if not gpu_rows:
         return []
@@ -251,19 +251,18 @@ def gpu_section(gpu_rows, cpu_rows):
              f"{', '.join(clocks)}: GPU timer queries, the median of the timed frames. These runs come from "
              "`benchmarks/gpu/run.sh` on a machine lent to a session and are kept under `benchmarks/gpu/`; "
              "`scripts/report.sh` does not rerun them. Their references are the same Embree integrators "
-             "rendered afresh there. They were measured at commit 621dcc0 (2026-11-24), before the half-resolution "
-             "presets refined edges at full resolution and before `high_half` blurred with 1 tap each side, so their "
-             "`_half` rows are of the older code.", ""]
+             "rendered afresh there.", ""]
+    for text in provenance:
+        lines += [text.strip(), ""]
     study = resolution_rows(gpu_rows)
     if study:
         lines += ["### Half resolution on the GPU", "",
                   "As in the half-resolution section above (the techniques' own passes), timed by the GPU. There the "
                   "blur and the upsampling cost a few hundredths of a millisecond, so the goal rests on the half-"
-                  "resolution integrator alone. At 512x512 an H100 runs every pixel at once (132 SMs x 2048 threads "
-                  "hold 270k, a frame has 262k pixels), so a pass takes about as long as its slowest threads, at any "
-                  "resolution: only 1920x1080 (256 spp references) shows what half resolution saves. Where it falls "
-                  "short there, the half-resolution pass itself does not shrink with the pixel count (2CylinderEngine: "
-                  "long, divergent rays through its dense parts, whose latency fewer threads cannot hide).", ""]
+                  "resolution integrator and the refinement. At 512x512 the GPU runs every pixel at once (132 SMs x "
+                  "2048 threads hold 270k, a frame has 262k pixels), so a pass takes about as long as its slowest "
+                  "threads, at any resolution: only 1920x1080 (256 spp references) shows what half resolution saves, "
+                  "and only where the full-resolution pass fills the GPU.", ""]
         lines += RESOLUTION_HEADER + study + [""]
     cpu = {row_key(r): r for r in cpu_rows}
     matched = [(r, cpu[row_key(r)]) for r in gpu_rows if row_key(r) in cpu]
@@ -273,11 +272,8 @@ def gpu_section(gpu_rows, cpu_rows):
         lines += ["### GPU beside llvmpipe", "",
                   f"Rows measured on both, same scene, size and settings: {len(matched)}; the largest RMSE "
                   f"difference between the two is {fmt(worst)}. Rows that differ by more than a few times the "
-                  "reference noise mean that one machine computes something else. On the real models most of "
-                  "them are the reference's old fault, not the GPU's: it started secondary rays behind G-buffer "
-                  "samples that a rasterizer snapping vertices to its sub-pixel grid puts below the surface, since "
-                  "fixed and reproduced on llvmpipe (benchmarks/README.md). Times: llvmpipe's wall clock against "
-                  "the GPU's timer queries.", "",
+                  "reference noise mean that one machine computes something else. Times: llvmpipe's wall clock "
+                  "against the GPU's timer queries.", "",
                   "| scene | technique | preset | quantity | size | llvmpipe ms | GPU ms | llvmpipe RMSE | GPU RMSE |",
                   "|---|---|---|---|---|---|---|---|---|"]
         for g, c in sorted(matched, key=lambda m: row_key(m[0])):
@@ -368,7 +364,7 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
-def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=()):
+def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -430,7 +426,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += march_section(list(march_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
-    lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows))
+    lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance)
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
 
@@ -444,7 +440,8 @@ def main():
     parser.add_argument("--march-study", action="append", default=[],
                         help="bench.json of ao.raymarch with one --set march=view|texture|hiz (screen-space march table only)")
     parser.add_argument("--gpu", action="append", default=[],
-                        help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section")
+                        help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section, with the "
+                             "provenance.md beside it (when, at which commit, what ran) quoted there")
     args = parser.parse_args()
     rows, perf, voxel = load(args.inputs)
     if not rows:
@@ -455,7 +452,13 @@ def main():
     sources += [f"{p} (march study)" for p in args.march_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
     sources += [f"{p} (GPU)" for p in args.gpu]
-    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows)
+    provenance = []
+    for directory in sorted({os.path.dirname(os.path.abspath(p)) for p in args.gpu}):
+        path = os.path.join(directory, "provenance.md")
+        if os.path.isfile(path):
+            with open(path) as f:
+                provenance.append(f.read())
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 
