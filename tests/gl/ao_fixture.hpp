@@ -94,4 +94,13 @@ inline double wallMean(double distance, double reach, bool cosine, const std::fu
     return 1.0 - sum * h / 3.0;
 }
 
+// Cosine-weighted AO (no radius limit) at a floor point under a parallel disc of radius a at
+// height h, at horizontal distance rho from its axis: one minus the view factor of the disc,
+// F = (1 - (h^2 + rho^2 - a^2) / sqrt((h^2 + rho^2 + a^2)^2 - 4 a^2 rho^2)) / 2 (Howell's
+// catalogue, element to parallel disc); on the axis 1 - F = h^2 / (h^2 + a^2).
+inline double discAo(double rho, double a, double h) {
+    const double s = h * h + rho * rho + a * a;
+    return 1.0 - 0.5 * (1.0 - (h * h + rho * rho - a * a) / std::sqrt(s * s - 4.0 * a * a * rho * rho));
+}
+
 } // namespace obscura::test

@@ -16,6 +16,7 @@ using namespace obscura;
 using test::AoFixture;
 using test::floorScene;
 using test::lookAt;
+using test::discAo;
 using test::wallMean;
 
 namespace {
@@ -78,15 +79,6 @@ double wallBentTilt(double c) {
     const double y = 0.5 * ((c - c * c * c / 3.0) + 2.0 / 3.0);
     const double z = 2.0 * std::pow(1.0 - c * c, 1.5) / (3.0 * kPi);
     return std::atan2(z, y);
-}
-
-// Cosine-weighted AO (no radius limit) at a floor point under a parallel disc of radius a at
-// height h, at horizontal distance rho from its axis: one minus the view factor of the disc,
-// F = (1 - (h^2 + rho^2 - a^2) / sqrt((h^2 + rho^2 + a^2)^2 - 4 a^2 rho^2)) / 2 (Howell's
-// catalogue, element to parallel disc); on the axis 1 - F = h^2 / (h^2 + a^2).
-double discAo(double rho, double a, double h) {
-    const double s = h * h + rho * rho + a * a;
-    return 1.0 - 0.5 * (1.0 - (h * h + rho * rho - a * a) / std::sqrt(s * s - 4.0 * a * a * rho * rho));
 }
 
 } // namespace
