@@ -2,19 +2,21 @@
 // G-buffer: the per-pixel inputs every screen-space module reads.
 //
 // Either Obscura rasterizes the scene (render), or the host hands over its own depth buffer
-// and optionally its normals (adopt, post-process mode). Both give a GBufferView with the
-// same contract:
+// and optionally its normals, albedo and lit image (adopt, post-process mode). Both give a
+// GBufferView with the same contract:
 //   depth           hardware depth of `camera` (32F when ours); background = clear depth
 //   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
 //                   toward the camera; alpha = 1 on geometry, 0 on background
-//   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours only)
+//   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours; or the
+//                   host's, HostGBuffer::albedo)
 //   backDepth       second depth layer (depthLayers = 2, ours only): per pixel the nearest
 //                   surface strictly behind `depth` (depth peeling), 32F, clear depth where
 //                   none; the back of closed objects, for screen-space thickness
 //   directRadiance  GL_RGBA16F, W/(sr·m²): emission + Lambert from the scene's lights with
-//                   the interpolated shading normal (ours only), each light shadowed when
+//                   the interpolated shading normal, each light shadowed when
 //                   GBufferSettings::shadows has maps for it. Saturates at 65504, the
-//                   largest finite half float, instead of overflowing to Inf.
+//                   largest finite half float, instead of overflowing to Inf. (Or the
+//                   host's lit image, HostGBuffer::directRadiance.)
 // View-space positions are never stored: they are reconstructed from depth
 // (shaders/common/depth.glsl, DepthReconstruction in camera.hpp), along each pixel centre's
 // ray. Their precision is the rasterizer's: one that interpolates depth from vertices
@@ -39,8 +41,8 @@ class Context;
 struct GBufferView {
     TextureView depth;
     TextureView normal;
-    TextureView albedo;         //!< empty for adopted host buffers
-    TextureView directRadiance; //!< empty for adopted host buffers
+    TextureView albedo;         //!< adopted host buffers: the host's, if it gave one
+    TextureView directRadiance; //!< adopted host buffers: the host's, if it gave one
     TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
     Camera camera;
     int width = 0;  //!< pixels
@@ -78,6 +80,15 @@ struct HostGBuffer {
     TextureView normal;
     NormalSpace normalSpace = NormalSpace::View;
     NormalEncoding normalEncoding = NormalEncoding::Signed;
+    //! Optional, same size, used in place: diffuse reflectance, for IndirectLight and
+    //! Composer. A normalized or float RGB/RGBA format; sRGB ones (GL_SRGB8,
+    //! GL_SRGB8_ALPHA8) are decoded when read, others hold linear reflectance in [0, 1].
+    TextureView albedo;
+    //! Optional, same size, used in place: the radiance each pixel sends to the camera from
+    //! direct light, W/(sr·m²), linear (the host's lit image before AO, indirect light and
+    //! tone mapping), in a float RGB/RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F,
+    //! GL_RGB32F, GL_RGBA32F). IndirectLight gathers it; Composer needs it and albedo.
+    TextureView directRadiance;
 };
 
 class OBSCURA_API GBuffer {
@@ -92,10 +103,10 @@ public:
     //! index out of range, non-finite mesh positions or an unusable host buffer.
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
-    //! Wraps the host's depth (and normal) textures. The depth texture is used in place;
-    //! normals are converted to the view-space contract above, or reconstructed from depth
-    //! when absent (pass "gbuffer.normals"). Throws Error{InvalidArgument} for a wrong
-    //! target, format, sample count or size.
+    //! Wraps the host's depth (and normal, albedo, radiance) textures. Depth, albedo and
+    //! radiance are used in place; normals are converted to the view-space contract above,
+    //! or reconstructed from depth when absent (pass "gbuffer.normals"). Throws
+    //! Error{InvalidArgument} for a wrong target, format, sample count or size.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world

@@ -84,9 +84,9 @@ public:
 
     //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
     //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
-    //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct radiance (adopted host
-    //! buffers have no radiance to gather), without backDepth for DepthPeeling, or the hybrid
-    //! method without a grid.
+    //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct
+    //! radiance (adopted host buffers have them only where the host gave them), without
+    //! backDepth for DepthPeeling, or the hybrid method without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     std::size_t memoryBytes() const;

@@ -70,7 +70,8 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     auto& ctx = d.ctx;
     const GBufferView& g = in.gbuffer;
     if (!g.directRadiance || !g.albedo)
-        throw Error(ErrorCode::InvalidArgument, "compose needs the G-buffer's direct radiance and albedo (GBuffer::render)");
+        throw Error(ErrorCode::InvalidArgument, "compose needs the G-buffer's direct radiance and albedo (GBuffer::render, "
+                                                "or HostGBuffer::albedo and directRadiance with GBuffer::adopt)");
     const TextureInfo direct = queryTexture2D(ctx, g.directRadiance.name, "GBufferView::directRadiance");
     const int w = direct.width, h = direct.height;
     checkOptional(ctx, g.albedo, "GBufferView::albedo", w, h);

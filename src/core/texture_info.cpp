@@ -90,6 +90,7 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     }
     t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
     t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
+    t.floating = redType == GL_FLOAT;
     t.isSigned = redType == GL_INT;
     t.channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
     static constexpr GLenum floatFormats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};

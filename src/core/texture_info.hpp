@@ -16,6 +16,7 @@ struct TextureInfo {
     bool depth = false;        //!< a depth or depth-stencil format
     bool stencil = false;      //!< depth-stencil
     bool integer = false;      //!< *I / *UI formats
+    bool floating = false;     //!< float components (GL_TEXTURE_RED_TYPE is GL_FLOAT)
     bool isSigned = false;     //!< for integer formats
     bool srgb = false;         //!< sRGB-encoded storage (GL_SRGB8, GL_SRGB8_ALPHA8)
     GLenum pixelFormat = 0;    //!< glGetTextureImage format matching `channels`

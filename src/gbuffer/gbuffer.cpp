@@ -57,6 +57,30 @@ void dispatchOverImage(ContextImpl& ctx, int width, int height) {
     barrierForReaders(ctx);
 }
 
+// A host texture read beside the depth: level 0, the depth's size.
+TextureInfo hostTextureBeside(ContextImpl& ctx, GLuint name, const std::string& who, const TextureInfo& depth) {
+    const TextureInfo t = queryTexture2D(ctx, name, who);
+    requireBaseLevelZero(ctx, name, who);
+    if (t.width != depth.width || t.height != depth.height)
+        throw Error(ErrorCode::InvalidArgument, who + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                                                    " but depth is " + std::to_string(depth.width) + "x" +
+                                                    std::to_string(depth.height));
+    return t;
+}
+
+// The host's albedo (normalized or float) or radiance (float only: it is not bounded by 1),
+// RGB or RGBA, read in place by the passes that use them.
+void requireHostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
+                       bool floatOnly) {
+    const TextureInfo t = hostTextureBeside(ctx, texture.name, who, depth);
+    if (t.depth || t.integer || t.channels < 3 || (floatOnly && !t.floating))
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " has format " + formatName(t.internalFormat) + "; accepted: " +
+                        (floatOnly ? "a float RGB/RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F)"
+                                   : "a normalized or float RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_SRGB8, GL_SRGB8_ALPHA8, "
+                                     "GL_RGB16F, GL_RGBA16F, ...)"));
+}
+
 } // namespace
 
 struct GBuffer::Impl {
@@ -331,15 +355,10 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
     Defines defines;
     if (host.normal.name != 0) {
-        const TextureInfo n = queryTexture2D(ctx, host.normal.name, "HostGBuffer::normal");
-        requireBaseLevelZero(ctx, host.normal.name, "HostGBuffer::normal");
-        if (n.width != depth.width || n.height != depth.height)
-            throw Error(ErrorCode::InvalidArgument, "HostGBuffer::normal is " + std::to_string(n.width) + "x" +
-                                                        std::to_string(n.height) + " but depth is " +
-                                                        std::to_string(depth.width) + "x" + std::to_string(depth.height));
+        const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
         GLint componentType = 0;
         ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
-        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && componentType == GL_FLOAT;
+        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating;
         const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned && componentType == GL_UNSIGNED_NORMALIZED;
         if (n.depth || n.channels < 3 || !(signedOk || unsignedOk))
             throw Error(ErrorCode::InvalidArgument,
@@ -354,6 +373,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     } else {
         defines.push_back("FROM_DEPTH");
     }
+    if (host.albedo) requireHostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
+    if (host.directRadiance) requireHostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
 
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.normals");
@@ -374,6 +395,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     GBufferView v;
     v.depth = {host.depth.name, depth.internalFormat, w, h};
     v.normal = {normal, GL_RGBA16F, w, h};
+    v.albedo = host.albedo;
+    v.directRadiance = host.directRadiance;
     v.camera = camera;
     v.width = w;
     v.height = h;

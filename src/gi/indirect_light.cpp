@@ -101,8 +101,9 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
     if (!g.albedo || !g.directRadiance)
-        throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo, which "
-                                                "adopted host buffers do not have: render the G-buffer with GBuffer::render");
+        throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo: render "
+                                                "the G-buffer with GBuffer::render, or give HostGBuffer::albedo and "
+                                                "directRadiance to GBuffer::adopt");
     const bool hybrid = s.method == GiMethod::Hybrid;
     const bool peeled = !hybrid && s.thicknessMode == ScreenThickness::DepthPeeling;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");

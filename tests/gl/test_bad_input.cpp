@@ -203,6 +203,22 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     expectError([&] { adopt(depth, rgba8); }, ErrorCode::InvalidArgument, "NormalEncoding::Signed");
     expectError([&] { adopt(depth, rg16f); }, ErrorCode::InvalidArgument, "GL_RG16F");
     expectError([&] { adopt(depthOdd, rgba8, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "8x8");
+    const GLuint rgba8ui = hostTexture(GL_RGBA8UI, 16, 16);
+    const auto adoptLit = [&](GLuint albedo, GLuint radiance) {
+        HostGBuffer h;
+        h.depth = {depth, 0, 0, 0};
+        h.albedo = {albedo, 0, 0, 0};
+        h.directRadiance = {radiance, 0, 0, 0};
+        gbuffer.adopt(h, camera);
+    };
+    expectError([&] { adoptLit(rg16f, 0); }, ErrorCode::InvalidArgument, "HostGBuffer::albedo has format GL_RG16F");
+    expectError([&] { adoptLit(rgba8ui, 0); }, ErrorCode::InvalidArgument, "HostGBuffer::albedo has format");
+    expectError([&] { adoptLit(depth, 0); }, ErrorCode::InvalidArgument, "HostGBuffer::albedo has format");
+    expectError([&] { adoptLit(0, rgba8); }, ErrorCode::InvalidArgument, "HostGBuffer::directRadiance has format GL_RGBA8");
+    const GLuint small = hostTexture(GL_RGBA16F, 8, 8);
+    expectError([&] { adoptLit(rgba8, small); }, ErrorCode::InvalidArgument, "HostGBuffer::directRadiance is 8x8");
+    expectError([&] { adoptLit(4242, 0); }, ErrorCode::InvalidArgument, "not a GL texture");
+    for (GLuint t : {rgba8ui, small}) glDeleteTextures(1, &t);
     expectError([&] { readTexture(ctx, {multisample, 0, 16, 16}); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
     GLuint mipmapped = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &mipmapped);

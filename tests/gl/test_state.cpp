@@ -236,6 +236,13 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         host.normal = view.directRadiance; // any RGBA16F texture of the right size
         gbuffer->adopt(host, s.camera);
     });
+    check("GBuffer::adopt (with albedo and lit image)", [&] {
+        HostGBuffer host;
+        host.depth = view.depth;
+        host.albedo = view.albedo;
+        host.directRadiance = view.directRadiance;
+        gbuffer->adopt(host, s.camera);
+    });
     check("readTexture", [&] { readTexture(*ctx, positions); });
     check("Profiler::latest", [&] { ctx->profiler().latest(); });
     check("Profiler::statistics (GPU clock, waiting)", [&] {
@@ -416,7 +423,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 40);
+    CHECK(checked == 41);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {
