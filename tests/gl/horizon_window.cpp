@@ -45,14 +45,20 @@ Interval within(const Affine<glm::dvec3>& X, const Affine<double>& bound, Interv
             pieces.push_back(qb > 0.0 ? Interval{-huge, -qc / qb} : Interval{-qc / qb, huge});
         }
     } else {
+        // The roots without cancellation: with q = -(qb + sign(qb) sqrt(disc)) / 2 they are
+        // q / qa and qc / q.
         const double disc = qb * qb - 4.0 * qa * qc;
-        const double r0 = disc >= 0.0 ? (-qb - std::sqrt(disc)) / (2.0 * qa) : 0.0;
-        const double r1 = disc >= 0.0 ? (-qb + std::sqrt(disc)) / (2.0 * qa) : 0.0;
-        if (qa > 0.0 && disc >= 0.0) pieces.push_back({r0, r1});
-        if (qa < 0.0 && disc < 0.0) pieces.push_back({-huge, huge});
-        if (qa < 0.0 && disc >= 0.0) { // r1 < r0 here
-            pieces.push_back({-huge, r1});
-            pieces.push_back({r0, huge});
+        if (disc < 0.0) {
+            if (qa < 0.0) pieces.push_back({-huge, huge});
+        } else {
+            const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
+            const double x0 = q / qa, x1 = q != 0.0 ? qc / q : x0;
+            const double lo = std::min(x0, x1), hi = std::max(x0, x1);
+            if (qa > 0.0) pieces.push_back({lo, hi});
+            else {
+                pieces.push_back({-huge, lo});
+                pieces.push_back({hi, huge});
+            }
         }
     }
     const Interval feasible = nonNegative(bound, range);
