@@ -32,11 +32,10 @@
 //   the rectangle it can be rounded into. Shorter, no sample need land there.
 // Over several faces the horizon is the largest of theirs, so the window is the largest of
 // each bound, as long as no sample counted as surely on a face may see something else there
-// (a face's holes). The
-// slice's occlusion is monotone in each side's horizon, so these give its window; the estimate
-// (sum of occlusion over sum of open arcs over the slices) follows from the sums over the
-// strata: each within its mean over the slice angles plus the variation over the strata (in
-// each stratum one slice, anywhere in it).
+// (a face's holes). The slice's occlusion is monotone in each side's horizon, so these give
+// its window; the estimate (sum of occlusion over sum of open arcs over the slices) follows
+// from those sums over the slices of the pixel's one offset, for every offset it may have
+// (obliqueWindow, offsetSum).
 #pragma once
 #include "ao_fixture.hpp"
 
