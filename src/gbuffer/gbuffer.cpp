@@ -69,9 +69,11 @@ TextureInfo hostTextureBeside(ContextImpl& ctx, GLuint name, const std::string& 
 }
 
 // The host's albedo (normalized or float) or radiance (float only: it is not bounded by 1),
-// RGB or RGBA, read in place by the passes that use them.
-void requireHostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
+// RGB or RGBA, read in place by the passes that use them; described as GL reports it (the
+// host's TextureView need only name it). Empty stays empty.
+TextureView hostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
                        bool floatOnly) {
+    if (!texture) return {};
     const TextureInfo t = hostTextureBeside(ctx, texture.name, who, depth);
     if (t.depth || t.integer || t.channels < 3 || (floatOnly && !t.floating))
         throw Error(ErrorCode::InvalidArgument,
@@ -79,6 +81,7 @@ void requireHostColour(ContextImpl& ctx, const TextureView& texture, const std::
                         (floatOnly ? "a float RGB/RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F)"
                                    : "a normalized or float RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_SRGB8, GL_SRGB8_ALPHA8, "
                                      "GL_RGB16F, GL_RGBA16F, ...)"));
+    return {texture.name, t.internalFormat, t.width, t.height};
 }
 
 } // namespace
@@ -373,8 +376,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     } else {
         defines.push_back("FROM_DEPTH");
     }
-    if (host.albedo) requireHostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
-    if (host.directRadiance) requireHostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
+    const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
+    const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
 
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.normals");
@@ -395,8 +398,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     GBufferView v;
     v.depth = {host.depth.name, depth.internalFormat, w, h};
     v.normal = {normal, GL_RGBA16F, w, h};
-    v.albedo = host.albedo;
-    v.directRadiance = host.directRadiance;
+    v.albedo = albedo;
+    v.directRadiance = directRadiance;
     v.camera = camera;
     v.width = w;
     v.height = h;

@@ -60,11 +60,13 @@ TEST_CASE("Post-process mode: with the host's albedo and lit image, indirect lig
         HostGBuffer host;
         host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
         host.normal = f.view.normal;
-        host.albedo = {albedo, GL_SRGB8_ALPHA8, W, H};
+        host.albedo = {albedo, 0, 0, 0}; // a name is enough: adopt describes it as GL reports it
         host.directRadiance = {radiance, radianceFormat, W, H};
         GBuffer adopter(f.ctx);
         const GBufferView adopted = adopter.adopt(host, camera);
         CHECK(adopted.albedo.name == albedo); // read in place
+        CHECK(adopted.albedo.internalFormat == GL_SRGB8_ALPHA8);
+        CHECK(adopted.albedo.width == W);
         CHECK(adopted.directRadiance.name == radiance);
         const VoxelGrid& voxels = f.voxelizer.voxelize(cornell.scene, {});
         for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid})
