@@ -89,6 +89,12 @@ struct AmbientOcclusionSettings {
     //! (where no neighbour is similar, the one nearest in depth fills in). At most a quarter
     //! of the G-buffer's pixels are refined; past that they are blended as with 0.
     float refineThreshold = 0.25f;
+    //! Invocations that share each pixel's rays (Horizon: slices): 1, 2, 4, 8 or 16. With 1 a
+    //! pixel's rays run one after another in one invocation, so a pass over few pixels (the
+    //! refinement, a reduced resolution, a small object) lasts as long as its slowest pixel
+    //! however idle the GPU; more lanes split them, at the cost of a sum in shared memory.
+    //! The same rays either way: results differ only in the order the sums are added.
+    int rayLanes = 1;
     bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
     //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.

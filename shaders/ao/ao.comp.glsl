@@ -28,6 +28,11 @@
 //! variant: METHOD=3 TRAVERSAL=0 REFINE
 //! variant: METHOD=3 TRAVERSAL=1 REFINE
 //! variant: METHOD=3 TRAVERSAL=2 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 SCREEN_PEELED RAY_LANES=16
+//! variant: METHOD=1 SCREEN_MARCH=0 RAY_LANES=16 REFINE
+//! variant: METHOD=2 RAY_LANES=16
+//! variant: METHOD=3 TRAVERSAL=2 RAY_LANES=2
+//! variant: METHOD=3 TRAVERSAL=2 RAY_LANES=16 REFINE
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "ao_common.glsl"
@@ -36,11 +41,11 @@
 #endif
 #include "../filters/refine_list.glsl"
 #include "../common/ray_batch.glsl"
-#if defined(REFINE) && AO_WORKGROUP * AO_WORKGROUP != FILTER_REFINE_GROUP
-#error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
+#if AO_WORKGROUP != FILTER_WORKGROUP
+#error "the refinement dispatch and the ray lanes count FILTER_WORKGROUP^2 pixels a group"
 #endif
 
-layout(local_size_x = AO_WORKGROUP, local_size_y = AO_WORKGROUP) in;
+layout(local_size_x = AO_WORKGROUP, local_size_y = AO_WORKGROUP, local_size_z = RAY_LANES) in;
 layout(binding = AO_OUT_IMAGE, r16f) writeonly uniform image2D aoOut;
 layout(binding = AO_BENT_OUT_IMAGE, rgba16f) writeonly uniform image2D bentOut;
 layout(binding = AO_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
@@ -80,7 +85,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
     const uint n = uint(ao.counts.x);
-    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         aoAdd(e, w, normal, screenMarch(p, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
     }
@@ -96,7 +101,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
     const uint n = uint(ao.counts.x);
-    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
@@ -127,7 +132,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
     const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
     const float pError = depthReconstructionError(p, texelFetch(visDepth, fullPixel, 0).r);
-    for (int s = int(rayBatchFirst()); s < int(rayBatchEnd()); ++s) {
+    for (int s = int(rayBatchFirst()); s < int(rayBatchEnd()); s += RAY_LANES) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
         const vec2 dir = vec2(cos(phi), sin(phi));
         // The slice plane holds v and the screen direction; `axis` is its normal, and
@@ -177,7 +182,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
     const vec3 start = p + normal * ao.shape.z;
     const vec3 startVoxel = (ao.viewToVoxel * vec4(start, 1.0)).xyz;
     const uint n = uint(ao.counts.x);
-    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const vec3 endVoxel = (ao.viewToVoxel * vec4(start + w * ao.shape.x, 1.0)).xyz;
         // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
@@ -194,9 +199,10 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
 }
 #endif
 
+// No return before rayLanesSum, which every invocation of the group must reach.
 void main() {
     ivec2 pixel, full;
-    if (!integratorPixel(aoSize(), aoScale(), pixel, full)) return;
+    const bool mine = integratorPixel(aoSize(), aoScale(), pixel, full);
 #ifdef REFINE
     const bool guide = false; // the listed pixels are written at full resolution, unfiltered
 #else
@@ -204,17 +210,24 @@ void main() {
 #endif
     const float depth = texelFetch(visDepth, full, 0).r;
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
-    if (isBackground(depth) || normalTexel.a == 0.0) {
+    const bool background = isBackground(depth) || normalTexel.a == 0.0;
+    vec3 p = vec3(0.0), normal = vec3(0.0, 0.0, 1.0);
+    Estimate own = Estimate(0.0, vec3(0.0), 0.0);
+    if (mine && !background) {
+        p = viewPositionFromDepth(pixelCenterUv(full), depth);
+        normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+        own = aoEstimate(p, normal, pixel, full);
+    }
+    const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own.occluded, own.bent), vec4(own.count)));
+    if (!mine || rayLane() != 0u) return;
+    if (background) {
         imageStore(aoOut, pixel, vec4(1.0));
         if (aoBent()) imageStore(bentOut, pixel, vec4(0.0));
         if (guide) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
-    const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
-    const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-    const Estimate own = aoEstimate(p, normal, pixel, full);
     const uint slot = rayBatchSlot(pixel, aoSize());
-    const RayBatchPartial sums = rayBatchMerged(slot, RayBatchPartial(vec4(own.occluded, own.bent), vec4(own.count)));
+    const RayBatchPartial sums = rayBatchMerged(slot, lanes);
     if (!rayBatchLast()) {
         rayBatchKeep(slot, sums);
         return;

@@ -8,6 +8,10 @@
 #define OBSCURA_REFINE_LIST_GLSL
 #include "filter_bindings.h"
 
+// An integrator's pixel within its workgroup of FILTER_WORKGROUP^2 pixels (the x and y of the
+// invocation; z is its ray lane, ray_batch.glsl).
+uint integratorGroupPixel() { return gl_LocalInvocationID.y * uint(FILTER_WORKGROUP) + gl_LocalInvocationID.x; }
+
 #ifdef REFINE
 
 layout(std430, binding = FILTER_REFINE_SSBO) buffer RefineList {
@@ -30,7 +34,7 @@ bool refineAppend(ivec2 pixel) {
 // The listed pixel of this invocation (groups of FILTER_REFINE_GROUP, in list order); false
 // past the list's end.
 bool refinePixel(out ivec2 pixel) {
-    const uint i = gl_WorkGroupID.x * uint(FILTER_REFINE_GROUP) + gl_LocalInvocationIndex;
+    const uint i = gl_WorkGroupID.x * uint(FILTER_REFINE_GROUP) + integratorGroupPixel();
     const bool listed = i < min(refineCount, refineCapacity());
     const uint code = listed ? refinePixels[i] : 0u;
     pixel = ivec2(code & 0xFFFFu, code >> 16);

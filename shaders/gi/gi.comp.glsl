@@ -21,6 +21,8 @@
 //! variant: METHOD=1 TRAVERSAL=0 REFINE
 //! variant: METHOD=1 TRAVERSAL=1 REFINE
 //! variant: METHOD=1 TRAVERSAL=2 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=2 RAY_LANES=16 REFINE
+//! variant: METHOD=1 TRAVERSAL=2 RAY_LANES=16
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "gi_bindings.h"
@@ -29,11 +31,11 @@
 #endif
 #include "../filters/refine_list.glsl"
 #include "../common/ray_batch.glsl"
-#if defined(REFINE) && GI_WORKGROUP * GI_WORKGROUP != FILTER_REFINE_GROUP
-#error "the refinement dispatch counts FILTER_REFINE_GROUP invocations a group"
+#if GI_WORKGROUP != FILTER_WORKGROUP
+#error "the refinement dispatch and the ray lanes count FILTER_WORKGROUP^2 pixels a group"
 #endif
 
-layout(local_size_x = GI_WORKGROUP, local_size_y = GI_WORKGROUP) in;
+layout(local_size_x = GI_WORKGROUP, local_size_y = GI_WORKGROUP, local_size_z = RAY_LANES) in;
 layout(std140, binding = GI_PARAMS_UBO_BINDING) uniform GiBlock {
     GiParams gi;
 };
@@ -81,7 +83,7 @@ vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
     const vec3 start = p + normal * gi.shape.z;
     const vec3 startVoxel = (gi.viewToVoxel * vec4(start, 1.0)).xyz;
 #endif
-    for (uint i = rayBatchFirst(); i < rayBatchEnd(); ++i) {
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
         const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
@@ -112,9 +114,10 @@ vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
     return sum;
 }
 
+// No return before rayLanesSum, which every invocation of the group must reach.
 void main() {
     ivec2 pixel, full;
-    if (!integratorPixel(gi.sizes.xy, gi.sizes.z, pixel, full)) return;
+    const bool mine = integratorPixel(gi.sizes.xy, gi.sizes.z, pixel, full);
 #ifdef REFINE
     const bool guide = false; // the listed pixels are written at full resolution, unfiltered
 #else
@@ -122,15 +125,22 @@ void main() {
 #endif
     const float depth = texelFetch(visDepth, full, 0).r;
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
-    if (isBackground(depth) || normalTexel.a == 0.0) {
+    const bool background = isBackground(depth) || normalTexel.a == 0.0;
+    vec3 p = vec3(0.0), normal = vec3(0.0, 0.0, 1.0), own = vec3(0.0);
+    if (mine && !background) {
+        p = viewPositionFromDepth(pixelCenterUv(full), depth);
+        normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
+        own = giRadianceSum(p, normal, pixel);
+    }
+    const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own, 0.0), vec4(0.0)));
+    if (!mine || rayLane() != 0u) return;
+    if (background) {
         imageStore(giOut, pixel, vec4(0.0));
         if (guide) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
-    const vec3 p = viewPositionFromDepth(pixelCenterUv(full), depth);
-    const vec3 normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
     const uint slot = rayBatchSlot(pixel, gi.sizes.xy);
-    const RayBatchPartial sums = rayBatchMerged(slot, RayBatchPartial(vec4(giRadianceSum(p, normal, pixel), 0.0), vec4(0.0)));
+    const RayBatchPartial sums = rayBatchMerged(slot, lanes);
     if (!rayBatchLast()) {
         rayBatchKeep(slot, sums);
         return;

@@ -59,6 +59,7 @@ void validateSettings(const AmbientOcclusionSettings& s) {
                                                 "the radius), got " + std::to_string(s.thickness));
     validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "AmbientOcclusionSettings");
     validateRefineThreshold(s.refineThreshold, "AmbientOcclusionSettings");
+    validateRayLanes(s.rayLanes, "AmbientOcclusionSettings::rayLanes");
     if (s.method == AoMethod::Horizon && !s.cosineWeighted)
         throw Error(ErrorCode::InvalidArgument, "the horizon method integrates the cosine-weighted AO only: set "
                                                 "AmbientOcclusionSettings::cosineWeighted");
@@ -165,10 +166,12 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
     if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+    addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
     d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
                    std::max(std::size_t(size.x) * std::size_t(size.y),
-                            refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}));
+                            refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}),
+                   s.rayLanes);
     {
         PassScope pass(ctx, passName(s.method));
         const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, defines);

@@ -1,6 +1,7 @@
 #include "core/ray_batches.hpp"
 
 #include "core/context_impl.hpp"
+#include "obscura/error.hpp"
 #include "shaders/common/common_bindings.h"
 
 #include <algorithm>
@@ -8,11 +9,13 @@
 
 namespace obscura::detail {
 
-void RayBatches::plan(ContextImpl& ctx, int items, std::int64_t iterationsPerItem, std::size_t slots) {
+void RayBatches::plan(ContextImpl& ctx, int items, std::int64_t iterationsPerItem, std::size_t slots, int lanes) {
     items_ = items;
     const std::int64_t perItem = std::max<std::int64_t>(iterationsPerItem, 1);
-    const bool capped = ctx.info.softwareRenderer && std::int64_t(items) * perItem > kLoopBudget;
-    perBatch_ = capped ? static_cast<int>(std::max<std::int64_t>(kLoopBudget / perItem, 1)) : items;
+    // An invocation runs every lanes-th ray of its batch.
+    const std::int64_t perInvocation = (std::int64_t(items) + lanes - 1) / lanes;
+    const bool capped = ctx.info.softwareRenderer && perInvocation * perItem > kLoopBudget;
+    perBatch_ = capped ? static_cast<int>(std::max<std::int64_t>(kLoopBudget / perItem, 1) * lanes) : items;
     count_ = (items + perBatch_ - 1) / perBatch_;
     // Two vec4 per invocation (ray_batch.glsl's RayBatchPartial); one batch reads and writes
     // none, but its shader still declares the buffer: one entry is bound.
@@ -31,6 +34,15 @@ void RayBatches::select(ContextImpl& ctx, GLuint program, int b) const {
 
 // The next batch reads the partial sums this one wrote.
 void RayBatches::barrier(ContextImpl& ctx) { ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
+
+void validateRayLanes(int lanes, const std::string& field) {
+    if (lanes != 1 && lanes != 2 && lanes != 4 && lanes != 8 && lanes != 16)
+        throw Error(ErrorCode::InvalidArgument, field + " must be 1, 2, 4, 8 or 16, got " + std::to_string(lanes));
+}
+
+void addRayLaneDefine(std::vector<std::string>& defines, int lanes) {
+    if (lanes > 1) defines.push_back("RAY_LANES=" + std::to_string(lanes));
+}
 
 std::int64_t screenRayIterations(ScreenMarch march, int steps, glm::ivec2 size) {
     if (march != ScreenMarch::HiZ) return std::int64_t(steps) + 1;

@@ -15,6 +15,8 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace obscura::detail {
 
@@ -27,8 +29,9 @@ public:
     static constexpr std::int64_t kLoopBudget = 60000;
 
     //! Plans `items` rays (or slices) of at most `iterationsPerItem` loop iterations each, for
-    //! `slots` invocations (each dispatch's largest invocation index + 1).
-    void plan(ContextImpl& ctx, int items, std::int64_t iterationsPerItem, std::size_t slots);
+    //! `slots` pixels (each dispatch's largest pixel index + 1), each pixel's rays shared by
+    //! `lanes` invocations (ray_batch.glsl's ray lanes).
+    void plan(ContextImpl& ctx, int items, std::int64_t iterationsPerItem, std::size_t slots, int lanes);
     //! Runs `program`, in use, once per batch: `dispatch` dispatches it.
     template <class Dispatch> void run(ContextImpl& ctx, GLuint program, Dispatch dispatch) const {
         for (int b = 0; b < count_; ++b) {
@@ -47,6 +50,11 @@ private:
     Buffer partials_;
     std::size_t bytes_ = 0;
 };
+
+//! Checks an integrator's rayLanes setting (1, 2, 4, 8 or 16; `field` names it in errors).
+void validateRayLanes(int lanes, const std::string& field);
+//! The shader define for `lanes` ray lanes (none for 1, which the shaders default to).
+void addRayLaneDefine(std::vector<std::string>& defines, int lanes);
 
 //! Loop iterations of one screen-space ray of `steps` samples on a G-buffer of `size`: a
 //! sample each, and for the Hi-Z march at most one descent per level per sample.

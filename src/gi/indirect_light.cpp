@@ -41,6 +41,7 @@ void validateSettings(const IndirectLightSettings& s) {
                                                     std::to_string(s.thickness));
     validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "IndirectLightSettings");
     validateRefineThreshold(s.refineThreshold, "IndirectLightSettings");
+    validateRayLanes(s.rayLanes, "IndirectLightSettings::rayLanes");
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
 }
 
@@ -130,11 +131,13 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         const auto screen = screenMarchDefines(s.march, s.thicknessMode);
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
+    addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
     const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                        : screenRayIterations(s.march, s.steps, fullSize);
     d.batches.plan(ctx, s.rays, perRay,
-                   std::max(std::size_t(size.x) * std::size_t(size.y), refine ? GuidedFilters::refineCapacity(fullSize) : std::size_t{0}));
+                   std::max(std::size_t(size.x) * std::size_t(size.y), refine ? GuidedFilters::refineCapacity(fullSize) : std::size_t{0}),
+                   s.rayLanes);
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
         const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, defines);

@@ -517,6 +517,8 @@ TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-i
              [](AmbientOcclusionSettings& s) { s.blurRadius = 17; }, [](AmbientOcclusionSettings& s) { s.blurDepthSigma = 0.0f; },
              [](AmbientOcclusionSettings& s) { s.refineThreshold = -0.1f; },
              [](AmbientOcclusionSettings& s) { s.refineThreshold = NAN; },
+             [](AmbientOcclusionSettings& s) { s.rayLanes = 0; }, [](AmbientOcclusionSettings& s) { s.rayLanes = 3; },
+             [](AmbientOcclusionSettings& s) { s.rayLanes = 32; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.rays = 7; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.cosineWeighted = false; },
              [](AmbientOcclusionSettings& s) { s.method = AoMethod::Horizon, s.falloff = ObscuranceFalloff::Linear; },

@@ -696,6 +696,7 @@ TEST_CASE("Indirect light refuses bad settings and buffers without radiance", "[
              [](IndirectLightSettings& s) { s.radius = -1.0f; }, [](IndirectLightSettings& s) { s.rays = 0; },
              [](IndirectLightSettings& s) { s.steps = 300; }, [](IndirectLightSettings& s) { s.blurRadius = -1; },
              [](IndirectLightSettings& s) { s.refineThreshold = 1.5f; },
+             [](IndirectLightSettings& s) { s.rayLanes = 6; }, [](IndirectLightSettings& s) { s.rayLanes = -1; },
              [](IndirectLightSettings& s) { s.method = GiMethod::Hybrid; },
              [](IndirectLightSettings& s) { s.method = static_cast<GiMethod>(2); },
              [](IndirectLightSettings& s) { s.resolution = static_cast<AoResolution>(0); },
