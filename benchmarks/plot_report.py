@@ -155,7 +155,7 @@ HALF_PAIRS = ("medium", "high")  # presets X and X_half: the same rays and steps
 def resolution_rows(rows):
     """Table lines of X (full resolution) against X_half (half resolution + blur), per preset pair, technique and size."""
     pairs = defaultdict(dict)
-    for r in rows:
+    for r in one_lane(rows):
         base = r["preset"][:-len("_half")] if r["preset"].endswith("_half") else r["preset"]
         if base in HALF_PAIRS:
             size = f'{r["width"]}x{r["height"]}'
@@ -173,6 +173,58 @@ def resolution_rows(rows):
                      f'{fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
                      f'{"yes" if ok else "**no**"} |')
     return lines
+
+
+def ray_lanes(row):
+    """The row's rayLanes setting (invocations per pixel's rays; 1 unless set)."""
+    return int(row.get("settings", {}).get("ray_lanes", 1))
+
+
+def one_lane(rows):
+    """The rows at the default of one lane: the other tables compare those; the lanes study has its own."""
+    return [r for r in rows if ray_lanes(r) == 1]
+
+
+def lanes_lines(rows):
+    """Table lines: per scene, size, technique, quantity and preset, the own time at each ray-lane count
+    present, and for X / X_half pairs the half-resolution speed-up at each."""
+    runs = defaultdict(dict)
+    for r in rows:
+        runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["quantity"],
+              r["preset"])][ray_lanes(r)] = r
+    counts = sorted({n for by_lanes in runs.values() for n in by_lanes})
+    if len(counts) < 2:
+        return [], counts
+    lines = []
+    for key, by_lanes in sorted(runs.items()):
+        if key[4].endswith("_half") or key[4] + "_half" not in {k[4] for k in runs if k[:4] == key[:4]}:
+            continue
+        half = runs[key[:4] + (key[4] + "_half",)]
+        cells = [fmt(own_ms(by_lanes[n])) if n in by_lanes else "" for n in counts]
+        cells += [fmt(own_ms(half[n])) if n in half else "" for n in counts]
+        cells += [fmt(own_ms(by_lanes[n]) / own_ms(half[n]), 3) if n in by_lanes and n in half and own_ms(half[n]) > 0 else ""
+                  for n in counts]
+        worst = max((abs(rs[n]["rmse"] - rs[counts[0]]["rmse"]) for rs in (by_lanes, half) for n in counts
+                     if n in rs and counts[0] in rs), default=float("nan"))
+        lines.append(f'| {" | ".join(key)} | ' + " | ".join(cells) + f" | {fmt(worst)} |")
+    return lines, counts
+
+
+def lanes_section(rows, heading="##"):
+    lines, counts = lanes_lines(rows)
+    if not lines:
+        return []
+    names = [str(n) for n in counts]
+    return [f"{heading} Ray lanes", "",
+            "`ray_lanes` (rayLanes): that many invocations share each pixel's rays and add their sums in shared "
+            "memory, the same rays in another order. Presets X at full resolution and X_half (as in the half-"
+            "resolution section), the technique's own passes at each lane count, and the half-resolution speed-up "
+            "(X over X_half) at each. The last column is the largest RMSE difference from the fewest lanes, at "
+            "either resolution (the order of the sums only).", "",
+            "| scene | size | technique | quantity | preset | " + " | ".join(f"full ms, {n}" for n in names) + " | "
+            + " | ".join(f"half ms, {n}" for n in names) + " | " + " | ".join(f"speed-up, {n}" for n in names)
+            + " | RMSE change |",
+            "|" + "---|" * (6 + 3 * len(counts))] + lines + [""]
 
 
 RESOLUTION_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | speed-up | full RMSE | half RMSE | "
@@ -264,8 +316,9 @@ def gpu_section(gpu_rows, cpu_rows, provenance=()):
                   "threads, at any resolution: only 1920x1080 (256 spp references) shows what half resolution saves, "
                   "and only where the full-resolution pass fills the GPU.", ""]
         lines += RESOLUTION_HEADER + study + [""]
-    cpu = {row_key(r): r for r in cpu_rows}
-    matched = [(r, cpu[row_key(r)]) for r in gpu_rows if row_key(r) in cpu]
+    lines += lanes_section(gpu_rows, "###")
+    cpu = {row_key(r): r for r in one_lane(cpu_rows)}
+    matched = [(r, cpu[row_key(r)]) for r in one_lane(gpu_rows) if row_key(r) in cpu]
     if matched:
         worst = max((abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"])),
                     default=float("nan"))
@@ -364,7 +417,8 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
-def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=()):
+def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
+                 lanes_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -423,6 +477,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
+    lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
@@ -439,6 +494,8 @@ def main():
                         help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
     parser.add_argument("--march-study", action="append", default=[],
                         help="bench.json of ao.raymarch with one --set march=view|texture|hiz (screen-space march table only)")
+    parser.add_argument("--lanes-study", action="append", default=[],
+                        help="bench.json of presets X and X_half with one --set ray_lanes=N (ray-lanes table only)")
     parser.add_argument("--gpu", action="append", default=[],
                         help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section, with the "
                              "provenance.md beside it (when, at which commit, what ran) quoted there")
@@ -450,6 +507,8 @@ def main():
     sources = [os.path.basename(p) for p in args.inputs] + [f"{p} (resolution study)" for p in args.resolution_study]
     march_rows = load(args.march_study)[0] if args.march_study else []
     sources += [f"{p} (march study)" for p in args.march_study]
+    lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
+    sources += [f"{p} (lanes study)" for p in args.lanes_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
     sources += [f"{p} (GPU)" for p in args.gpu]
     provenance = []
@@ -458,7 +517,7 @@ def main():
         if os.path.isfile(path):
             with open(path) as f:
                 provenance.append(f.read())
-    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance)
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

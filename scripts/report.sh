@@ -2,8 +2,8 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, the half-resolution trade-off at 512x512 and the screen-space marches
-# (view, texture, Hi-Z), then draws the plots.
+# its traversals, the half-resolution trade-off at 512x512, ray lanes and the screen-space
+# marches (view, texture, Hi-Z), then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -33,6 +33,17 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+# Ray lanes (rayLanes: invocations that share each pixel's rays) on the half-resolution study's
+# miss, ao.points medium: llvmpipe runs a workgroup's lanes on the same cores, so what they cost
+# there shows; what they save on a GPU, benchmarks/gpu/run.sh lanes measures.
+lanes=()
+for n in 1 4 16; do
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+    --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+    --techniques ao.points --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 --set ray_lanes=$n \
+    --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/lanes_$n"
+  lanes+=(--lanes-study "$out/lanes_$n/bench.json")
+done
 # The screen-space marches on the same samples: view and texture space, and Hi-Z (the
 # texture-space march's first hit with runs of samples skipped), at the presets' 16 and 32
 # steps and at 128, where the pyramid has runs to skip.
@@ -53,4 +64,4 @@ done
 gpu=()
 for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do [ -f "$f" ] && gpu+=(--gpu "$f"); done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
-  --resolution-study "$out/resolution/bench.json" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  --resolution-study "$out/resolution/bench.json" "${lanes[@]}" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

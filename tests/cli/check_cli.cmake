@@ -289,6 +289,17 @@ foreach(i 0 1)
   endif()
 endforeach()
 
+# The ray-lanes study: the same pair with 2 lanes beside the run above, in a table of its own.
+run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques ao.points
+    --presets medium_half,medium --set bent_normals=0 --set ray_lanes=2 --out "${WORK_DIR}/bench_lanes")
+run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json"
+    --lanes-study "${WORK_DIR}/bench_paired/bench.json" --lanes-study "${WORK_DIR}/bench_lanes/bench.json"
+    --out "${WORK_DIR}/docs_lanes")
+file(READ "${WORK_DIR}/docs_lanes/results.md" report)
+if(NOT report MATCHES "## Ray lanes" OR NOT report MATCHES "\\| cornell \\| 16x16 \\| ao.points \\| ao \\| medium \\|")
+  message(FATAL_ERROR "results.md lacks the ray-lanes table or its ao.points row")
+endif()
+
 # --set overrides every preset's settings (here the maps' size: six 256^2 32F layers, plus the
 # lights' records, a few KiB; the low preset's own 512^2 maps would be four times as much),
 # and --no-cache leaves no reference files behind.
