@@ -220,7 +220,8 @@ def lanes_section(rows, heading="##"):
             "memory, the same rays in another order. Presets X at full resolution and X_half (as in the half-"
             "resolution section), the technique's own passes at each lane count, and the half-resolution speed-up "
             "(X over X_half) at each. The last column is the largest RMSE difference from the fewest lanes, at "
-            "either resolution (the order of the sums only).", "",
+            "either resolution (the order of the sums only). Lanes pay where both times fall; a speed-up that "
+            "grows while both times grow only says the full-resolution pass slowed more.", "",
             "| scene | size | technique | quantity | preset | " + " | ".join(f"full ms, {n}" for n in names) + " | "
             + " | ".join(f"half ms, {n}" for n in names) + " | " + " | ".join(f"speed-up, {n}" for n in names)
             + " | RMSE change |",
