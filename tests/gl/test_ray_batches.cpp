@@ -2,10 +2,7 @@
 // invocation after 65535 iterations in all, they run their rays in batches
 // (src/core/ray_batches.hpp). Their estimates must not depend on how many iterations the rays
 // take: many rays estimate what few rays do.
-#include "gl_fixture.hpp"
-
-#include "obscura/assets.hpp"
-#include "obscura/obscura.hpp"
+#include "cornell_frame.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -16,19 +13,6 @@
 using namespace obscura;
 
 namespace {
-
-struct CornellFrame {
-    test::GlFixture gl;
-    Context ctx{gl.desc()};
-    GBuffer gbuffer{ctx};
-    Voxelizer voxelizer{ctx};
-    AmbientOcclusion ao{ctx};
-    IndirectLight gi{ctx};
-    assets::LoadedScene cornell = assets::builtinScene("cornell");
-    static constexpr int W = 48, H = 48;
-    GBufferView view = gbuffer.render(cornell.scene, assets::makeCamera(cornell.camera, W, H), {W, H, true, {}});
-    Image positions = readTexture(ctx, gbuffer.positions(view));
-};
 
 // Same pixels, few and many rays: both estimate the pixel's integral without bias (rotated
 // Hammersley sets, whatever their count), so their differences have mean 0 and, every pixel's
@@ -58,7 +42,7 @@ void checkSameMean(const Image& few, const Image& many, const Image& positions) 
 } // namespace
 
 TEST_CASE("Estimates do not depend on how many loop iterations their rays take", "[ao][gi][batches]") {
-    CornellFrame f;
+    test::CornellFrame f(48, 48);
     const float radius = 96.07f; // a tenth of the box's diagonal
     // With many rays each case may take more loop iterations than llvmpipe's 65535, so there
     // it runs in batches: 1024 rays of 257 march steps; 512 slices of 2 x 257 horizon steps;

@@ -2,10 +2,7 @@
 // invocations share a pixel's rays and lane 0 adds their sums (shaders/common/ray_batch.glsl).
 // The rays are the same as with one lane, only the order of the additions differs, so the
 // results must agree to the rounding that order can change, derived below.
-#include "gl_fixture.hpp"
-
-#include "obscura/assets.hpp"
-#include "obscura/obscura.hpp"
+#include "cornell_frame.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -17,22 +14,6 @@
 using namespace obscura;
 
 namespace {
-
-struct CornellFrame {
-    test::GlFixture gl;
-    Context ctx{gl.desc()};
-    GBuffer gbuffer{ctx};
-    Voxelizer voxelizer{ctx};
-    AmbientOcclusion ao{ctx};
-    IndirectLight gi{ctx};
-    assets::LoadedScene cornell = assets::builtinScene("cornell");
-    // Not multiples of the 8 x 8 workgroups, at full and half resolution: the last groups
-    // hold pixels outside the image, whose lanes must still meet at the barrier.
-    static constexpr int W = 60, H = 44;
-    GBufferView view = gbuffer.render(cornell.scene, assets::makeCamera(cornell.camera, W, H), {W, H, true, {}});
-    Image positions = readTexture(ctx, gbuffer.positions(view));
-    const VoxelGrid* grid = &voxelizer.voxelize(cornell.scene, {});
-};
 
 constexpr double kFloatUnit = 0x1p-24; // float's unit roundoff
 // Rounding to the nearest half float moves two values at most one spacing further apart: 2^-11
@@ -69,7 +50,10 @@ double worstExcess(const Image& a, const Image& b, const Image& positions, int c
 
 TEST_CASE("Ray lanes give each pixel the same rays: AO's counts exactly, other sums to their reordering's rounding",
           "[ao][gi][lanes]") {
-    CornellFrame f;
+    // Not multiples of the 8 x 8 workgroups, at full and half resolution: the last groups
+    // hold pixels outside the image, whose lanes must still meet at the barrier.
+    test::CornellFrame f(60, 44);
+    const VoxelGrid* grid = &f.voxelizer.voxelize(f.cornell.scene, {});
     const float radius = 96.07f; // a tenth of the box's diagonal
     const auto aoRun = [&](AoMethod method, ObscuranceFalloff falloff, AoResolution resolution, int lanes) {
         AmbientOcclusionSettings s;
@@ -82,7 +66,7 @@ TEST_CASE("Ray lanes give each pixel the same rays: AO's counts exactly, other s
         s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
         s.bentNormals = method != AoMethod::Horizon;
         s.rayLanes = lanes;
-        if (method == AoMethod::Voxel) s.voxels = f.grid;
+        if (method == AoMethod::Voxel) s.voxels = grid;
         const AmbientOcclusionView v = f.ao.run(f.view, s);
         return std::make_pair(readTexture(f.ctx, v.ao), s.bentNormals ? readTexture(f.ctx, v.bentNormal) : Image{});
     };
@@ -147,7 +131,7 @@ TEST_CASE("Ray lanes give each pixel the same rays: AO's counts exactly, other s
         s.resolution = resolution;
         s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
         s.rayLanes = lanes;
-        if (method == GiMethod::Hybrid) s.voxels = f.grid;
+        if (method == GiMethod::Hybrid) s.voxels = grid;
         return readTexture(f.ctx, f.gi.run(f.view, s).radiance);
     };
     struct GiCase {
