@@ -1,6 +1,9 @@
 // The derivation is in horizon_window.hpp.
 #include "horizon_window.hpp"
 
+#include "core/sampling.hpp"
+#include "shaders/common/common_bindings.h"
+
 #include <catch2/catch.hpp>
 #include <glm/gtc/constants.hpp>
 
@@ -187,14 +190,48 @@ double visibleArc(double h1, double h2, double g) {
            0.25 * (-std::cos(2.0 * h2 - g) + std::cos(g) + 2.0 * h2 * std::sin(g));
 }
 
-// One slice at screen angle phi: its open arcs and the occlusion for the least and the most
-// horizons.
+// How far the shader's slice direction may turn from the angle the test computes, in radians.
+// Its angle pi (k + u) / N takes four float roundings and a division (GLSL 4.50 allows the
+// division 2.5 ULP): within 8 2^-24 of pi, 1.5e-6. sin and cos have no precision in GLSL 4.50;
+// the GL's general "about one part in 10^5" for float results moves the direction by at most
+// about 1.5e-5. 3e-5 covers both.
+constexpr double kAngleError = 3e-5;
+
+// The shader's slice offset u at a G-buffer pixel (GL's rows, up): its noise texel's first
+// value (pixelRotation in sampling.glsl, at full resolution the pixel itself).
+double sliceOffset(int x, int glY) { return detail::noiseTexel(x & (OBSCURA_NOISE_SIZE - 1), glY & (OBSCURA_NOISE_SIZE - 1)).x; }
+
+// The least and the most horizon cosine each side of the slice at screen angle phi can find
+// (side 0 toward -dir), for samples up to `lambda` pixels from where the test puts them.
+struct SideHorizons {
+    double least[2] = {-1.0, -1.0}, most[2] = {-1.0, -1.0};
+};
+
+SideHorizons sideHorizons(const FloorPixel& px, double phi, const std::vector<Face>& faces, const ScreenRays& rays,
+                          const Sampling& sampling, double lambda) {
+    Sampling widened = sampling;
+    widened.lambda = lambda;
+    const glm::dvec2 dir(std::cos(phi), std::sin(phi));
+    SideHorizons h;
+    for (int side = 0; side < 2; ++side) {
+        const glm::dvec2 u = (side == 0 ? -1.0 : 1.0) * dir;
+        const Interval inside{rays.inside(px.centre, u, 1.0), rays.inside(px.centre, u, -1.0)};
+        for (const Face& face : faces) {
+            const auto [m, l] = horizonWindow(rays.side(face, px.p, px.v, sampling.radius, px.centre, u), px.reach, inside, widened);
+            h.most[side] = std::max(h.most[side], m);
+            h.least[side] = std::max(h.least[side], l);
+        }
+    }
+    return h;
+}
+
+// One slice at screen angle phi with the horizons h: its open arcs and the occlusion for the
+// least and the most horizons.
 struct SliceOcclusion {
     double open = 0.0, least = 0.0, most = 0.0;
 };
 
-SliceOcclusion obliqueSlice(const FloorPixel& px, double phi, const std::vector<Face>& faces, const ScreenRays& rays,
-                            const Sampling& sampling) {
+SliceOcclusion sliceOcclusion(const FloorPixel& px, double phi, const SideHorizons& h) {
     const glm::dvec3 dir(std::cos(phi), std::sin(phi), 0.0);
     const glm::dvec3 axis = glm::normalize(glm::cross(dir, px.v));
     const glm::dvec3 projected = px.n - axis * glm::dot(px.n, axis);
@@ -202,48 +239,13 @@ SliceOcclusion obliqueSlice(const FloorPixel& px, double phi, const std::vector<
     if (!(weight > 0.0)) return {};
     const glm::dvec3 np = projected / weight;
     const double g = (glm::dot(np, glm::cross(px.v, axis)) < 0.0 ? -1.0 : 1.0) * std::acos(std::clamp(glm::dot(np, px.v), -1.0, 1.0));
-    double most[2] = {-1.0, -1.0}, least[2] = {-1.0, -1.0};
-    for (int side = 0; side < 2; ++side) {
-        const glm::dvec2 u = (side == 0 ? -1.0 : 1.0) * glm::dvec2(dir);
-        const Interval inside{rays.inside(px.centre, u, 1.0), rays.inside(px.centre, u, -1.0)};
-        for (const Face& face : faces) {
-            const auto [m, l] = horizonWindow(rays.side(face, px.p, px.v, sampling.radius, px.centre, u), px.reach, inside, sampling);
-            most[side] = std::max(most[side], m);
-            least[side] = std::max(least[side], l);
-        }
-    }
     const double open = weight * visibleArc(g - 0.5 * kPi, g + 0.5 * kPi, g);
     const auto occluded = [&](const double best[2]) {
         const double h0 = std::max(-std::acos(best[0]), g - 0.5 * kPi);
         const double h1 = std::min(std::acos(best[1]), g + 0.5 * kPi);
         return open - weight * visibleArc(h0, h1, g);
     };
-    return {open, occluded(least), occluded(most)};
-}
-
-// The shader's slices at one offset u: phi_k = pi (k + u) / N, k < N. With the nodes at
-// pi (i + 1/2) / (N M), i = k M + m, the node sum of m is that of u = (m + 1/2) / M; for u
-// between it and the next node's offset each slice moves between two consecutive nodes, so
-// the sum moves by at most the variation there. The change between two nodes can fall short
-// of that variation where the function turns between them, at the few angles where a face's
-// edges or the radius cut in: the variation is taken as the largest change over that interval
-// and its two neighbours (a kink's peak rises at most about a neighbour's slope), plus 5 %
-// (a heuristic: unlike the box's from above in test_horizon_ao.cpp, these functions have no
-// candidate angles worked out).
-struct OffsetSum {
-    double mean = 0.0, slack = 0.0;
-};
-
-OffsetSum offsetSum(const std::vector<double>& f, int slices, int m) {
-    const std::size_t n = f.size(), M = n / std::size_t(slices);
-    const auto step = [&](std::size_t i) { return std::abs(f[i % n] - f[(i + 1) % n]); };
-    OffsetSum r;
-    for (std::size_t k = 0; k < std::size_t(slices); ++k) {
-        const std::size_t i = k * M + std::size_t(m);
-        r.mean += f[i] / slices;
-        r.slack += 1.05 * std::max({step(i + n - 1), step(i), step(i + 1)}) / slices;
-    }
-    return r;
+    return {open, occluded(h.least), occluded(h.most)};
 }
 
 } // namespace
@@ -337,7 +339,9 @@ std::optional<FloorPixel> floorPixel(const AoFixture& f, const Image& normals, i
     if (std::abs(f.world(x, y).y) > 1e-3 || (glm::inverse(glm::dmat3(view)) * px.n).y < 0.9) return std::nullopt;
     const bool perspective = projection[2][3] == -1.0;
     px.v = perspective ? -glm::normalize(px.p) : glm::dvec3(0.0, 0.0, 1.0);
-    px.centre = {x + 0.5, f.positions.height - 1 - y + 0.5}; // Image rows run down, GL's up
+    const int glY = f.positions.height - 1 - y; // Image rows run down, GL's up
+    px.centre = {x + 0.5, glY + 0.5};
+    px.sliceOffset = sliceOffset(x, glY);
     // The shader's radius in pixels: the projection's y scale over the distance.
     px.reach = radius * 0.5 * f.positions.height * projection[1][1] / (perspective ? -px.p.z : 1.0);
     return px;
@@ -358,16 +362,7 @@ void checkAffine(const ScreenRays& rays, const Face& face, const FloorPixel& px,
     if (face.discOuter > 0.0) CHECK(glm::length(side.balls.back().X(a, c) / w - (o - face.discCentre)) <= 1e-9 * glm::length(o));
 }
 
-AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, const ScreenRays& rays,
-                       const Sampling& sampling, int nodes) {
-    if (nodes % sampling.slices != 0) throw std::logic_error("the nodes must split each slice's stratum alike");
-    std::vector<double> open, least, most;
-    for (int i = 0; i < nodes; ++i) {
-        const SliceOcclusion s = obliqueSlice(px, kPi * (i + 0.5) / nodes, faces, rays, sampling);
-        open.push_back(s.open);
-        least.push_back(s.least);
-        most.push_back(s.most);
-    }
+AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, const ScreenRays& rays, const Sampling& sampling) {
     // Left out of the model, both small: the G-buffer's normal is rounded to half floats (a
     // tilt of up to 2^-11 rad), so a floor sample off the slice's plane may pass the shader's
     // plane test and count as a horizon a little above the limit; and positions carry about
@@ -376,17 +371,26 @@ AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, con
     // g sin g >= 1): 1e-3 of the open arcs covers them (a review's simulation of the wall's
     // scene found at most 2.6e-5 of them).
     const double normalRounding = 1e-3;
-    // The estimate is 1 - (sum of occlusion) / (sum of open arcs) over the slices of the
-    // pixel's offset, which is unknown here: the window holds every offset's.
-    AoWindow window{1.0, 0.0};
-    for (int m = 0; m < nodes / sampling.slices; ++m) {
-        const OffsetSum o = offsetSum(open, sampling.slices, m), l = offsetSum(least, sampling.slices, m),
-                        h = offsetSum(most, sampling.slices, m);
-        const double occludedLo = std::max(l.mean - l.slack, 0.0), occludedHi = h.mean + h.slack + normalRounding * o.mean;
-        window.lo = std::min(window.lo, 1.0 - occludedHi / (o.mean - o.slack));
-        window.hi = std::max(window.hi, 1.0 - occludedLo / (o.mean + o.slack));
+    // The shader's slice k is at pi (k + u) / N, u this pixel's offset, turned by at most
+    // kAngleError. Its samples then lie at most reach kAngleError pixels across the test's line
+    // (and less along it): lambda grows by that much. Its weight and g are smooth in the angle:
+    // the open arcs and occlusions are taken at both ends of that turn, and what a kink of the
+    // horizon's clamp to the hemisphere between the ends could add, kAngleError times a slope
+    // of a few, is far within the allowance above.
+    const double lambda = sampling.lambda + px.reach * kAngleError;
+    double openLo = 0.0, openHi = 0.0, occludedLo = 0.0, occludedHi = 0.0;
+    for (int k = 0; k < sampling.slices; ++k) {
+        const double phi = kPi * (k + px.sliceOffset) / sampling.slices;
+        const SideHorizons h = sideHorizons(px, phi, faces, rays, sampling, lambda);
+        const SliceOcclusion a = sliceOcclusion(px, phi - kAngleError, h), b = sliceOcclusion(px, phi + kAngleError, h);
+        openLo += std::min(a.open, b.open);
+        openHi += std::max(a.open, b.open);
+        occludedLo += std::min(a.least, b.least);
+        occludedHi += std::max(a.most, b.most);
     }
-    return window;
+    // The estimate is 1 - (sum of occlusion) / (sum of open arcs) over the slices.
+    occludedHi += normalRounding * openLo;
+    return {1.0 - occludedHi / openLo, 1.0 - std::max(occludedLo, 0.0) / openHi};
 }
 
 void WindowTally::check(double value, AoWindow w) {

@@ -34,8 +34,8 @@
 // each bound, as long as no sample counted as surely on a face may see something else there
 // (a face's holes). The slice's occlusion is monotone in each side's horizon, so these give
 // its window; the estimate (sum of occlusion over sum of open arcs over the slices) follows
-// from those sums over the slices of the pixel's one offset, for every offset it may have
-// (obliqueWindow, offsetSum).
+// from those sums over the shader's own slices, at the pixel's offset from the noise texture
+// (obliqueWindow, which also bounds the shader's float angles).
 #pragma once
 #include "ao_fixture.hpp"
 
@@ -117,11 +117,12 @@ struct ScreenRays {
 };
 
 //! One floor pixel: its view point and normal, v, its pixel centre (GL pixels) and the
-//! radius in pixels there, as the shader computes them.
+//! radius in pixels there, and its slice offset, as the shader computes them.
 struct FloorPixel {
     glm::dvec3 p, n, v;
     glm::dvec2 centre;
     double reach;
+    double sliceOffset; // u of the shader's slice angles pi (k + u) / N, in [0, 1)
 };
 
 //! Floor pixel (x, y) of f's G-buffer (rows down) as the shader sees it; none off the floor
@@ -138,9 +139,8 @@ struct AoWindow {
     double lo = 1.0, hi = 1.0;
 };
 
-//! The window of a floor pixel's estimate among the faces, from `nodes` slice angles.
-AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, const ScreenRays& rays,
-                       const Sampling& sampling, int nodes);
+//! The window of a floor pixel's estimate among the faces, from the shader's slices.
+AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, const ScreenRays& rays, const Sampling& sampling);
 
 //! Checks pixels' AO against their windows, plus the half float's rounding (to nearest), and
 //! keeps what the tests report: the mean error from the windows' centres and the windows'
