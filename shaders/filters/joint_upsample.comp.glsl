@@ -65,15 +65,17 @@ void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE 
     }
 }
 
+// Whether the pixel is in the image (odd sizes: the quad's far half is outside) and, with
+// REFINE, has too little similar-neighbour weight, so that the integrator computes it.
+bool inImage(ivec2 pixel) { return all(lessThan(pixel, frameSize())); }
+bool wantsRefinement(ivec2 pixel, Target t, Blend b) { return inImage(pixel) && !t.background && b.total < filterParams.weights.w; }
+
 // Single exit: Mesa 22.3 llvmpipe miscompiles early returns in inlined code (see
-// voxel_traversal.glsl).
-void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
+// voxel_traversal.glsl). `listed`: left to the refinement.
+void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor, bool listed) {
     const bool weighted = b.total > 1e-6;
     const FILTER_VALUE blended = filterFinish(modulated(pixel, weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest));
-    bool inside = all(lessThan(pixel, frameSize())); // odd sizes: the quad's far half is outside
-#ifdef REFINE
-    if (inside && !t.background && b.total < filterParams.weights.w && refineAppend(pixel)) inside = false;
-#endif
+    const bool inside = inImage(pixel) && !listed;
     if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.weights.z) : blended));
 #ifdef DIRECTION
     if (inside) {
@@ -130,8 +132,14 @@ void main() {
         accumulate(b01, t01, corner, guide, value, anchor, direction);
         accumulate(b11, t11, corner, guide, value, anchor, direction);
     }
-    writePixel(p00, t00, b00, anchor);
-    writePixel(p00 + ivec2(1, 0), t10, b10, anchor);
-    writePixel(p00 + ivec2(0, 1), t01, b01, anchor);
-    writePixel(p00 + ivec2(1, 1), t11, b11, anchor);
+#ifdef REFINE
+    const bvec4 listed = refineAppendQuad(p00, bvec4(wantsRefinement(p00, t00, b00), wantsRefinement(p00 + ivec2(1, 0), t10, b10),
+                                                     wantsRefinement(p00 + ivec2(0, 1), t01, b01), wantsRefinement(p00 + ivec2(1, 1), t11, b11)));
+#else
+    const bvec4 listed = bvec4(false);
+#endif
+    writePixel(p00, t00, b00, anchor, listed.x);
+    writePixel(p00 + ivec2(1, 0), t10, b10, anchor, listed.y);
+    writePixel(p00 + ivec2(0, 1), t01, b01, anchor, listed.z);
+    writePixel(p00 + ivec2(1, 1), t11, b11, anchor, listed.w);
 }

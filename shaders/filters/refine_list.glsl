@@ -22,13 +22,27 @@ layout(std430, binding = FILTER_REFINE_SSBO) buffer RefineList {
 
 uint refineCapacity() { return uint(refinePixels.length()); }
 
-// Lists a G-buffer pixel; false when the list is full (the caller fills it itself).
-bool refineAppend(ivec2 pixel) {
-    const uint i = atomicAdd(refineCount, 1u);
-    if (i >= refineCapacity()) return false;
-    refinePixels[i] = uint(pixel.x) | (uint(pixel.y) << 16);
-    if (i % uint(FILTER_REFINE_GROUP) == 0u) atomicAdd(refineGroups[0], 1u);
-    return true;
+// Lists the pixels of the quad at `quad` (p, p + (1, 0), p + (0, 1), p + (1, 1)) that are
+// `wanted`, in that order, with one atomic add for all of them. On llvmpipe every SIMD batch
+// runs each atomic and store lane by lane, masked off or not: the appends took about 3 of the
+// upsampling's 11 ms on the Cornell box at 512 x 512, and one add a quad instead of one a
+// pixel saved about 1.2 ms. Returns which were listed (past the capacity, none: the caller
+// fills those itself).
+bvec4 refineAppendQuad(ivec2 quad, bvec4 wanted) {
+    const uvec4 want = uvec4(wanted);
+    const uint n = want.x + want.y + want.z + want.w;
+    bvec4 listed = bvec4(false);
+    if (n > 0u) {
+        const uint first = atomicAdd(refineCount, n), end = min(first + n, refineCapacity());
+        // The groups the list's length now starts: the multiples of the group size in [first, end).
+        const uint group = uint(FILTER_REFINE_GROUP), firstStart = (first + group - 1u) / group * group;
+        if (firstStart < end) atomicAdd(refineGroups[0], (end - 1u - firstStart) / group + 1u);
+        const uvec4 slot = first + uvec4(0u, want.x, want.x + want.y, want.x + want.y + want.z); // in list order
+        listed = bvec4(uvec4(wanted) * uvec4(lessThan(slot, uvec4(end))));
+        for (int k = 0; k < 4; ++k)
+            if (listed[k]) refinePixels[slot[k]] = uint(quad.x + (k & 1)) | (uint(quad.y + (k >> 1)) << 16);
+    }
+    return listed;
 }
 
 // The listed pixel of this invocation (groups of FILTER_REFINE_GROUP, in list order); false
