@@ -108,7 +108,9 @@ void main() {
     const Target t11 = makeTarget(depth.y, vec4(nx.y, ny.y, nz.y, na.y), f00 + step);
     Blend b00 = startBlend(), b10 = startBlend(), b01 = startBlend(), b11 = startBlend();
     // A loop, not straight code, so that on llvmpipe a SIMD batch of background quads skips
-    // the loads: straight-line loads are speculated and paid for masked-off lanes too.
+    // the last three neighbours' loads: straight-line code runs for masked-off lanes too, and
+    // so does a loop's first pass, but later passes stop once no lane is left
+    // (benchmarks/README.md).
     const bool geometry = !(t00.background && t10.background && t01.background && t11.background);
     FILTER_VALUE anchor = FILTER_VALUE(0.0);
     bool anchored = false;

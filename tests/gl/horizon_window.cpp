@@ -191,10 +191,11 @@ double visibleArc(double h1, double h2, double g) {
 }
 
 // How far the shader's slice direction may turn from the angle the test computes, in radians.
-// Its angle pi (k + u) / N takes four float roundings and a division (GLSL 4.50 allows the
-// division 2.5 ULP): within 8 2^-24 of pi, 1.5e-6. sin and cos have no precision in GLSL 4.50;
-// the GL's general "about one part in 10^5" for float results moves the direction by at most
-// about 1.5e-5. 3e-5 covers both.
+// Its angle pi (k + u) / N takes three float roundings (pi, the sum, the product) and a
+// division, which GLSL 4.50 allows 2.5 ULP: within 8 2^-24 of pi, 1.5e-6. GLSL 4.50 gives sin
+// and cos no precision; taking the GL's "about one part in 10^5" for float results as theirs
+// too (an assumption, which "sin and cos of the horizon's slice angles are within 1e-5" checks
+// on the driver at hand), the direction turns by at most about 1.5e-5. 3e-5 covers both.
 constexpr double kAngleError = 3e-5;
 
 // The shader's slice offset u at a G-buffer pixel (GL's rows, up): its noise texel's first
@@ -373,10 +374,13 @@ AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, con
     const double normalRounding = 1e-3;
     // The shader's slice k is at pi (k + u) / N, u this pixel's offset, turned by at most
     // kAngleError. Its samples then lie at most reach kAngleError pixels across the test's line
-    // (and less along it): lambda grows by that much. Its weight and g are smooth in the angle:
-    // the open arcs and occlusions are taken at both ends of that turn, and what a kink of the
-    // horizon's clamp to the hemisphere between the ends could add, kAngleError times a slope
-    // of a few, is far within the allowance above.
+    // (and less along it): lambda grows by that much. Its weight and g are smooth in the angle,
+    // and so are the arcs, even where the horizon is clamped to the normal's hemisphere (the
+    // arc's derivative in the horizon angle vanishes at the limit): the open arcs and
+    // occlusions are taken at both ends of that turn, and between them they stray from those
+    // by second-order terms only. The shader's g is acos of a float dot product, which near
+    // g = 0 rounds to about 3.5e-4 rad; that moves only the few slices there, by about 1e-5 of
+    // the estimate, within the allowance above.
     const double lambda = sampling.lambda + px.reach * kAngleError;
     double openLo = 0.0, openHi = 0.0, occludedLo = 0.0, occludedHi = 0.0;
     for (int k = 0; k < sampling.slices; ++k) {

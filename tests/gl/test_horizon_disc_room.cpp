@@ -120,10 +120,10 @@ TEST_CASE("Horizon AO under a disc matches its slice integral and lies below the
         // the estimate lay 0.091 and 0.187 below the closed form, the window's top 0.045 and
         // 0.152. Each a shader change then undone, checks of both views that fail: the weight
         // of every slice taken as 1, 9364; slice angles over [0, pi / 2) only, 13722; v =
-        // (0, 0, 1) in perspective, 4297; the radius in pixels 10 % short, 1. Not caught here:
-        // hits beyond 0.97 r dropped (the wall's and the box's tests in test_horizon_ao.cpp
-        // catch it; the horizon here is mostly the near rim, well within r); the slices'
-        // offset taken as 0.5.
+        // (0, 0, 1) in perspective, 4297. Not caught here (the wall's test in
+        // test_horizon_ao.cpp catches all three, the box's there the second): the radius in
+        // pixels 10 % short (1 check, too few to count on); hits beyond 0.97 r dropped (the
+        // horizon here is mostly the near rim, well within r); the slices' offset taken as 0.5.
         CHECK(tally.halfWidth() < 0.04);
     }
 }
