@@ -418,6 +418,14 @@ def voxel_section(voxel, out_dir):
     return lines
 
 
+def shown(path):
+    """A source as the report names it: relative to the repository when inside it, so that the
+    report does not depend on where the checkout lies."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    full = os.path.abspath(path)
+    return os.path.relpath(full, root) if os.path.commonpath([full, root]) == root else path
+
+
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
                  lanes_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
@@ -505,13 +513,13 @@ def main():
     if not rows:
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
     study_rows = load(args.resolution_study)[0] if args.resolution_study else []
-    sources = [os.path.basename(p) for p in args.inputs] + [f"{p} (resolution study)" for p in args.resolution_study]
+    sources = [shown(p) for p in args.inputs] + [f"{shown(p)} (resolution study)" for p in args.resolution_study]
     march_rows = load(args.march_study)[0] if args.march_study else []
-    sources += [f"{p} (march study)" for p in args.march_study]
+    sources += [f"{shown(p)} (march study)" for p in args.march_study]
     lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
-    sources += [f"{p} (lanes study)" for p in args.lanes_study]
+    sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
-    sources += [f"{p} (GPU)" for p in args.gpu]
+    sources += [f"{shown(p)} (GPU)" for p in args.gpu]
     provenance = []
     for directory in sorted({os.path.dirname(os.path.abspath(p)) for p in args.gpu}):
         path = os.path.join(directory, "provenance.md")
