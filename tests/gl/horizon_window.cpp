@@ -203,22 +203,20 @@ constexpr double kAngleError = 3e-5;
 double sliceOffset(int x, int glY) { return detail::noiseTexel(x & (OBSCURA_NOISE_SIZE - 1), glY & (OBSCURA_NOISE_SIZE - 1)).x; }
 
 // The least and the most horizon cosine each side of the slice at screen angle phi can find
-// (side 0 toward -dir), for samples up to `lambda` pixels from where the test puts them.
+// (side 0 toward -dir), for samples up to sampling.lambda pixels from where the test puts them.
 struct SideHorizons {
     double least[2] = {-1.0, -1.0}, most[2] = {-1.0, -1.0};
 };
 
 SideHorizons sideHorizons(const FloorPixel& px, double phi, const std::vector<Face>& faces, const ScreenRays& rays,
-                          const Sampling& sampling, double lambda) {
-    Sampling widened = sampling;
-    widened.lambda = lambda;
+                          const Sampling& sampling) {
     const glm::dvec2 dir(std::cos(phi), std::sin(phi));
     SideHorizons h;
     for (int side = 0; side < 2; ++side) {
         const glm::dvec2 u = (side == 0 ? -1.0 : 1.0) * dir;
         const Interval inside{rays.inside(px.centre, u, 1.0), rays.inside(px.centre, u, -1.0)};
         for (const Face& face : faces) {
-            const auto [m, l] = horizonWindow(rays.side(face, px.p, px.v, sampling.radius, px.centre, u), px.reach, inside, widened);
+            const auto [m, l] = horizonWindow(rays.side(face, px.p, px.v, sampling.radius, px.centre, u), px.reach, inside, sampling);
             h.most[side] = std::max(h.most[side], m);
             h.least[side] = std::max(h.least[side], l);
         }
@@ -381,11 +379,12 @@ AoWindow obliqueWindow(const FloorPixel& px, const std::vector<Face>& faces, con
     // by second-order terms only. The shader's g is acos of a float dot product, which near
     // g = 0 rounds to about 3.5e-4 rad; that moves only the few slices there, by about 1e-5 of
     // the estimate, within the allowance above.
-    const double lambda = sampling.lambda + px.reach * kAngleError;
+    Sampling widened = sampling;
+    widened.lambda += px.reach * kAngleError;
     double openLo = 0.0, openHi = 0.0, occludedLo = 0.0, occludedHi = 0.0;
     for (int k = 0; k < sampling.slices; ++k) {
         const double phi = kPi * (k + px.sliceOffset) / sampling.slices;
-        const SideHorizons h = sideHorizons(px, phi, faces, rays, sampling, lambda);
+        const SideHorizons h = sideHorizons(px, phi, faces, rays, widened);
         const SliceOcclusion a = sliceOcclusion(px, phi - kAngleError, h), b = sliceOcclusion(px, phi + kAngleError, h);
         openLo += std::min(a.open, b.open);
         openHi += std::max(a.open, b.open);
