@@ -233,6 +233,39 @@ RESOLUTION_HEADER = ["| scene | size | preset | technique | quantity | full ms |
                      "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
 
+def geometry_tiles(row):
+    """The row's geometryTiles setting (on unless set to 0)."""
+    return row.get("settings", {}).get("geometry_tiles", "1") not in ("0", "false")
+
+
+def tiles_section(every_tile_rows, rows):
+    """Reduced-resolution rows run over every tile (--set geometry_tiles=0) against the same rows with
+    geometry tiles (the default) from the other inputs."""
+    tiled = {(os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"]): r
+             for r in rows if geometry_tiles(r)}
+    lines = []
+    for r in sorted(every_tile_rows, key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
+        key = (os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"])
+        if geometry_tiles(r) or key not in tiled:
+            continue
+        t = tiled[key]
+        ratio = own_ms(t) / own_ms(r) if own_ms(r) > 0 else float("nan")
+        lines.append(f'| {key[0]} | {r["width"]}x{r["height"]} | {r["technique"]} | {r["quantity"]} | {r["preset"]} | '
+                     f'{fmt(own_ms(r))} | {fmt(own_ms(t))} | {fmt(ratio, 3)} | {fmt(r["rmse"])} | {fmt(t["rmse"])} |')
+    if not lines:
+        return []
+    return ["## Geometry tiles", "",
+            "At half and quarter resolution the integrator, the blur and the upsampling run only over the tiles of "
+            "8x8 reduced pixels that hold geometry (`geometry_tiles`, geometryTiles, on by default; the listing "
+            "pass is `<module>.tiles`). The same presets run over every tile (`--set geometry_tiles=0`) against the "
+            "rows above, the technique's own passes. The two runs are separate processes, so their times carry this "
+            "machine's run-to-run spread; the RMSEs must agree exactly (the results are the same bit for bit, "
+            "tests/gl/test_geometry_tiles.cpp).", "",
+            "| scene | size | technique | quantity | preset | every tile ms | geometry tiles ms | ratio | RMSE, every tile "
+            "| RMSE, geometry tiles |",
+            "|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+
+
 def resolution_section(rows):
     lines = resolution_rows(rows)
     if not lines:
@@ -427,7 +460,7 @@ def shown(path):
 
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
-                 lanes_rows=()):
+                 lanes_rows=(), tiles_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -486,6 +519,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
+    lines += tiles_section(list(tiles_rows), list(rows) + list(study_rows))
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
     lines += shadow_section(rows)
@@ -505,6 +539,8 @@ def main():
                         help="bench.json of ao.raymarch with one --set march=view|texture|hiz (screen-space march table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half with one --set ray_lanes=N (ray-lanes table only)")
+    parser.add_argument("--tiles-study", action="append", default=[],
+                        help="bench.json of reduced-resolution presets with --set geometry_tiles=0 (geometry-tiles table only)")
     parser.add_argument("--gpu", action="append", default=[],
                         help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section, with the "
                              "provenance.md beside it (when, at which commit, what ran) quoted there")
@@ -518,6 +554,8 @@ def main():
     sources += [f"{shown(p)} (march study)" for p in args.march_study]
     lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
     sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
+    tiles_rows = load(args.tiles_study)[0] if args.tiles_study else []
+    sources += [f"{shown(p)} (tiles study)" for p in args.tiles_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
     sources += [f"{shown(p)} (GPU)" for p in args.gpu]
     provenance = []
@@ -526,7 +564,7 @@ def main():
         if os.path.isfile(path):
             with open(path) as f:
                 provenance.append(f.read())
-    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows)
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

@@ -36,6 +36,15 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
 # Ray lanes (rayLanes: invocations that share each pixel's rays) on the half-resolution study's
 # miss, ao.points medium: llvmpipe runs a workgroup's lanes on the same cores, so what they cost
 # there shows; what they save on a GPU, benchmarks/gpu/run.sh lanes measures.
+tiles=()
+for techniques in 'ao.*' 'gi.*'; do
+  dir="$out/every_tile/${techniques%%.*}"
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+    --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+    --techniques "$techniques" --presets medium_half --size 512x512 --frames 20 --spp 1024 --set geometry_tiles=0 \
+    --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
+  tiles+=(--tiles-study "$dir/bench.json")
+done
 lanes=()
 for n in 1 4 16; do
   "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
@@ -64,4 +73,4 @@ done
 gpu=()
 for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do [ -f "$f" ] && gpu+=(--gpu "$f"); done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
-  --resolution-study "$out/resolution/bench.json" "${lanes[@]}" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  --resolution-study "$out/resolution/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

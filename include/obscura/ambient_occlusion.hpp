@@ -95,6 +95,13 @@ struct AmbientOcclusionSettings {
     //! however idle the GPU; more lanes split them, at the cost of a sum in shared memory.
     //! The same rays either way: results differ only in the order the sums are added.
     int rayLanes = 1;
+    //! Half, Quarter: the integrator, the blur and the upsampling run only over the tiles of
+    //! 8 x 8 AO pixels that hold geometry, listed by a pass over the depth ("ao.tiles"); the
+    //! other tiles get the background values by a clear. The same results either way. Pays
+    //! where background covers much of the image: on llvmpipe at 512 x 512, ao.points at half
+    //! resolution took 12.0 ms instead of 25.2 on 2CylinderEngine (17 % geometry), and 4 %
+    //! longer on the Cornell box (no background). false: every tile, without the pass.
+    bool geometryTiles = true;
     bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
     //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.

@@ -67,6 +67,7 @@ struct IndirectLightSettings {
     float blurNormalPower = 16.0f; //!< as AmbientOcclusionSettings, [0, 256]
     float refineThreshold = 0.25f; //!< as AmbientOcclusionSettings (pass "gi.refine"), [0, 1]
     int rayLanes = 1;              //!< as AmbientOcclusionSettings: 1, 2, 4, 8 or 16
+    bool geometryTiles = true;     //!< as AmbientOcclusionSettings (pass "gi.tiles")
     const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
     VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Hybrid
 };

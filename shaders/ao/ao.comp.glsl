@@ -2,7 +2,8 @@
 // top-left G-buffer pixel of its block. When the result is filtered, also writes the guide
 // (view normal, view z) that the blur and the upsampling weigh with. REFINE: one invocation
 // per G-buffer pixel the upsampling listed (refine_list.glsl), computed as at full
-// resolution and written into the full-resolution images.
+// resolution and written into the full-resolution images. TILES: one group per tile with
+// geometry (geometry_tiles.glsl).
 //! Every permutation the module compiles (validated by glslangValidator at build time):
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
@@ -33,6 +34,10 @@
 //! variant: METHOD=2 RAY_LANES=16
 //! variant: METHOD=3 TRAVERSAL=2 RAY_LANES=2
 //! variant: METHOD=3 TRAVERSAL=2 RAY_LANES=16 REFINE
+//! variant: METHOD=0 SCREEN_MARCH=0 TILES
+//! variant: METHOD=1 SCREEN_MARCH=0 SCREEN_PEELED TILES
+//! variant: METHOD=2 TILES
+//! variant: METHOD=3 TRAVERSAL=2 RAY_LANES=16 TILES
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "ao_common.glsl"

@@ -5,17 +5,26 @@
 // Background pixels (guide z = 0) are neither read nor written: no tap reads them, so the
 // horizontal pass leaves them out of its temporary, and the vertical pass leaves the value
 // the integrator wrote there. MODULATE: the vertical pass of a full-resolution blur, the
-// last step (filter_common.glsl).
+// last step (filter_common.glsl). TILES: one group per tile with geometry
+// (geometry_tiles.glsl); every pixel a tap reads lies in one, the rest are background.
 //! variant: RGB
 //! variant: RGB MODULATE
 //! variant: DIRECTION
+//! variant: TILES
+//! variant: RGB TILES
+//! variant: DIRECTION TILES
 #include "filter_common.glsl"
+#include "geometry_tiles.glsl"
 
 layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
 layout(location = FILTER_LOC_STEP) uniform ivec2 stepDirection;
 
 void main() {
+#ifdef TILES
+    const ivec2 pixel = tiledPixel();
+#else
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+#endif
     if (any(greaterThanEqual(pixel, filterLowSize()))) return;
     const vec4 c = imageLoad(guideIn, pixel);
     if (c.w == 0.0) return;

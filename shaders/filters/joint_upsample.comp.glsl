@@ -9,7 +9,9 @@
 //
 // One invocation writes a 2 x 2 quad of G-buffer pixels. With an even scale the quad's four
 // pixels share the same four low-resolution neighbours, so they are loaded once per quad,
-// and the quad's own depth and normal are one textureGather per channel.
+// and the quad's own depth and normal are one textureGather per channel. TILES: only the
+// quads of the tiles with geometry (geometry_tiles.glsl); the caller has cleared the images to
+// what background pixels get.
 //! variant: RGB
 //! variant: DIRECTION
 //! variant: REFINE
@@ -17,8 +19,12 @@
 //! variant: RGB REFINE
 //! variant: RGB MODULATE
 //! variant: RGB REFINE MODULATE
+//! variant: DIRECTION REFINE TILES
+//! variant: RGB REFINE MODULATE TILES
+//! variant: TILES
 #include "../visibility/screen_march.glsl"
 #include "filter_common.glsl"
+#include "geometry_tiles.glsl"
 #ifdef REFINE
 #include "refine_list.glsl"
 #endif
@@ -92,9 +98,13 @@ void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor, bool listed
 vec2 gatherPoint(ivec2 corner, ivec2 size) { return (vec2(corner) + 1.0) / vec2(size); }
 
 void main() {
-    const ivec2 p00 = 2 * ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p00, frameSize()))) return;
     const int s = filterScale(); // 2 or 4: even, so the whole quad has the same lower neighbour
+#ifdef TILES
+    const ivec2 p00 = 2 * tiledQuad(s);
+#else
+    const ivec2 p00 = 2 * ivec2(gl_GlobalInvocationID.xy);
+#endif
+    if (any(greaterThanEqual(p00, frameSize()))) return;
     const ivec2 base = p00 / s;
     // Low-resolution pixel i covers G-buffer pixels [i s, i s + s) and was computed at i s.
     const vec2 f00 = vec2(p00 - base * s) / float(s), step = vec2(1.0 / float(s));

@@ -7,6 +7,7 @@
 #ifndef OBSCURA_REFINE_LIST_GLSL
 #define OBSCURA_REFINE_LIST_GLSL
 #include "filter_bindings.h"
+#include "geometry_tiles.glsl"
 
 // An integrator's pixel within its workgroup of FILTER_WORKGROUP^2 pixels (the x and y of the
 // invocation; z is its ray lane, ray_batch.glsl).
@@ -57,16 +58,20 @@ bool refinePixel(out ivec2 pixel) {
 #endif
 
 // The pixel an integrator's invocation computes and the G-buffer pixel it is computed at:
-// at the reduced resolution `size`, the top-left G-buffer pixel of its block; REFINE: a
-// listed G-buffer pixel, both, so that its noise is what a full-resolution run gives it.
-// False: none (past the image or the list).
+// at the reduced resolution `size`, the top-left G-buffer pixel of its block (TILES: in a
+// listed tile, geometry_tiles.glsl); REFINE: a listed G-buffer pixel, both, so that its noise
+// is what a full-resolution run gives it. False: none (past the image or the list).
 bool integratorPixel(ivec2 size, int scale, out ivec2 pixel, out ivec2 full) {
 #ifdef REFINE
     const bool listed = refinePixel(pixel);
     full = pixel;
     return listed;
 #else
+#ifdef TILES
+    pixel = tiledPixel();
+#else
     pixel = ivec2(gl_GlobalInvocationID.xy);
+#endif
     full = min(pixel * scale, frameSize() - 1);
     return all(lessThan(pixel, size));
 #endif

@@ -1,7 +1,8 @@
 // One-bounce indirect light at the GI resolution: one invocation per pixel, at the top-left
 // G-buffer pixel of its block; when the result is filtered, also writes the guide for the
 // filters. REFINE: one invocation per G-buffer pixel the upsampling listed
-// (refine_list.glsl), computed as at full resolution into the full-resolution image.
+// (refine_list.glsl), computed as at full resolution into the full-resolution image. TILES:
+// one group per tile with geometry (geometry_tiles.glsl).
 //! Every permutation the module compiles (validated by glslangValidator at build time):
 //! variant: METHOD=0 SCREEN_MARCH=0
 //! variant: METHOD=0 SCREEN_MARCH=0 SCREEN_PEELED
@@ -23,6 +24,8 @@
 //! variant: METHOD=1 TRAVERSAL=2 REFINE
 //! variant: METHOD=0 SCREEN_MARCH=2 RAY_LANES=16 REFINE
 //! variant: METHOD=1 TRAVERSAL=2 RAY_LANES=16
+//! variant: METHOD=0 SCREEN_MARCH=2 TILES
+//! variant: METHOD=1 TRAVERSAL=1 TILES
 #include "../common/sampling.glsl"
 #include "../visibility/screen_march.glsl"
 #include "gi_bindings.h"

@@ -168,23 +168,33 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
     addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
+    const bool tiled = scale > 1 && s.geometryTiles;
+    const FilterImages images{guide, aoTexture, bent, false, size, scale};
+    if (tiled) {
+        d.filters.findGeometryTiles(ctx, size, scale, "ao.tiles");
+        clearForGeometryTiles(ctx, images, 1.0f);
+    }
     d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
                    std::max(std::size_t(size.x) * std::size_t(size.y),
                             refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}),
                    s.rayLanes);
     {
         PassScope pass(ctx, passName(s.method));
-        const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
+        std::vector<std::string> integratorDefines = defines;
+        if (tiled) integratorDefines.push_back("TILES");
+        const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, integratorDefines);
         ctx.gl.UseProgram(program);
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
         if (guide) d.bindWrite(AO_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
         if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, bent, GL_RGBA16F);
-        d.batches.run(ctx, program, [&] { dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP); });
+        d.batches.run(ctx, program, [&] {
+            if (tiled) d.filters.dispatchGeometryTiles(ctx);
+            else dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP);
+        });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const FilterImages images{guide, aoTexture, bent, false, size, scale};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
     d.filters.blur(ctx, images, filter, "ao.blur");
     AmbientOcclusionView out;
     out.width = view.width;

@@ -15,12 +15,24 @@ namespace {
 GLenum valueFormat(const FilterImages& images) { return images.rgb ? GL_RGBA16F : GL_R16F; }
 
 // The shader variant for the images; `lastStep`: the step that multiplies by images.modulate.
-std::vector<std::string> variant(const FilterImages& images, bool lastStep) {
+std::vector<std::string> variant(const FilterImages& images, const GuidedFilterSettings& s, bool lastStep) {
     std::vector<std::string> defines;
     if (images.rgb) defines.push_back("RGB");
     if (images.direction) defines.push_back("DIRECTION");
     if (lastStep && images.modulate) defines.push_back("MODULATE");
+    if (s.geometryTiles) defines.push_back("TILES");
     return defines;
+}
+
+// The value every channel of a background pixel gets, in the value image's format.
+void clearValue(ContextImpl& ctx, GLuint texture, bool rgb, float background) {
+    const glm::vec4 texel(background);
+    ctx.gl.ClearTexImage(texture, 0, rgb ? GL_RGBA : GL_RED, GL_FLOAT, &texel);
+}
+
+void clearDirection(ContextImpl& ctx, GLuint texture) {
+    const glm::vec4 zero(0.0f);
+    if (texture) ctx.gl.ClearTexImage(texture, 0, GL_RGBA, GL_FLOAT, &zero);
 }
 
 // The factor the last step multiplies by (MODULATE), if any.
@@ -46,6 +58,13 @@ void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GL
 }
 
 } // namespace
+
+void clearForGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background) {
+    const glm::vec4 zero(0.0f);
+    ctx.gl.ClearTexImage(images.guide, 0, GL_RGBA, GL_FLOAT, &zero);
+    clearValue(ctx, images.value, images.rgb, background);
+    clearDirection(ctx, images.direction);
+}
 
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner) {
     requireInRange(taps, 0, 16, owner + "::blurRadius", "taps");
@@ -82,13 +101,14 @@ void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const Gui
         const bool horizontal = d == 0;
         // At full resolution the vertical pass is the last step.
         const bool lastStep = !horizontal && images.scale == 1;
-        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images, lastStep));
+        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images, s, lastStep));
         if (lastStep) bindModulation(ctx, images);
         ctx.gl.UseProgram(program);
         if (horizontal) bindImages(ctx, images, images.value, images.direction, valueTemp, directionTemp);
         else bindImages(ctx, images, valueTemp, directionTemp, images.value, images.direction);
         ctx.gl.ProgramUniform2i(program, FILTER_LOC_STEP, horizontal ? 1 : 0, horizontal ? 0 : 1);
-        dispatchCompute2D(ctx, images.size.x, images.size.y, FILTER_WORKGROUP);
+        if (s.geometryTiles) dispatchGeometryTiles(ctx);
+        else dispatchCompute2D(ctx, images.size.x, images.size.y, FILTER_WORKGROUP);
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 }
@@ -97,8 +117,13 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
                              GLuint fullDirection, glm::ivec2 fullSize, const char* passName) {
     PassScope pass(ctx, passName);
     upload(ctx, images, s);
-    std::vector<std::string> defines = variant(images, true);
+    std::vector<std::string> defines = variant(images, s, true);
     bindModulation(ctx, images);
+    if (s.geometryTiles) {
+        // What the upsampling writes at background pixels, for the tiles it does not visit.
+        clearValue(ctx, fullValue, images.rgb, s.background);
+        clearDirection(ctx, fullDirection);
+    }
     if (s.refineThreshold > 0.0f) {
         startRefineList(ctx, fullSize);
         defines.push_back("REFINE");
@@ -106,7 +131,8 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
     ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, defines));
     bindImages(ctx, images, images.value, images.direction, fullValue, fullDirection);
     // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
-    dispatchCompute2D(ctx, (fullSize.x + 1) / 2, (fullSize.y + 1) / 2, FILTER_WORKGROUP);
+    if (s.geometryTiles) dispatchTileQuads(ctx);
+    else dispatchCompute2D(ctx, (fullSize.x + 1) / 2, (fullSize.y + 1) / 2, FILTER_WORKGROUP);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                          (s.refineThreshold > 0.0f ? GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT : 0));
 }
@@ -120,6 +146,41 @@ void GuidedFilters::startRefineList(ContextImpl& ctx, glm::ivec2 fullSize) {
     const GLuint header[FILTER_REFINE_HEADER_UINTS] = {0, 1, 1, 0}; // no groups yet, none listed
     ctx.gl.NamedBufferSubData(refineList_.get(), 0, sizeof header, header);
     ctx.state.bindStorageBuffer(ctx, FILTER_REFINE_SSBO, refineList_.get());
+}
+
+void GuidedFilters::findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName) {
+    PassScope pass(ctx, passName);
+    const glm::ivec2 tiles = (lowSize + FILTER_WORKGROUP - 1) / FILTER_WORKGROUP;
+    // The codes, then a mark per tile (geometry_tiles.comp.glsl).
+    const std::size_t bytes = (FILTER_TILES_HEADER_UINTS + 2 * std::size_t(tiles.x) * std::size_t(tiles.y)) * sizeof(GLuint);
+    if (!tiles_ || tilesBytes_ != bytes) {
+        tiles_ = createBuffer(ctx, bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.geometry_tiles");
+        tilesBytes_ = bytes;
+    }
+    const GLuint quadGroupsPerSide = GLuint(scale / 2);
+    const GLuint header[FILTER_TILES_HEADER_UINTS] = {0, 1, 1, 0, quadGroupsPerSide, quadGroupsPerSide, 0, 0};
+    ctx.gl.NamedBufferSubData(tiles_.get(), 0, sizeof header, header);
+    ctx.state.bindStorageBuffer(ctx, FILTER_TILES_SSBO, tiles_.get());
+    const GLuint mark = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {});
+    ctx.gl.UseProgram(mark);
+    ctx.gl.ProgramUniform1i(mark, FILTER_LOC_TILE_SCALE, scale);
+    dispatchCompute2D(ctx, tiles.x, tiles.y, FILTER_WORKGROUP); // one invocation per tile
+    ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const GLuint compact = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {"COMPACT"});
+    ctx.gl.UseProgram(compact);
+    ctx.gl.ProgramUniform1i(compact, FILTER_LOC_TILE_SCALE, scale);
+    ctx.gl.DispatchCompute(1, 1, 1);
+    ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GuidedFilters::dispatchGeometryTiles(ContextImpl& ctx) {
+    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tiles_.get());
+    ctx.gl.DispatchComputeIndirect(0);
+}
+
+void GuidedFilters::dispatchTileQuads(ContextImpl& ctx) {
+    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tiles_.get());
+    ctx.gl.DispatchComputeIndirect(3 * sizeof(GLuint));
 }
 
 void GuidedFilters::dispatchRefinement(ContextImpl& ctx) {
@@ -136,7 +197,8 @@ std::size_t GuidedFilters::refineCapacity(glm::ivec2 fullSize) {
 }
 
 std::size_t GuidedFilters::memoryBytes() const {
-    return valueTemp_.bytes() + directionTemp_.bytes() + refineListBytes_ + (params_ ? sizeof(shader::FilterParams) : 0);
+    return valueTemp_.bytes() + directionTemp_.bytes() + refineListBytes_ + tilesBytes_ +
+           (params_ ? sizeof(shader::FilterParams) : 0);
 }
 
 } // namespace obscura::detail

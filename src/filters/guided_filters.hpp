@@ -21,6 +21,9 @@ struct GuidedFilterSettings {
     //! upsampling: pixels whose similar neighbours carry less than this share of their
     //! bilinear weight are listed for refinement at full resolution, [0, 1]; 0: none
     float refineThreshold = 0.0f;
+    //! reduced resolution: the blur and the upsampling run over the tiles that
+    //! GuidedFilters::findGeometryTiles listed this frame (geometry_tiles.glsl)
+    bool geometryTiles = false;
 };
 
 //! The images one integrator filters: a value (GL_R16F, or GL_RGBA16F with `rgb`) and an
@@ -43,6 +46,11 @@ struct FilterImages {
 //! blurred or upsampled, and so needs a guide image from its integrator.
 inline bool filtersRun(int scale, int taps) { return scale > 1 || taps > 0; }
 
+//! Before an integrator runs over geometry tiles only: gives the low-resolution images what
+//! the tiles it skips must hold for the filters, which read them across tile edges (guide 0:
+//! background; the value `background`, the direction 0: finite, for weights of 0).
+void clearForGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background);
+
 //! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
 //! Throws Error{InvalidArgument} for a refinement threshold outside [0, 1].
@@ -50,12 +58,21 @@ void validateRefineThreshold(float threshold, const std::string& owner);
 
 class GuidedFilters {
 public:
+    //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution `lowSize` with a
+    //! G-buffer pixel that is not background, for the integrator (dispatchGeometryTiles) and
+    //! the filters (GuidedFilterSettings::geometryTiles). The caller has bound the frame block
+    //! and the G-buffer's depth (VIS_DEPTH_UNIT). Pass `passName`.
+    void findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName);
+    //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 invocations a
+    //! group) once per listed tile, with the list bound at FILTER_TILES_SSBO.
+    void dispatchGeometryTiles(ContextImpl& ctx);
     //! Blurs the images in place (through temporaries of the same size). Pass "<pass>.blur".
     void blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName);
     //! Writes the full-resolution images from the low-resolution ones; the caller has bound
     //! the frame block and the G-buffer's depth and normal (VIS_DEPTH_UNIT, VIS_NORMAL_UNIT).
     //! With a refinement threshold, the pixels it lists are left unwritten (refine_list.glsl),
-    //! at most a quarter of the G-buffer's pixels; the rest are blended as without it.
+    //! at most a quarter of the G-buffer's pixels; the rest are blended as without it. With
+    //! geometry tiles, the images are cleared to the background values first.
     void upsample(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, GLuint fullValue,
                   GLuint fullDirection, glm::ivec2 fullSize, const char* passName);
     //! After an upsample with a refinement threshold: runs the program in use (an integrator's
@@ -69,8 +86,9 @@ public:
 private:
     void upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s);
     void startRefineList(ContextImpl& ctx, glm::ivec2 fullSize);
-    Buffer params_, refineList_;
-    std::size_t refineListBytes_ = 0;
+    void dispatchTileQuads(ContextImpl& ctx);
+    Buffer params_, refineList_, tiles_;
+    std::size_t refineListBytes_ = 0, tilesBytes_ = 0;
     SizedTexture valueTemp_, directionTemp_;
 };
 

@@ -133,6 +133,12 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     }
     addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
+    const bool tiled = scale > 1 && s.geometryTiles;
+    const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
+    if (tiled) {
+        d.filters.findGeometryTiles(ctx, size, scale, "gi.tiles");
+        clearForGeometryTiles(ctx, images, 0.0f);
+    }
     const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                        : screenRayIterations(s.march, s.steps, fullSize);
     d.batches.plan(ctx, s.rays, perRay,
@@ -140,16 +146,20 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
                    s.rayLanes);
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
-        const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
+        std::vector<std::string> integratorDefines = defines;
+        if (tiled) integratorDefines.push_back("TILES");
+        const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, integratorDefines);
         ctx.gl.UseProgram(program);
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
         if (guide) d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
-        d.batches.run(ctx, program, [&] { dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP); });
+        d.batches.run(ctx, program, [&] {
+            if (tiled) d.filters.dispatchGeometryTiles(ctx);
+            else dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP);
+        });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
     d.filters.blur(ctx, images, filter, "gi.blur");
     IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};
     if (scale > 1) {

@@ -30,6 +30,7 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
+    {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
     {"bent_normals", "", "0|1", "also compute the bent normal (default 1; not for ao.horizon)"},
 }, voxelGridSettings("ao.voxel"));
 
@@ -66,6 +67,7 @@ public:
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
+        else if (key == "geometry_tiles") s.geometryTiles = parseBool(key, value);
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
         else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
