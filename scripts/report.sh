@@ -2,8 +2,9 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, the half-resolution trade-off at 512x512, ray lanes and the screen-space
-# marches (view, texture, Hi-Z), then draws the plots.
+# its traversals, the half-resolution trade-off at 512x512, the reduced-resolution presets
+# over every tile (geometry tiles off), ray lanes and the screen-space marches (view,
+# texture, Hi-Z), then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -33,9 +34,8 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
-# Ray lanes (rayLanes: invocations that share each pixel's rays) on the half-resolution study's
-# miss, ao.points medium: llvmpipe runs a workgroup's lanes on the same cores, so what they cost
-# there shows; what they save on a GPU, benchmarks/gpu/run.sh lanes measures.
+# The half-resolution presets over every tile (geometryTiles off), against the study above:
+# what skipping the background's tiles saves, and that the RMSEs agree exactly.
 tiles=()
 for techniques in 'ao.*' 'gi.*'; do
   dir="$out/every_tile/${techniques%%.*}"
@@ -45,6 +45,9 @@ for techniques in 'ao.*' 'gi.*'; do
     --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
   tiles+=(--tiles-study "$dir/bench.json")
 done
+# Ray lanes (rayLanes: invocations that share each pixel's rays) on ao.points medium, the
+# half-resolution study's closest call: llvmpipe runs a workgroup's lanes on the same cores, so
+# what they cost there shows; what they save on a GPU, benchmarks/gpu/run.sh lanes measures.
 lanes=()
 for n in 1 4 16; do
   "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \

@@ -100,7 +100,9 @@ struct AmbientOcclusionSettings {
     //! other tiles get the background values by a clear. The same results either way. Pays
     //! where background covers much of the image: on llvmpipe at 512 x 512, ao.points at half
     //! resolution took 12.0 ms instead of 25.2 on 2CylinderEngine (17 % geometry), and 4 %
-    //! longer on the Cornell box (no background). false: every tile, without the pass.
+    //! longer on the Cornell box (no background). false: every tile, without the pass. Images
+    //! of more than 65535 tiles (above about 4096 x 4096 at half resolution: GL guarantees no
+    //! larger indirect dispatch) run every tile.
     bool geometryTiles = true;
     bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via

@@ -22,12 +22,12 @@ using ivec4 = glm::ivec4;
 #define FILTER_GUIDE_IN_IMAGE 2      // read: the guide (rgba32f)
 #define FILTER_VALUE_IN_IMAGE 3      // read: the value
 #define FILTER_DIRECTION_IN_IMAGE 4  // read: the direction, with DIRECTION
-#define FILTER_REFINE_SSBO 6         // the pixels to refine (refine_list.glsl), with REFINE
 #define FILTER_TILES_SSBO 5          // the tiles with geometry (geometry_tiles.glsl), with TILES
+#define FILTER_REFINE_SSBO 6         // the pixels to refine (refine_list.glsl), with REFINE
 #define FILTER_MODULATE_UNIT 12      // read: a G-buffer-sized factor of the last step's rgb, with MODULATE
 
 #define FILTER_LOC_STEP 0 // blur: ivec2 pixel step of this pass
-#define FILTER_LOC_TILE_SCALE 1 // geometry_tiles.comp.glsl: int scale to the full resolution
+#define FILTER_LOC_TILE_SCALE 1 // geometry_tiles.comp.glsl: int scale to the full resolution, 2 or 4
 
 #define FILTER_FLAG_UNIT_RANGE 2 // values are clamped to [0, 1]
 
@@ -38,9 +38,12 @@ using ivec4 = glm::ivec4;
 #define FILTER_REFINE_HEADER_UINTS 4
 // The tile list's header: two indirect dispatches (groups x, y, z), one group per listed tile
 // at the low resolution, then scale / 2 x scale / 2 groups of the upsampling's quads per tile
-// (y, z: the group's place in the tile); two unused.
+// (y, z: the group's place in the tile); two unused, padding the header to 32 bytes.
 #define FILTER_TILES_HEADER_UINTS 8
-#define FILTER_TILE_SCAN 256 // invocations of geometry_tiles.comp.glsl's COMPACT group
+// Invocations of geometry_tiles.comp.glsl's COMPACT group, each counting a run of marks: a
+// quarter of the 1024 every GL 4.5 implementation takes, so that one invocation's serial sum of
+// the runs stays short while the runs do too (32 marks each at 1920 x 1080, half resolution).
+#define FILTER_TILE_SCAN 256
 
 struct FilterParams {
     ivec4 sizes;   // x, y: low resolution; z: scale to the full resolution; w: blur taps each side

@@ -168,11 +168,12 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
     addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
-    const bool tiled = scale > 1 && s.geometryTiles;
+    const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, aoTexture, bent, false, size, scale};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
     if (tiled) {
         d.filters.findGeometryTiles(ctx, size, scale, "ao.tiles");
-        clearForGeometryTiles(ctx, images, 1.0f);
+        clearForGeometryTiles(ctx, images, filter.background);
     }
     d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
                    std::max(std::size_t(size.x) * std::size_t(size.y),
@@ -194,7 +195,6 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
     d.filters.blur(ctx, images, filter, "ao.blur");
     AmbientOcclusionView out;
     out.width = view.width;

@@ -7,6 +7,7 @@
 #include "core/validate.hpp"
 #include "shaders/filters/filter_bindings.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace obscura::detail {
@@ -146,6 +147,11 @@ void GuidedFilters::startRefineList(ContextImpl& ctx, glm::ivec2 fullSize) {
     const GLuint header[FILTER_REFINE_HEADER_UINTS] = {0, 1, 1, 0}; // no groups yet, none listed
     ctx.gl.NamedBufferSubData(refineList_.get(), 0, sizeof header, header);
     ctx.state.bindStorageBuffer(ctx, FILTER_REFINE_SSBO, refineList_.get());
+}
+
+bool GuidedFilters::geometryTilesFit(glm::ivec2 lowSize) {
+    const glm::ivec2 tiles = (lowSize + FILTER_WORKGROUP - 1) / FILTER_WORKGROUP;
+    return std::int64_t(tiles.x) * std::int64_t(tiles.y) <= 65535;
 }
 
 void GuidedFilters::findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName) {

@@ -22,7 +22,8 @@ struct GuidedFilterSettings {
     //! bilinear weight are listed for refinement at full resolution, [0, 1]; 0: none
     float refineThreshold = 0.0f;
     //! reduced resolution: the blur and the upsampling run over the tiles that
-    //! GuidedFilters::findGeometryTiles listed this frame (geometry_tiles.glsl)
+    //! GuidedFilters::findGeometryTiles listed this frame (geometry_tiles.glsl), its list
+    //! still bound
     bool geometryTiles = false;
 };
 
@@ -58,13 +59,18 @@ void validateRefineThreshold(float threshold, const std::string& owner);
 
 class GuidedFilters {
 public:
+    //! Whether the tiles of an image of `lowSize` fit one indirect dispatch: at most 65535, the
+    //! group count per dimension every GL 4.5 implementation takes (about 4096 x 4096 G-buffer
+    //! pixels at half resolution). Larger images run every tile.
+    static bool geometryTilesFit(glm::ivec2 lowSize);
     //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution `lowSize` with a
     //! G-buffer pixel that is not background, for the integrator (dispatchGeometryTiles) and
-    //! the filters (GuidedFilterSettings::geometryTiles). The caller has bound the frame block
-    //! and the G-buffer's depth (VIS_DEPTH_UNIT). Pass `passName`.
+    //! the filters (GuidedFilterSettings::geometryTiles), and leaves the list bound at
+    //! FILTER_TILES_SSBO for them. The caller has bound the frame block and the G-buffer's
+    //! depth (VIS_DEPTH_UNIT). Pass `passName`.
     void findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName);
-    //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 invocations a
-    //! group) once per listed tile, with the list bound at FILTER_TILES_SSBO.
+    //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 pixels a
+    //! group) once per listed tile.
     void dispatchGeometryTiles(ContextImpl& ctx);
     //! Blurs the images in place (through temporaries of the same size). Pass "<pass>.blur".
     void blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName);

@@ -133,11 +133,12 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     }
     addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
-    const bool tiled = scale > 1 && s.geometryTiles;
+    const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
+    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
     if (tiled) {
         d.filters.findGeometryTiles(ctx, size, scale, "gi.tiles");
-        clearForGeometryTiles(ctx, images, 0.0f);
+        clearForGeometryTiles(ctx, images, filter.background);
     }
     const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                        : screenRayIterations(s.march, s.steps, fullSize);
@@ -159,7 +160,6 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         });
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
     d.filters.blur(ctx, images, filter, "gi.blur");
     IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};
     if (scale > 1) {
