@@ -31,9 +31,19 @@ void clearValue(ContextImpl& ctx, GLuint texture, bool rgb, float background) {
     ctx.gl.ClearTexImage(texture, 0, rgb ? GL_RGBA : GL_RED, GL_FLOAT, &texel);
 }
 
-void clearDirection(ContextImpl& ctx, GLuint texture) {
+// A guide (background) or direction (none) image, if any, to 0.
+void clearToZero(ContextImpl& ctx, GLuint texture) {
     const glm::vec4 zero(0.0f);
     if (texture) ctx.gl.ClearTexImage(texture, 0, GL_RGBA, GL_FLOAT, &zero);
+}
+
+// The tiles of FILTER_WORKGROUP^2 pixels covering an image of `lowSize`.
+glm::ivec2 tileGrid(glm::ivec2 lowSize) { return (lowSize + FILTER_WORKGROUP - 1) / FILTER_WORKGROUP; }
+
+// Runs the program in use with the group counts at `offset` in `buffer`.
+void dispatchIndirect(ContextImpl& ctx, const Buffer& buffer, GLintptr offset) {
+    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffer.get());
+    ctx.gl.DispatchComputeIndirect(offset);
 }
 
 // The factor the last step multiplies by (MODULATE), if any.
@@ -61,10 +71,9 @@ void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GL
 } // namespace
 
 void clearForGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background) {
-    const glm::vec4 zero(0.0f);
-    ctx.gl.ClearTexImage(images.guide, 0, GL_RGBA, GL_FLOAT, &zero);
+    clearToZero(ctx, images.guide);
     clearValue(ctx, images.value, images.rgb, background);
-    clearDirection(ctx, images.direction);
+    clearToZero(ctx, images.direction);
 }
 
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner) {
@@ -123,7 +132,7 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
     if (s.geometryTiles) {
         // What the upsampling writes at background pixels, for the tiles it does not visit.
         clearValue(ctx, fullValue, images.rgb, s.background);
-        clearDirection(ctx, fullDirection);
+        clearToZero(ctx, fullDirection);
     }
     if (s.refineThreshold > 0.0f) {
         startRefineList(ctx, fullSize);
@@ -132,7 +141,7 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
     ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, defines));
     bindImages(ctx, images, images.value, images.direction, fullValue, fullDirection);
     // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
-    if (s.geometryTiles) dispatchTileQuads(ctx);
+    if (s.geometryTiles) dispatchIndirect(ctx, tiles_, 3 * sizeof(GLuint)); // the upsampling's header
     else dispatchCompute2D(ctx, (fullSize.x + 1) / 2, (fullSize.y + 1) / 2, FILTER_WORKGROUP);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                          (s.refineThreshold > 0.0f ? GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT : 0));
@@ -150,13 +159,13 @@ void GuidedFilters::startRefineList(ContextImpl& ctx, glm::ivec2 fullSize) {
 }
 
 bool GuidedFilters::geometryTilesFit(glm::ivec2 lowSize) {
-    const glm::ivec2 tiles = (lowSize + FILTER_WORKGROUP - 1) / FILTER_WORKGROUP;
+    const glm::ivec2 tiles = tileGrid(lowSize);
     return std::int64_t(tiles.x) * std::int64_t(tiles.y) <= 65535;
 }
 
 void GuidedFilters::findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName) {
     PassScope pass(ctx, passName);
-    const glm::ivec2 tiles = (lowSize + FILTER_WORKGROUP - 1) / FILTER_WORKGROUP;
+    const glm::ivec2 tiles = tileGrid(lowSize);
     // The codes, then a mark per tile (geometry_tiles.comp.glsl).
     const std::size_t bytes = (FILTER_TILES_HEADER_UINTS + 2 * std::size_t(tiles.x) * std::size_t(tiles.y)) * sizeof(GLuint);
     if (!tiles_ || tilesBytes_ != bytes) {
@@ -179,19 +188,10 @@ void GuidedFilters::findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int 
     ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
-void GuidedFilters::dispatchGeometryTiles(ContextImpl& ctx) {
-    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tiles_.get());
-    ctx.gl.DispatchComputeIndirect(0);
-}
-
-void GuidedFilters::dispatchTileQuads(ContextImpl& ctx) {
-    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tiles_.get());
-    ctx.gl.DispatchComputeIndirect(3 * sizeof(GLuint));
-}
+void GuidedFilters::dispatchGeometryTiles(ContextImpl& ctx) { dispatchIndirect(ctx, tiles_, 0); }
 
 void GuidedFilters::dispatchRefinement(ContextImpl& ctx) {
-    ctx.gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, refineList_.get());
-    ctx.gl.DispatchComputeIndirect(0);
+    dispatchIndirect(ctx, refineList_, 0);
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 

@@ -92,7 +92,6 @@ public:
 private:
     void upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s);
     void startRefineList(ContextImpl& ctx, glm::ivec2 fullSize);
-    void dispatchTileQuads(ContextImpl& ctx);
     Buffer params_, refineList_, tiles_;
     std::size_t refineListBytes_ = 0, tilesBytes_ = 0;
     SizedTexture valueTemp_, directionTemp_;
