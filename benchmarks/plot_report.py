@@ -155,7 +155,7 @@ HALF_PAIRS = ("medium", "high")  # presets X and X_half: the same rays and steps
 def resolution_rows(rows):
     """Table lines of X (full resolution) against X_half (half resolution + blur), per preset pair, technique and size."""
     pairs = defaultdict(dict)
-    for r in one_lane(rows):
+    for r in default_runs(rows):
         base = r["preset"][:-len("_half")] if r["preset"].endswith("_half") else r["preset"]
         if base in HALF_PAIRS:
             size = f'{r["width"]}x{r["height"]}'
@@ -180,9 +180,10 @@ def ray_lanes(row):
     return int(row.get("settings", {}).get("ray_lanes", 1))
 
 
-def one_lane(rows):
-    """The rows at the default of one lane: the other tables compare those; the lanes study has its own."""
-    return [r for r in rows if ray_lanes(r) == 1]
+def default_runs(rows):
+    """The rows at the default of one ray lane and with geometry tiles: the other tables compare those; the
+    lanes and tiles studies have their own."""
+    return [r for r in rows if ray_lanes(r) == 1 and geometry_tiles(r)]
 
 
 def lanes_lines(rows):
@@ -190,6 +191,8 @@ def lanes_lines(rows):
     present, and for X / X_half pairs the half-resolution speed-up at each."""
     runs = defaultdict(dict)
     for r in rows:
+        if not geometry_tiles(r):
+            continue
         runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["quantity"],
               r["preset"])][ray_lanes(r)] = r
     counts = sorted({n for by_lanes in runs.values() for n in by_lanes})
@@ -238,13 +241,13 @@ def geometry_tiles(row):
     return row.get("settings", {}).get("geometry_tiles", "1") not in ("0", "false", "off")
 
 
-def tiles_section(every_tile_rows, rows):
-    """Reduced-resolution rows run over every tile (--set geometry_tiles=0) against the same rows with
-    geometry tiles (the default) from the other inputs."""
+def tiles_section(rows):
+    """Reduced-resolution rows over every tile (geometry_tiles=0) against the same presets with geometry
+    tiles (the default), both from the study's runs (bench --variant geometry_tiles=0: timed in turn)."""
     tiled = {(os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"]): r
-             for r in rows if geometry_tiles(r)}
+             for r in rows if geometry_tiles(r) and ray_lanes(r) == 1}
     lines = []
-    for r in sorted(every_tile_rows, key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
+    for r in sorted((r for r in rows if ray_lanes(r) == 1), key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
         key = (os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"])
         if geometry_tiles(r) or key not in tiled:
             continue
@@ -257,10 +260,10 @@ def tiles_section(every_tile_rows, rows):
     return ["## Geometry tiles", "",
             "At half and quarter resolution the integrator, the blur and the upsampling run only over the tiles of "
             "8x8 reduced pixels that hold geometry (`geometry_tiles`, geometryTiles, on by default; the listing "
-            "pass is `<module>.tiles`). The same presets run over every tile (`--set geometry_tiles=0`) against the "
-            "rows above, the technique's own passes. The two runs are separate processes, so their times carry this "
-            "machine's run-to-run spread; the RMSEs must agree exactly (the results are the same bit for bit, "
-            "tests/gl/test_geometry_tiles.cpp).", "",
+            "pass is `<module>.tiles`). Each preset ran with geometry tiles and over every tile "
+            "(`--variant geometry_tiles=0`) in one process, their frames timed in turn, so that both times share the "
+            "machine's drift; the times are the technique's own passes. The RMSEs must agree exactly (the results are "
+            "the same bit for bit, tests/gl/test_geometry_tiles.cpp).", "",
             "| scene | size | technique | quantity | preset | every tile ms | geometry tiles ms | tiles / every tile | RMSE, every tile "
             "| RMSE, geometry tiles |",
             "|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
@@ -351,8 +354,8 @@ def gpu_section(gpu_rows, cpu_rows, provenance=()):
                   "and only where the full-resolution pass fills the GPU.", ""]
         lines += RESOLUTION_HEADER + study + [""]
     lines += lanes_section(gpu_rows, "###")
-    cpu = {row_key(r): r for r in one_lane(cpu_rows)}
-    matched = [(r, cpu[row_key(r)]) for r in one_lane(gpu_rows) if row_key(r) in cpu]
+    cpu = {row_key(r): r for r in default_runs(cpu_rows)}
+    matched = [(r, cpu[row_key(r)]) for r in default_runs(gpu_rows) if row_key(r) in cpu]
     if matched:
         worst = max((abs(g["rmse"] - c["rmse"]) for g, c in matched if math.isfinite(g["rmse"]) and math.isfinite(c["rmse"])),
                     default=float("nan"))
@@ -519,7 +522,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
-    lines += tiles_section(list(tiles_rows), list(rows) + list(study_rows))
+    lines += tiles_section(list(tiles_rows))
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
     lines += shadow_section(rows)
@@ -536,11 +539,11 @@ def main():
     parser.add_argument("--resolution-study", action="append", default=[],
                         help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
     parser.add_argument("--march-study", action="append", default=[],
-                        help="bench.json of ao.raymarch with one --set march=view|texture|hiz (screen-space march table only)")
+                        help="bench.json of ao.raymarch with march=view, texture and hiz (--set, --variant; screen-space march table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
-                        help="bench.json of presets X and X_half with one --set ray_lanes=N (ray-lanes table only)")
+                        help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
-                        help="bench.json of reduced-resolution presets with --set geometry_tiles=0 (geometry-tiles table only)")
+                        help="bench.json of reduced-resolution presets with --variant geometry_tiles=0 (geometry-tiles table only)")
     parser.add_argument("--gpu", action="append", default=[],
                         help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section, with the "
                              "provenance.md beside it (when, at which commit, what ran) quoted there")

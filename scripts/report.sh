@@ -3,8 +3,8 @@
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
 # its traversals, the half-resolution trade-off at 512x512, the reduced-resolution presets
-# over every tile (geometry tiles off), ray lanes and the screen-space marches (view,
-# texture, Hi-Z), then draws the plots.
+# with and without geometry tiles, ray lanes and the screen-space marches (view, texture,
+# Hi-Z), each study's variants timed in turn in one process, then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -34,43 +34,42 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
-# The half-resolution presets over every tile (geometryTiles off), against the study above:
-# what skipping the background's tiles saves, and that the RMSEs agree exactly.
+# The half-resolution presets with geometry tiles and over every tile (geometryTiles off),
+# their frames timed in turn (--variant): what skipping the background's tiles saves, and that
+# the RMSEs agree exactly.
 tiles=()
 for techniques in 'ao.*' 'gi.*'; do
-  dir="$out/every_tile/${techniques%%.*}"
+  dir="$out/tiles/${techniques%%.*}"
   "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
     --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-    --techniques "$techniques" --presets medium_half --size 512x512 --frames 20 --spp 1024 --set geometry_tiles=0 \
+    --techniques "$techniques" --presets medium_half --size 512x512 --frames 20 --spp 1024 --variant geometry_tiles=0 \
     --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
   tiles+=(--tiles-study "$dir/bench.json")
 done
 # Ray lanes (rayLanes: invocations that share each pixel's rays) on ao.points medium, the
-# half-resolution study's closest call: llvmpipe runs a workgroup's lanes on the same cores, so
-# what they cost there shows; what they save on a GPU, benchmarks/gpu/run.sh lanes measures.
-lanes=()
-for n in 1 4 16; do
+# half-resolution study's closest call, 1, 4 and 16 lanes timed in turn: llvmpipe runs a
+# workgroup's lanes on the same cores, so what they cost there shows; what they save on a GPU,
+# benchmarks/gpu/run.sh lanes measures.
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --techniques ao.points --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 \
+  --set ray_lanes=1 --variant ray_lanes=4 --variant ray_lanes=16 \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/lanes"
+lanes=(--lanes-study "$out/lanes/bench.json")
+# The screen-space marches on the same samples, timed in turn: view and texture space, and
+# Hi-Z (the texture-space march's first hit with runs of samples skipped), at the presets' 16
+# and 32 steps and at 128, where the pyramid has runs to skip.
+marches=()
+for steps in preset 128; do
+  dir="$out/marches/$steps"
+  presets=high,ultra steps_set=()
+  [ "$steps" = 128 ] && presets=high steps_set=(--set steps=128)
   "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
     --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-    --techniques ao.points --presets medium,medium_half --size 512x512 --frames 20 --spp 1024 --set ray_lanes=$n \
-    --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/lanes_$n"
-  lanes+=(--lanes-study "$out/lanes_$n/bench.json")
-done
-# The screen-space marches on the same samples: view and texture space, and Hi-Z (the
-# texture-space march's first hit with runs of samples skipped), at the presets' 16 and 32
-# steps and at 128, where the pyramid has runs to skip.
-marches=()
-for march in view texture hiz; do
-  for steps in preset 128; do
-    dir="$out/marches/${march}_${steps}"
-    presets=high,ultra steps_set=()
-    [ "$steps" = 128 ] && presets=high steps_set=(--set steps=128)
-    "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
-      --scene cornell --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-      --techniques ao.raymarch --presets "$presets" --size 128x128 --frames 20 --spp 1024 \
-      --set march=$march "${steps_set[@]}" --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
-    marches+=(--march-study "$dir/bench.json")
-  done
+    --techniques ao.raymarch --presets "$presets" --size 128x128 --frames 20 --spp 1024 \
+    --set march=view "${steps_set[@]}" --variant march=texture --variant march=hiz \
+    --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
+  marches+=(--march-study "$dir/bench.json")
 done
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section.
 gpu=()

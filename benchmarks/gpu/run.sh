@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs on the lent GPU machine (device tool), from the repository root, with .gl (glvnd's
 # Debian packages) and .gpu (benchmarks/gpu/pack.sh) carried:
-#   benchmarks/gpu/run.sh tests|main|resolution|resolution_1080|lanes
+#   benchmarks/gpu/run.sh tests|main|resolution|resolution_1080|lanes|tiles
 # and writes the bench's output under $OUT/<step>. Timings there are GPU timer queries.
 set -euo pipefail
 step=$1
@@ -32,13 +32,15 @@ resolution_1080) # the same at a size that fills the GPU (512x512 is one wave of
     bench --spp 256 --scene cornell --scene "$engine" --techniques "$family.*" \
       --presets medium,medium_half,high,high_half --size 1920x1080 --out "$OUT/resolution_1080_$family"
   done ;;
-lanes) # ray lanes (rayLanes: invocations per pixel's rays) 1, 4 and 16 on the half-resolution
-  # study's rows at 1920x1080, where a pass over few pixels lasts as long as its slowest
-  # pixel's rays (2CylinderEngine); the references are cached across the three runs
-  for lanes in 1 4 16; do
-    "$dir/obscura" bench --frames 20 --spp 256 --cache /tmp/obscura-references --scene cornell --scene "$engine" \
-      --techniques 'ao.*' --presets medium,medium_half,high,high_half --size 1920x1080 --set ray_lanes=$lanes \
-      --out "$OUT/lanes_$lanes"
+lanes) # ray lanes (rayLanes: invocations per pixel's rays) 1, 4 and 16, timed in turn, on the
+  # half-resolution study's rows at 1920x1080, where a pass over few pixels lasts as long as its
+  # slowest pixel's rays (2CylinderEngine)
+  bench --spp 256 --scene cornell --scene "$engine" --techniques 'ao.*' --presets medium,medium_half,high,high_half \
+    --size 1920x1080 --set ray_lanes=1 --variant ray_lanes=4 --variant ray_lanes=16 --out "$OUT/lanes" ;;
+tiles) # the half-resolution presets with geometry tiles and over every tile, timed in turn, at 1920x1080
+  for family in ao gi; do
+    bench --spp 256 --scene cornell --scene "$engine" --techniques "$family.*" --presets medium_half,high_half \
+      --size 1920x1080 --variant geometry_tiles=0 --out "$OUT/tiles_$family"
   done ;;
 *) echo "unknown step $step" >&2; exit 2 ;;
 esac

@@ -39,6 +39,9 @@ struct BenchOptions {
     bool voxels = false;
     bool images = false; //!< also write each measured output and its reference (OUT/images)
     std::vector<std::string> overrides; //!< KEY=VALUE after each preset's own settings
+    //! Each a comma-separated KEY=VALUE list: every preset runs once more with it, after the
+    //! overrides, timed in turn with the preset itself (paired comparisons of one setting).
+    std::vector<std::string> variants;
     VoxelBenchOptions voxel;
     std::string voxelResolutions = "128,512", voxelTargets = "1,4,8";
 };
@@ -48,7 +51,7 @@ const char* const kColumns[] = {"scene",    "technique", "preset",   "width",   
                                 "clock",    "gpu_ms",    "cpu_ms",   "rmse",     "relmse",         "ssim",
                                 "max_abs",  "nan_count", "ref_noise_rmse", "mse", "psnr", "mean_abs",
                                 "inf_count", "ref_spp",  "frames",   "renderer", "false_shadow", "false_light",
-                                "umbra_leak", "memory_bytes", "shimmer"};
+                                "umbra_leak", "memory_bytes", "shimmer", "variant"};
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break, as
 // RFC 4180 has it ("llvmpipe (LLVM 15.0.6, 256 bits)").
@@ -162,17 +165,24 @@ struct Row {
     nlohmann::ordered_json settings; //!< the preset's and --set's key: value, the last one set of each key
 };
 
-// What a run was given: the preset's settings, then the --set overrides (a later value of a
-// key replaces an earlier one, as in the run itself).
-nlohmann::ordered_json appliedSettings(const Preset& preset, const std::vector<std::string>& overrides) {
-    nlohmann::ordered_json settings = nlohmann::ordered_json::object();
-    for (const auto& [key, value] : preset.settings) settings[key] = value;
-    for (const std::string& kv : overrides) {
-        const auto [key, value] = splitSetting(kv);
-        settings[key] = value;
+// One timed run of a preset: its settings, then --set's, then a --variant's (empty: none).
+struct PresetRun {
+    const Preset* preset;
+    std::string variant;                //!< as given to --variant
+    std::vector<std::string> keyValues; //!< --set's KEY=VALUE, then the variant's
+
+    // What the run was given: the preset's settings, then keyValues (a later value of a key
+    // replaces an earlier one, as in the run itself).
+    nlohmann::ordered_json settings() const {
+        nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+        for (const auto& [key, value] : preset->settings) settings[key] = value;
+        for (const std::string& kv : keyValues) {
+            const auto [key, value] = splitSetting(kv);
+            settings[key] = value;
+        }
+        return settings;
     }
-    return settings;
-}
+};
 
 class Bench {
 public:
@@ -195,7 +205,7 @@ public:
                 std::printf("  %-10s skipped: %s\n", name.c_str(), why.c_str());
                 continue;
             }
-            for (const std::vector<const Preset*>& group : presetGroups(info)) runTechnique(ctx, r, rays, cameraPoints, info, group);
+            for (const std::vector<PresetRun>& group : presetGroups(info)) runTechnique(ctx, r, rays, cameraPoints, info, group);
         }
     }
 
@@ -280,8 +290,11 @@ private:
 
     // The wanted presets of a technique, each alone, except that a preset X and X_half (the
     // same rays at half resolution) are timed together: their ratio is the half-resolution
-    // study's verdict, so they take their frames in turn and share the machine's drift.
-    std::vector<std::vector<const Preset*>> presetGroups(const TechniqueInfo& info) const {
+    // study's verdict, so they take their frames in turn and share the machine's drift. Each
+    // --variant of a group's presets joins the group for the same reason: on llvmpipe two
+    // processes timing the same passes differ by up to half (scripts/report.sh's geometry-tiles
+    // study: gi.screen at 1.44x apart, 1.02x when timed in turn).
+    std::vector<std::vector<PresetRun>> presetGroups(const TechniqueInfo& info) const {
         const auto wanted = split(o_.presets);
         const auto isWanted = [&](const std::string& name) {
             return wanted.empty() || std::find(wanted.begin(), wanted.end(), name) != wanted.end();
@@ -291,14 +304,23 @@ private:
                 if (p.name == name && isWanted(name)) return &p;
             return nullptr;
         };
-        std::vector<std::vector<const Preset*>> groups;
+        std::vector<std::vector<PresetRun>> groups;
         for (const Preset& preset : info.presets) {
             if (!isWanted(preset.name)) continue;
             const std::string suffix = "_half";
             const bool half = preset.name.size() > suffix.size() && preset.name.ends_with(suffix);
             if (half && find(preset.name.substr(0, preset.name.size() - suffix.size()))) continue; // timed with X
-            std::vector<const Preset*> group{&preset};
-            if (const Preset* partner = half ? nullptr : find(preset.name + suffix)) group.push_back(partner);
+            std::vector<const Preset*> members{&preset};
+            if (const Preset* partner = half ? nullptr : find(preset.name + suffix)) members.push_back(partner);
+            std::vector<PresetRun> group;
+            for (const Preset* member : members) {
+                group.push_back({member, "", o_.overrides});
+                for (const std::string& variant : o_.variants) {
+                    std::vector<std::string> keyValues = o_.overrides;
+                    for (const std::string& kv : split(variant)) keyValues.push_back(kv);
+                    group.push_back({member, variant, keyValues});
+                }
+            }
             groups.push_back(group);
         }
         return groups;
@@ -356,20 +378,21 @@ private:
 
     void runTechnique(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
                       const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info,
-                      const std::vector<const Preset*>& presets) {
+                      const std::vector<PresetRun>& presets) {
         std::vector<std::unique_ptr<TechniqueRun>> runs;
-        for (const Preset* preset : presets) {
+        for (const PresetRun& preset : presets) {
             runs.push_back(info.create(ctx));
-            for (const auto& [key, value] : preset->settings) runs.back()->set(key, value);
-            applySettings(*runs.back(), o_.overrides);
+            for (const auto& [key, value] : preset.preset->settings) runs.back()->set(key, value);
+            applySettings(*runs.back(), preset.keyValues);
         }
         const std::vector<Timing> timings = timeInTurn(ctx, runs, FrameSetup{r.scene, r.camera, r.width, r.height});
-        for (std::size_t k = 0; k < runs.size(); ++k) measure(ctx, r, rays, cameraPoints, info, *presets[k], *runs[k], timings[k]);
+        for (std::size_t k = 0; k < runs.size(); ++k) measure(ctx, r, rays, cameraPoints, info, presets[k], *runs[k], timings[k]);
     }
 
     void measure(Context& ctx, const ResolvedScene& r, const reference::RayScene& rays,
-                 const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const Preset& preset,
+                 const reference::ShadingPoints& cameraPoints, const TechniqueInfo& info, const PresetRun& presetRun,
                  TechniqueRun& run, const Timing& timing) {
+        const Preset& preset = *presetRun.preset;
         const double gpu = timing.gpuMs;
         const GBufferSamples samples = run.samples();
         const Image samplesMask = gbufferMask(samples);
@@ -396,7 +419,9 @@ private:
             metrics::Options mo;
             mo.mask = &mask;
             const metrics::Report e = metrics::compare(m.value, expected, mo);
-            if (o_.images) writeMeasurementImages(r.scene.name + "_" + info.name + "_" + preset.name + "_" + m.quantity, m.value, expected);
+            if (o_.images) writeMeasurementImages(r.scene.name + "_" + info.name + "_" + preset.name + "_" + m.quantity +
+                                                 (presetRun.variant.empty() ? "" : "_" + presetRun.variant),
+                                             m.value, expected);
             Row row;
             row.fields = {{"scene", r.scene.name},   {"technique", info.name},  {"preset", preset.name},
                           {"width", r.width},        {"height", r.height},      {"quantity", m.quantity},
@@ -406,7 +431,8 @@ private:
                           {"ref_noise_rmse", std::sqrt(noise)}, {"mse", e.mse}, {"psnr", e.psnr},
                           {"mean_abs", e.meanAbs},   {"inf_count", e.infCount}, {"ref_spp", spp},
                           {"frames", o_.frames},     {"renderer", ctx.info().renderer},
-                          {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""},     {"shimmer", ""}};
+                          {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""},     {"shimmer", ""},
+                          {"variant", presetRun.variant}};
             if (m.shimmer) row.fields["shimmer"] = *m.shimmer;
             std::size_t memoryBytes = 0;
             nlohmann::ordered_json memory = nlohmann::ordered_json::object();
@@ -426,10 +452,11 @@ private:
                 row.fields["false_light"] = wrong.falseLight;
             }
             row.passes = timing.passes;
-            row.settings = appliedSettings(preset, o_.overrides);
-            std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g\n",
+            row.settings = presetRun.settings();
+            std::printf("  %-10s %-8s %-10s %8.3f ms (%s)  rmse %.4g  relmse %.4g  ssim %.4f  ref noise rmse %.3g%s%s\n",
                         info.name.c_str(), preset.name.c_str(), m.quantity.c_str(), gpu, toString(ctx.profiler().clock()),
-                        e.rmse, e.relMse, e.ssim, std::sqrt(noise));
+                        e.rmse, e.relMse, e.ssim, std::sqrt(noise), presetRun.variant.empty() ? "" : "  variant ",
+                        presetRun.variant.c_str());
             rows_.push_back(std::move(row));
         }
     }
@@ -497,6 +524,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--cache", o->cache, "Reference cache directory (default OUT/reference-cache)");
     cmd->add_flag("--no-cache", o->noCache, "Render every reference afresh and store none");
     cmd->add_option("--set", o->overrides, "KEY=VALUE after each preset's settings (every technique benched must take it)");
+    cmd->add_option("--variant", o->variants,
+                    "Comma-separated KEY=VALUE list after --set: every preset runs once more with it, its frames timed in turn "
+                    "with the preset's own (repeatable; rows carry it in the `variant` column)");
     cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
     cmd->add_flag("--images", o->images, "Also write each measured output and its reference as OUT/images/*.exr");
     cmd->add_flag("--reference-performance", o->referencePerformance,
