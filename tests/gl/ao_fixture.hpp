@@ -71,6 +71,16 @@ inline VoxelizerSettings boxVoxels(glm::vec3 boxMin, glm::vec3 boxMax) {
 constexpr double kWallVoxelSide = 4.0 / 128.0; // m
 inline VoxelizerSettings wallVoxels() { return boxVoxels({-2.0f, -0.5f, -1.5f}, {2.0f, 3.5f, 2.5f}); }
 
+//! Whether pixel (x, y) of the wall scene, as rendered into `f` at W x H, shows a floor point
+//! whose rays (radius up to 1) stay inside wallVoxels() and on screen (a margin from the
+//! image's border); `p` gets its world position.
+inline bool wallFloorPixel(const AoFixture& f, int x, int y, glm::dvec3& p) {
+    const int W = f.positions.width;
+    if (!f.geometry(x, y)) return false;
+    p = f.world(x, y);
+    return std::abs(p.y) <= 1e-3 && std::abs(p.x) <= 0.8 && p.z <= 1.2 && x >= 12 && x < W - 12 && y >= 10;
+}
+
 // The mean over a floor point's hemisphere of `atHit(d)` for the directions that reach an
 // infinite wall at distance d <= reach, and of 1 for the others, the point being `distance`
 // from the wall. A direction's component u toward the wall decides: d = distance / u. Cosine-

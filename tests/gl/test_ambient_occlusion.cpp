@@ -230,6 +230,107 @@ TEST_CASE("Post-process mode: on a host's 32-bit float depth and normals of an o
     CHECK(test::drainGlErrors().empty());
 }
 
+namespace {
+
+struct WallQuantity {
+    ObscuranceFalloff falloff;
+    bool cosine;
+};
+
+// AO or obscurance and the bent normal of the wall scene's floor, as rendered into `f`,
+// against their integrals (wallMean) within each method's geometric window and the sampling
+// error; radius 1, 32 steps.
+void checkWall(AoFixture& f, const Scene& scene, AoMethod method, ScreenMarch march, WallQuantity q, int rays) {
+    const int W = f.positions.width, H = f.positions.height;
+    const glm::dmat3 toWorld(glm::inverse(glm::dmat4(f.view.camera.view)));
+    constexpr double radius = 1.0;
+    constexpr int steps = 32;
+    const double voxelSide = test::kWallVoxelSide;
+    AmbientOcclusionSettings s;
+    s.method = method;
+    s.march = march;
+    s.radius = static_cast<float>(radius);
+    s.rays = rays;
+    s.steps = steps;
+    s.falloff = q.falloff;
+    s.cosineWeighted = q.cosine;
+    s.bentNormals = true;
+    // Points: every point behind the wall within the radius counts as inside it.
+    if (method == AoMethod::Points) s.thickness = static_cast<float>(2.0 * radius);
+    if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, test::wallVoxels());
+    const AmbientOcclusionView out = f.ao.run(f.view, s);
+    const Image ao = readTexture(f.ctx, out.ao), bent = readTexture(f.ctx, out.bentNormal);
+    const auto exact = [&](double d) { return falloffOf(q.falloff, std::min(d / radius, 1.0)); };
+    // Ray marching finds a hit at its first sample past it, at most a step (r / steps)
+    // late, and none beyond its last sample, at least at r (1 - 1/steps): rho only
+    // grows with d, so the value can only be higher. Voxels bring the wall closer by up
+    // to a voxel side: lower.
+    const auto late = [&](double d) { return falloffOf(q.falloff, std::min((d + radius / steps) / radius, 1.0)); };
+    const double marchReach = radius * (1.0 - 1.0 / steps);
+    const bool tilted = q.falloff == ObscuranceFalloff::None && q.cosine && method != AoMethod::Points;
+    double meanError = 0.0, meanWindow = 0.0, tiltError = 0.0, tiltWindow = 0.0;
+    int checked = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            glm::dvec3 p;
+            if (!test::wallFloorPixel(f, x, y, p)) continue;
+            const double distance = p.z + 1.0;
+            double lo = wallMean(distance, radius, q.cosine, exact), hi = lo;
+            double cLo = distance / radius, cHi = cLo; // the bent normal's window of c
+            if (method == AoMethod::RayMarch) {
+                hi = wallMean(distance, marchReach, q.cosine, late);
+                cHi = distance / marchReach;
+            } else if (method == AoMethod::Points) {
+                // Each point is classified exactly against the wall's plane: no window.
+                lo = hi = wallMean(distance, radius, q.cosine, [&](double t) { return 1.0 - pointsOccluded(q.falloff, t / radius); });
+            } else {
+                const double closer = std::max(distance - voxelSide, 0.0);
+                lo = wallMean(closer, radius, q.cosine, exact);
+                cLo = closer / radius;
+            }
+            // Five standard deviations of the mean of `rays` samples in [0, 1], whose
+            // variance is at most mu (1 - mu) (the rotated Hammersley set taken as random:
+            // conservative), and the half float's rounding (to nearest: 2^-12 below 1).
+            const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+            const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
+            CAPTURE(x, y, distance, value, lo, hi);
+            CHECK(value >= lo - tolerance);
+            CHECK(value <= hi + tolerance);
+            meanError += value - 0.5 * (lo + hi);
+            meanWindow += 0.5 * (hi - lo);
+            if (tilted) {
+                const glm::dvec3 b = toWorld * glm::dvec3(bent.at(x, y, 0), bent.at(x, y, 1), bent.at(x, y, 2));
+                const double tilt = std::atan2(b.z, b.y), tiltLo = wallBentTilt(cHi), tiltHi = wallBentTilt(cLo);
+                CHECK(std::abs(glm::length(b) - 1.0) < 1e-2);
+                // The wall is symmetric in x: 5 sigma of the mean's x over its length,
+                // sqrt(E[x^2] = 1/4) / (1/3) / sqrt(rays) each.
+                CHECK(std::abs(b.x) < 5.0 * 0.5 * 3.0 / std::sqrt(double(rays)));
+                tiltError += tilt - 0.5 * (tiltLo + tiltHi);
+                tiltWindow += 0.5 * (tiltHi - tiltLo);
+            }
+            ++checked;
+        }
+    CHECK(checked > 200);
+    // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
+    // error over the pixels stays within the mean window plus 5 sigma / sqrt(pixels),
+    // plus the half-float rounding.
+    INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
+    CHECK(std::abs(meanError / checked) <= meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -12));
+    if (tilted) {
+        // The bent normal's angle: the sum of `rays` open directions has per-component
+        // standard deviations at most sqrt(E[z^2]) = 1/2 and sqrt(E[y^2]) = sqrt(1/2)
+        // over sqrt(rays), and a length of at least E[y] >= 1/3 per ray, so its angle's
+        // is at most sqrt(3/4) / (1/3) / sqrt(rays); a mean over the pixels, over
+        // sqrt(pixels) more. (The angle of a mean is biased by order sigma^2 per pixel,
+        // about 1e-3 rad, well inside that.)
+        const double tiltSigma = std::sqrt(0.75) * 3.0 / std::sqrt(double(rays) * checked);
+        INFO("bent normal tilt mean error " << tiltError / checked << " rad, window +-" << tiltWindow / checked);
+        CHECK(std::abs(tiltError / checked) <= tiltWindow / checked + 5.0 * tiltSigma);
+    }
+}
+
+} // namespace
+
 TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match their integrals within the "
           "sampling error", "[ao]") {
     AoFixture f;
@@ -237,105 +338,47 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
     const Scene scene = test::wallScene();
     constexpr int W = 96, H = 72;
     f.render(scene, test::wallCamera(W, H), W, H);
-    const glm::dmat3 toWorld(glm::inverse(glm::dmat4(f.view.camera.view)));
-    constexpr double radius = 1.0;
-    constexpr int rays = 1024, steps = 32;
-    const VoxelizerSettings voxels = test::wallVoxels();
-    const double voxelSide = test::kWallVoxelSide;
-    struct Quantity {
-        ObscuranceFalloff falloff;
-        bool cosine;
-    };
     for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel, AoMethod::Points})
-        for (const Quantity q : {Quantity{ObscuranceFalloff::None, true}, Quantity{ObscuranceFalloff::None, false},
-                                 Quantity{ObscuranceFalloff::Linear, true}, Quantity{ObscuranceFalloff::Quadratic, true},
-                                 Quantity{ObscuranceFalloff::Smooth, true}}) {
+        for (const WallQuantity q : {WallQuantity{ObscuranceFalloff::None, true}, WallQuantity{ObscuranceFalloff::None, false},
+                                     WallQuantity{ObscuranceFalloff::Linear, true}, WallQuantity{ObscuranceFalloff::Quadratic, true},
+                                     WallQuantity{ObscuranceFalloff::Smooth, true}}) {
             CAPTURE(nameOf(method), static_cast<int>(q.falloff), q.cosine);
-            AmbientOcclusionSettings s;
-            s.method = method;
-            s.radius = static_cast<float>(radius);
-            s.rays = rays;
-            s.steps = steps;
-            s.falloff = q.falloff;
-            s.cosineWeighted = q.cosine;
-            s.bentNormals = true;
-            // Points: every point behind the wall within the radius counts as inside it.
-            if (method == AoMethod::Points) s.thickness = static_cast<float>(2.0 * radius);
-            if (method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, voxels);
-            const AmbientOcclusionView out = f.ao.run(f.view, s);
-            const Image ao = readTexture(f.ctx, out.ao), bent = readTexture(f.ctx, out.bentNormal);
-            const auto exact = [&](double d) { return falloffOf(q.falloff, std::min(d / radius, 1.0)); };
-            // Ray marching finds a hit at its first sample past it, at most a step (r / steps)
-            // late, and none beyond its last sample, at least at r (1 - 1/steps): rho only
-            // grows with d, so the value can only be higher. Voxels bring the wall closer by up
-            // to a voxel side: lower.
-            const auto late = [&](double d) { return falloffOf(q.falloff, std::min((d + radius / steps) / radius, 1.0)); };
-            const double marchReach = radius * (1.0 - 1.0 / steps);
-            double meanError = 0.0, meanWindow = 0.0, tiltError = 0.0, tiltWindow = 0.0;
-            int checked = 0;
-            for (int y = 0; y < H; ++y)
-                for (int x = 0; x < W; ++x) {
-                    if (!f.geometry(x, y)) continue;
-                    const glm::dvec3 p = f.world(x, y);
-                    // Floor points whose whole radius lies inside the grid and whose rays stay
-                    // on screen (checked by the margin from the image border).
-                    if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
-                    const double distance = p.z + 1.0;
-                    double lo = wallMean(distance, radius, q.cosine, exact), hi = lo;
-                    double cLo = distance / radius, cHi = cLo; // the bent normal's window of c
-                    if (method == AoMethod::RayMarch) {
-                        hi = wallMean(distance, marchReach, q.cosine, late);
-                        cHi = distance / marchReach;
-                    } else if (method == AoMethod::Points) {
-                        // Each point is classified exactly against the wall's plane: no window.
-                        lo = hi = wallMean(distance, radius, q.cosine,
-                                           [&](double t) { return 1.0 - pointsOccluded(q.falloff, t / radius); });
-                    } else {
-                        const double closer = std::max(distance - voxelSide, 0.0);
-                        lo = wallMean(closer, radius, q.cosine, exact);
-                        cLo = closer / radius;
-                    }
-                    // Five standard deviations of the mean of `rays` samples in [0, 1], whose
-                    // variance is at most mu (1 - mu) (the rotated Hammersley set taken as random:
-                    // conservative), and the half float's rounding (to nearest: 2^-12 below 1).
-                    const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
-                    const double value = ao.at(x, y, 0), tolerance = 5.0 * sigma + std::ldexp(1.0, -12);
-                    CAPTURE(x, y, distance, value, lo, hi);
-                    CHECK(value >= lo - tolerance);
-                    CHECK(value <= hi + tolerance);
-                    meanError += value - 0.5 * (lo + hi);
-                    meanWindow += 0.5 * (hi - lo);
-                    if (q.falloff == ObscuranceFalloff::None && q.cosine && method != AoMethod::Points) {
-                        const glm::dvec3 b = toWorld * glm::dvec3(bent.at(x, y, 0), bent.at(x, y, 1), bent.at(x, y, 2));
-                        const double tilt = std::atan2(b.z, b.y), tiltLo = wallBentTilt(cHi), tiltHi = wallBentTilt(cLo);
-                        CHECK(std::abs(glm::length(b) - 1.0) < 1e-2);
-                        // The wall is symmetric in x: 5 sigma of the mean's x over its length,
-                        // sqrt(E[x^2] = 1/4) / (1/3) / sqrt(rays) each.
-                        CHECK(std::abs(b.x) < 5.0 * 0.5 * 3.0 / std::sqrt(double(rays)));
-                        tiltError += tilt - 0.5 * (tiltLo + tiltHi);
-                        tiltWindow += 0.5 * (tiltHi - tiltLo);
-                    }
-                    ++checked;
-                }
-            CHECK(checked > 200);
-            // Per-pixel rotations make each pixel's estimate unbiased and independent: the mean
-            // error over the pixels stays within the mean window plus 5 sigma / sqrt(pixels),
-            // plus the half-float rounding.
-            INFO("mean error " << meanError / checked << " over " << checked << " pixels, window +-" << meanWindow / checked);
-            CHECK(std::abs(meanError / checked) <=
-                  meanWindow / checked + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + std::ldexp(1.0, -12));
-            if (q.falloff == ObscuranceFalloff::None && q.cosine && method != AoMethod::Points) {
-                // The bent normal's angle: the sum of `rays` open directions has per-component
-                // standard deviations at most sqrt(E[z^2]) = 1/2 and sqrt(E[y^2]) = sqrt(1/2)
-                // over sqrt(rays), and a length of at least E[y] >= 1/3 per ray, so its angle's
-                // is at most sqrt(3/4) / (1/3) / sqrt(rays); a mean over the pixels, over
-                // sqrt(pixels) more. (The angle of a mean is biased by order sigma^2 per pixel,
-                // about 1e-3 rad, well inside that.)
-                const double tiltSigma = std::sqrt(0.75) * 3.0 / std::sqrt(double(rays) * checked);
-                INFO("bent normal tilt mean error " << tiltError / checked << " rad, window +-" << tiltWindow / checked);
-                CHECK(std::abs(tiltError / checked) <= tiltWindow / checked + 5.0 * tiltSigma);
-            }
+            checkWall(f, scene, method, ScreenMarch::View, q, 1024);
         }
+}
+
+TEST_CASE("AO and the bent normal of the floor in front of a wall match their integrals in reversed-Z and "
+          "orthographic views", "[ao]") {
+    // The wall test's closed forms hold for any projection whose depth buffer holds every
+    // surface the rays meet: the same view direction with reversed depth and an infinite far
+    // plane, and orthographic with [0, 1] and reversed depth. A method that read depth one
+    // way only (a standard [-1, 1] linearization, a perspective divide) would be off by far
+    // more than the sampling error here, where AO runs from about 0.5 to 1.
+    AoFixture f;
+    const Scene scene = test::wallScene();
+    constexpr int W = 96, H = 72;
+    const LookAt look{{0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, {0, 1, 0}}; // test::wallCamera's
+    // Half height: the perspective view's at the target (its distance 4.7 x tan 25 degrees).
+    const float halfHeight = 4.7f * std::tan(glm::radians(25.0f));
+    struct Projection {
+        const char* name;
+        Camera camera;
+    };
+    const Projection projections[] = {
+        {"reversed-Z, infinite far", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 0.05f, INFINITY,
+                                                         DepthMode::Reversed)},
+        {"orthographic, zero to one", Camera::orthographic(look, halfHeight, float(W) / H, 0.05f, 200.0f,
+                                                           DepthMode::StandardZeroToOne)},
+        {"orthographic, reversed", Camera::orthographic(look, halfHeight, float(W) / H, 0.05f, 200.0f, DepthMode::Reversed)},
+    };
+    for (const Projection& projection : projections) {
+        f.render(scene, projection.camera, W, H);
+        for (const AoVariant variant : kAllVariants) {
+            if (variant.method == AoMethod::Horizon) continue; // its own tests: test_horizon_ao.cpp
+            CAPTURE(projection.name, nameOf(variant.method), static_cast<int>(variant.march));
+            checkWall(f, scene, variant.method, variant.march, {ObscuranceFalloff::None, true}, 256);
+        }
+    }
 }
 
 TEST_CASE("AO under a disc matches one minus its view factor within the march and voxel bounds", "[ao]") {

@@ -50,11 +50,8 @@ TEST_CASE("Screen and voxel AO of a floor in front of a visible wall differ only
         double meanDifference = 0.0, meanShare = 0.0;
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
-                if (!f.geometry(x, y)) continue;
-                const glm::dvec3 p = f.world(x, y);
-                // Floor points whose radius lies inside the grid and whose rays stay on screen
-                // (as in the wall test).
-                if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2 || x < 12 || x >= W - 12 || y < 10) continue;
+                glm::dvec3 p;
+                if (!test::wallFloorPixel(f, x, y, p)) continue;
                 const double distance = p.z + 1.0;
                 const double share = wallMean(distance, radius * (1.0 - 1.0 / steps), true, never) -
                                      wallMean(std::max(distance - test::kWallVoxelSide, 0.0), radius, true, never);
@@ -85,16 +82,23 @@ TEST_CASE("Screen and voxel AO of a floor in front of a visible wall differ only
     }
 }
 
-TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ where something is", "[ao]") {
-    AoFixture f;
-    // A thin ceiling slab at y = 1 over part of the floor, seen exactly edge-on: the depth
-    // buffer never holds it, the voxel grid does.
-    Scene scene = floorScene(10.0);
-    const Scene slab = test::quadScene({{{glm::dvec3(-3, 1, -6), {3, 1, -6}, {3, 1, -2}, {-3, 1, -2}}},
-                                        {{glm::dvec3(-3, 1, -2), {3, 1, -2}, {3, 1, -6}, {-3, 1, -6}}}});
-    for (const Mesh& m : slab.meshes) scene.meshes.push_back(m);
-    constexpr int W = 96, H = 64;
-    f.render(scene, lookAt({0, 1, 4}, {0, 1, -4}, W, H), W, H);
+namespace {
+
+// Floor points (y = 0) with |x| and z in a box.
+struct FloorBox {
+    double absXMin, absXMax, zMin, zMax;
+    bool holds(glm::dvec3 p) const {
+        return std::abs(p.y) <= 1e-3 && std::abs(p.x) > absXMin && std::abs(p.x) < absXMax && p.z > zMin && p.z < zMax;
+    }
+};
+
+// Scenes with a ceiling slab at y = 1, x in [-slabX, slabX], z in [-6, -2], over the floor,
+// where the camera does not see it: screen and voxel AO (r = 1.5) at floor pixels in `open`
+// (more than the radius from the slab) are both exactly 1; in `covered` (the slab covers every
+// direction that reaches height 1 within the radius: horizontal reach r sqrt(1 - (1/r)^2) =
+// 1.12 < 1.2) the voxels give AO_r = (h / r)^2 for the cosine-weighted hemisphere and the
+// screen, which does not see the slab, 1.
+void checkHiddenSlab(AoFixture& f, const Scene& scene, int W, int H, FloorBox open, FloorBox covered) {
     const VoxelizerSettings voxels = test::boxVoxels({-4.0f, -0.5f, -8.0f}, {4.0f, 3.5f, 0.0f});
     AmbientOcclusionSettings s;
     s.radius = 1.5f;
@@ -106,31 +110,71 @@ TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ
     // The voxel rays start lifted by a voxel diagonal (sqrt(3) x 8/128) and the slab's voxels
     // reach down by up to a voxel (4/128): the ceiling is effectively h in [0.861, 0.892].
     const double lift = std::sqrt(3.0) * 8.0 / 128.0, hMax = 1.0 - lift, hMin = hMax - 4.0 / 128.0;
-    int open = 0, covered = 0;
+    int openCount = 0, coveredCount = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             if (!f.geometry(x, y)) continue;
             const glm::dvec3 p = f.world(x, y);
-            if (std::abs(p.y) > 1e-3) continue;
             CAPTURE(x, y, p.x, p.z, screen.at(x, y, 0), voxel.at(x, y, 0));
-            if (p.z > -0.4 && p.z < 0.0 && std::abs(p.x) < 2.0) {
-                // More than the radius from the slab (sqrt(1.6^2 + 1) > 1.5): open in both.
-                ++open;
+            if (open.holds(p)) {
+                ++openCount;
                 CHECK(screen.at(x, y, 0) == 1.0f);
                 CHECK(voxel.at(x, y, 0) == 1.0f);
-            } else if (p.z > -4.8 && p.z < -3.2 && std::abs(p.x) < 1.8) {
-                // The slab covers every direction that reaches height h within the radius
-                // (horizontal reach r sqrt(1 - (h/r)^2) < 1.2): AO_r = (h / r)^2 for the
-                // cosine-weighted hemisphere. Screen space does not see the slab at all.
-                ++covered;
+            } else if (covered.holds(p)) {
+                ++coveredCount;
                 const double lo = std::pow(hMin / 1.5, 2.0), hi = std::pow(hMax / 1.5, 2.0);
+                // 5 sigma of 256 binomial directions, and the rounding to a half float.
                 const double tolerance = 5.0 * std::sqrt(hi * (1.0 - lo) / 256.0) + std::ldexp(1.0, -12);
                 CHECK(screen.at(x, y, 0) == 1.0f);
                 CHECK(voxel.at(x, y, 0) >= lo - tolerance);
                 CHECK(voxel.at(x, y, 0) <= hi + tolerance);
             }
         }
-    CHECK(open > 10);
-    CHECK(covered > 10);
+    CHECK(openCount > 10);
+    CHECK(coveredCount > 10);
 }
 
+Scene floorWithSlab(double slabX) {
+    Scene scene = floorScene(10.0);
+    const Scene slab = test::quadScene({{{glm::dvec3(-slabX, 1, -6), {slabX, 1, -6}, {slabX, 1, -2}, {-slabX, 1, -2}}},
+                                        {{glm::dvec3(-slabX, 1, -2), {slabX, 1, -2}, {slabX, 1, -6}, {-slabX, 1, -6}}}});
+    for (const Mesh& m : slab.meshes) scene.meshes.push_back(m);
+    return scene;
+}
+
+} // namespace
+
+TEST_CASE("Screen space and voxel space agree where nothing is hidden and differ where something is", "[ao]") {
+    AoFixture f;
+    // The slab seen exactly edge-on: the depth buffer never holds it, the voxel grid does.
+    const Scene scene = floorWithSlab(3.0);
+    constexpr int W = 96, H = 64;
+    f.render(scene, lookAt({0, 1, 4}, {0, 1, -4}, W, H), W, H);
+    checkHiddenSlab(f, scene, W, H, {0.0, 2.0, -0.4, 0.0}, {0.0, 1.8, -4.8, -3.2});
+}
+
+TEST_CASE("Screen space misses an occluder hidden behind another object, voxel space finds it", "[ao]") {
+    AoFixture f;
+    // A curtain in the plane z = 0 from y = 0.63 up, facing the camera at (0, 0.6, 1): the
+    // camera sees the floor behind it through the gap below (its rays there stay below 0.6),
+    // but the slab's underside only through the curtain (its rays cross z = 0 at heights
+    // 0.6 + 0.4 / (1 - z) in [0.657, 0.733] for z in [-6, -2]).
+    Scene scene = floorWithSlab(1.5);
+    const Scene curtain = test::quadScene({{{glm::dvec3(-6, 0.63, 0), {6, 0.63, 0}, {6, 3, 0}, {-6, 3, 0}}}});
+    for (const Mesh& m : curtain.meshes) scene.meshes.push_back(m);
+    constexpr int W = 144, H = 96;
+    f.render(scene, lookAt({0, 0.6f, 1}, {0, 0.3f, -4}, W, H), W, H);
+    int onCurtain = 0, onSlab = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (!f.geometry(x, y)) continue;
+            const glm::dvec3 p = f.world(x, y);
+            onCurtain += std::abs(p.z) < 1e-3 && p.y > 0.6;
+            onSlab += std::abs(p.y - 1.0) < 1e-3 && p.z < -1.0;
+        }
+    CHECK(onCurtain > W * H / 4);
+    CHECK(onSlab == 0);
+    // Open: beside the slab, more than the radius from it (3.1 - 1.5 > 1.12) and from the
+    // curtain; covered: under its middle (|x| < 1.5 - 1.2).
+    checkHiddenSlab(f, scene, W, H, {3.1, 3.9, -4.8, -3.2}, {0.0, 0.3, -4.8, -3.2});
+}

@@ -91,7 +91,8 @@ Camera wallCamera(int width, int height) {
 
 } // namespace
 
-TEST_CASE("A floor lit by an emissive wall matches the closed form within the sampling error", "[gi]") {
+TEST_CASE("A floor lit by an emissive wall matches the closed form within the sampling error in perspective, "
+          "reversed-Z and orthographic views", "[gi]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
     GBuffer gbuffer(ctx);
@@ -117,16 +118,33 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
     // with the depth at the pixel's centre.
     const Camera grazing = Camera::perspective({{2.6f, 1.2f, -0.5f}, {-0.3f, 0.2f, 0.2f}, {0, 1, 0}}, glm::radians(50.0f),
                                                float(W) / float(H), 0.05f, 200.0f);
+    // The closed form holds for any projection whose depth buffer holds the floor and the
+    // wall: wallCamera's view with reversed depth and an infinite far plane, and orthographic
+    // (half height: the perspective view's at the target, 4.7 x tan 25 degrees) with reversed
+    // and with [0, 1] depth. (floorPixelsReach unprojects depth -1 and 0 as near and far: not
+    // for reversed depth, hence the hybrid method's orthographic view in [0, 1] depth.)
+    const LookAt look{{0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, {0, 1, 0}};
+    const float aspect = float(W) / float(H), halfHeight = 4.7f * std::tan(glm::radians(25.0f));
     struct Run {
+        const char* name;
         GiMethod method;
         int resolution;
         Camera camera;
     };
-    const std::vector<Run> runs = {{GiMethod::Screen, 0, wallCamera(W, H)}, {GiMethod::Hybrid, 128, wallCamera(W, H)},
-                                   {GiMethod::Hybrid, 512, wallCamera(W, H)}, {GiMethod::Hybrid, 512, grazing}};
+    const std::vector<Run> runs = {
+        {"screen", GiMethod::Screen, 0, wallCamera(W, H)},
+        {"hybrid 128", GiMethod::Hybrid, 128, wallCamera(W, H)},
+        {"hybrid 512", GiMethod::Hybrid, 512, wallCamera(W, H)},
+        {"hybrid 512, grazing", GiMethod::Hybrid, 512, grazing},
+        {"screen, reversed-Z, infinite far", GiMethod::Screen, 0,
+         Camera::perspective(look, glm::radians(50.0f), aspect, 0.05f, INFINITY, DepthMode::Reversed)},
+        {"screen, orthographic, reversed", GiMethod::Screen, 0,
+         Camera::orthographic(look, halfHeight, aspect, 0.05f, 200.0f, DepthMode::Reversed)},
+        {"hybrid 128, orthographic, zero to one", GiMethod::Hybrid, 128,
+         Camera::orthographic(look, halfHeight, aspect, 0.05f, 200.0f, DepthMode::StandardZeroToOne)}};
     for (const Run& run : runs) {
         const GiMethod method = run.method;
-        CAPTURE(method == GiMethod::Hybrid, run.resolution, &run == &runs.back());
+        CAPTURE(run.name);
         const GBufferView view = gbuffer.render(scene, run.camera, {W, H, false, {}});
         const Image positions = readTexture(ctx, gbuffer.positions(view));
         const Image albedo = readTexture(ctx, view.albedo);
