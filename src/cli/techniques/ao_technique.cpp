@@ -1,5 +1,6 @@
-// "ao.raymarch", "ao.points", "ao.horizon", "ao.voxel" and "obscurance.raymarch": the
-// AmbientOcclusion module on the G-buffer of the scene (and, for ao.voxel, its voxel grid).
+// "ao.raymarch", "ao.points", "ao.horizon", "ao.voxel" and "obscurance.raymarch", ".points"
+// and ".voxel": the AmbientOcclusion module on the G-buffer of the scene (and, for the voxel
+// methods, its voxel grid). Horizon integrates AO only (no falloff): no obscurance.horizon.
 #include "obscura/ambient_occlusion.hpp"
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
@@ -162,6 +163,12 @@ const TechniqueRegistrar voxel(aoTechnique(
 const TechniqueRegistrar obscurance(aoTechnique(
     "obscurance.raymarch", "Obscurance with the linear falloff (set falloff=...) by ray marching (screen space)",
     AoMethod::RayMarch, ObscuranceFalloff::Linear));
+const TechniqueRegistrar obscurancePoints(aoTechnique(
+    "obscurance.points", "Obscurance with the linear falloff (set falloff=...) by point sampling (screen space)",
+    AoMethod::Points, ObscuranceFalloff::Linear));
+const TechniqueRegistrar obscuranceVoxel(aoTechnique(
+    "obscurance.voxel", "Obscurance with the linear falloff (set falloff=...) through the voxelized scene (voxel space)",
+    AoMethod::Voxel, ObscuranceFalloff::Linear));
 
 } // namespace
 } // namespace obscura::cli
