@@ -47,7 +47,8 @@ enum class AoMethod {
     Horizon,  //!< "ao.horizon": per screen slice, the horizon angles found with `steps` samples
               //!< on each side and the cosine-weighted integral above them (GTAO-style; exact
               //!< for height fields, darker than AO_r under overhangs: below a disc as high
-              //!< as it is wide, 0.09-0.19 on 0.5); `rays` / 2 slices; cosine weighting only
+              //!< as it is wide, 0.09-0.19 on 0.5); `rays` / 2 slices; cosine weighting only;
+              //!< the bent normal integrates each slice's visible arc in closed form
     Voxel,    //!< "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance)
 };
 
@@ -104,7 +105,9 @@ struct AmbientOcclusionSettings {
     //! of more than 65535 tiles (above about 4096 x 4096 at half resolution: GL guarantees no
     //! larger indirect dispatch) run every tile.
     bool geometryTiles = true;
-    bool bentNormals = false;   //!< also write `bentNormal` (Horizon: the normal itself, not an estimate)
+    //! Also write `bentNormal`, the cosine-weighted mean of the open directions (Horizon: of the
+    //! directions above its slices' horizons, integrated over each slice's visible arc).
+    bool bentNormals = false;
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
     //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.
     const VoxelGrid* voxels = nullptr;

@@ -92,7 +92,7 @@ AmbientOcclusionSettings aoSettings(AoMethod method, AoResolution resolution, in
     s.steps = 6;
     s.resolution = resolution;
     s.blurRadius = blurTaps;
-    s.bentNormals = method != AoMethod::Horizon;
+    s.bentNormals = true;
     return s;
 }
 

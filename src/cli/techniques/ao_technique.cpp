@@ -40,9 +40,8 @@ public:
     AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx) {
         settings_.method = method;
         settings_.falloff = falloff;
-        // Bent normals are part of the output (and of the bench's error report) by default;
-        // the horizon method does not estimate them.
-        settings_.bentNormals = method != AoMethod::Horizon;
+        // Bent normals are part of the output (and of the bench's error report) by default.
+        settings_.bentNormals = true;
     }
 
     void set(const std::string& key, const std::string& value) override {
@@ -146,8 +145,7 @@ private:
 
 TechniqueInfo aoTechnique(const std::string& name, const std::string& description, AoMethod method,
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
-    std::vector<std::string> outputs = {"ao"};
-    if (method != AoMethod::Horizon) outputs.push_back("bent_normal");
+    const std::vector<std::string> outputs = {"ao", "bent_normal"};
     return {name, description, outputs, kSettings, integratorPresets(method == AoMethod::Voxel),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }
