@@ -29,6 +29,7 @@ struct AoVariant {
     AoMethod method;
     ScreenMarch march = ScreenMarch::View;
     ScreenThickness thickness = ScreenThickness::Constant;
+    VoxelTraversal traversal = VoxelTraversal::Hierarchical;
 };
 const AoVariant kAllVariants[] = {{AoMethod::RayMarch, ScreenMarch::View}, {AoMethod::RayMarch, ScreenMarch::Texture},
                                   {AoMethod::RayMarch, ScreenMarch::HiZ},  {AoMethod::Points},
@@ -117,18 +118,29 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution fallof
         // where the half-float normal tilts its tangent plane (AO 0.997; kNormalRounding).
         {"orthographic, grazing", Camera::orthographic({{1, 1.5f, 5}, {0, 0, 0}, {0, 1, 0}}, 4.8f, float(W) / H, 0.05f, 100.0f)},
     };
+    // Every method, the depth-peeled screen methods and the other voxel traversals.
+    std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));
+    for (const AoVariant more : {AoVariant{AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling},
+                                 AoVariant{AoMethod::RayMarch, ScreenMarch::HiZ, ScreenThickness::DepthPeeling},
+                                 AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::DepthPeeling},
+                                 AoVariant{AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::March},
+                                 AoVariant{AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::Exact}})
+        variants.push_back(more);
     for (const Projection& projection : projections) {
-        f.render(scene, projection.camera, W, H);
-        for (const AoVariant variant : kAllVariants)
+        f.render(scene, projection.camera, W, H, 2); // a back layer for depth peeling
+        for (const AoVariant variant : variants)
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter})
                 for (ObscuranceFalloff falloff : {ObscuranceFalloff::None, ObscuranceFalloff::Smooth}) {
                     // The horizon method integrates AO only (no falloff).
                     if (variant.method == AoMethod::Horizon && falloff != ObscuranceFalloff::None) continue;
                     CAPTURE(projection.name, nameOf(variant.method), static_cast<int>(variant.march),
+                            static_cast<int>(variant.thickness), static_cast<int>(variant.traversal),
                             static_cast<int>(resolution), static_cast<int>(falloff));
                     AmbientOcclusionSettings s;
                     s.method = variant.method;
                     s.march = variant.march;
+                    s.thicknessMode = variant.thickness;
+                    s.voxelTraversal = variant.traversal;
                     s.radius = 2.0f;
                     // Not a power of two: n / n is where a GPU's division by reciprocal (GLSL
                     // allows 2.5 ULP) falls short of 1.

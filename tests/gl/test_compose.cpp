@@ -159,6 +159,55 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
     }
 }
 
+TEST_CASE("Sky pixels compose to the background radiance with every formula and tone mapper", "[compose][stability]") {
+    // The Cornell box seen from outside, with sky around it: AO there is 1 and indirect light 0
+    // (ambient_occlusion.hpp, indirect_light.hpp), the albedo 0, so both formulas give the
+    // background radiance L_dir; and no tone mapper or encoding may turn it into NaN or Inf.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    AmbientOcclusion ao(ctx);
+    IndirectLight gi(ctx);
+    Composer composer(ctx);
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    constexpr int W = 40, H = 30;
+    const Camera camera = Camera::perspective({{278, 273, -1200}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                                              float(W) / H, 10.0f, 5000.0f);
+    GBufferSettings g{W, H, true, glm::vec3(0.25f, 0.5f, 2.0f)};
+    const GBufferView view = gbuffer.render(cornell.scene, camera, g);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    AmbientOcclusionSettings a;
+    a.radius = 100.0f;
+    const TextureView aoView = ao.run(view, a).ao;
+    IndirectLightSettings l;
+    l.radius = 150.0f;
+    const TextureView indirect = gi.run(view, l).radiance;
+    int sky = 0;
+    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+        for (ToneMapper mapper : {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}) {
+            CAPTURE(formula == CombineFormula::Thesis, static_cast<int>(mapper));
+            ComposeSettings s;
+            s.formula = formula;
+            s.toneMapper = mapper;
+            s.ambient = glm::vec3(0.5f);
+            const Image shown = readTexture(ctx, composer.compose({view, aoView, indirect}, s));
+            const Image radiance = readTexture(ctx, composer.radiance());
+            sky = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    for (int c = 0; c < 3; ++c) {
+                        CHECK(std::isfinite(shown.at(x, y, c)));
+                        CHECK(std::isfinite(radiance.at(x, y, c)));
+                    }
+                    if (positions.at(x, y, 3) > 0.0f) continue;
+                    ++sky;
+                    // Exact: background radiance times AO = 1 plus zeros, in half floats.
+                    for (int c = 0; c < 3; ++c) CHECK(radiance.at(x, y, c) == g.background[c]);
+                }
+        }
+    CHECK(sky > W * H / 4);
+}
+
 TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour and keeps its alpha", "[compose]") {
     Frame f;
     GLuint color = 0, fbo = 0;
