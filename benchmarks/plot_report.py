@@ -181,16 +181,22 @@ def ray_lanes(row):
 
 
 def default_runs(rows):
-    """The rows at the default of one ray lane and with geometry tiles: the other tables compare those; the
-    lanes and tiles studies have their own."""
-    return [r for r in rows if ray_lanes(r) == 1 and geometry_tiles(r)]
+    """The rows of no --variant, at the default of one ray lane and with geometry tiles: the other tables
+    compare those; the lanes and tiles studies have their own."""
+    return [r for r in rows if not r.get("variant") and ray_lanes(r) == 1 and geometry_tiles(r)]
+
+
+def varying_only(rows, key):
+    """The rows whose --variant (if any) sets `key` alone: a study of `key` compares those, and not a
+    variant that also changes something else."""
+    return [r for r in rows if {kv.split("=")[0] for kv in r.get("variant", "").split(",") if kv} <= {key}]
 
 
 def lanes_lines(rows):
     """Table lines: per scene, size, technique, quantity and preset, the own time at each ray-lane count
     present, and for X / X_half pairs the half-resolution speed-up at each."""
     runs = defaultdict(dict)
-    for r in rows:
+    for r in varying_only(rows, "ray_lanes"):
         if not geometry_tiles(r):
             continue
         runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["quantity"],
@@ -241,13 +247,14 @@ def geometry_tiles(row):
     return row.get("settings", {}).get("geometry_tiles", "1") not in ("0", "false", "off")
 
 
-def tiles_section(rows):
+def tiles_section(rows, heading="##"):
     """Reduced-resolution rows over every tile (geometry_tiles=0) against the same presets with geometry
     tiles (the default), both from the study's runs (bench --variant geometry_tiles=0: timed in turn)."""
+    rows = [r for r in varying_only(rows, "geometry_tiles") if ray_lanes(r) == 1]
     tiled = {(os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"]): r
-             for r in rows if geometry_tiles(r) and ray_lanes(r) == 1}
+             for r in rows if geometry_tiles(r)}
     lines = []
-    for r in sorted((r for r in rows if ray_lanes(r) == 1), key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
+    for r in sorted(rows, key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
         key = (os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"])
         if geometry_tiles(r) or key not in tiled:
             continue
@@ -257,7 +264,7 @@ def tiles_section(rows):
                      f'{fmt(own_ms(r))} | {fmt(own_ms(t))} | {fmt(ratio, 3)} | {fmt(r["rmse"])} | {fmt(t["rmse"])} |')
     if not lines:
         return []
-    return ["## Geometry tiles", "",
+    return [f"{heading} Geometry tiles", "",
             "At half and quarter resolution the integrator, the blur and the upsampling run only over the tiles of "
             "8x8 reduced pixels that hold geometry (`geometry_tiles`, geometryTiles, on by default; the listing "
             "pass is `<module>.tiles`). Each preset ran with geometry tiles and over every tile "
@@ -293,7 +300,7 @@ MARCHES = ("view", "texture", "hiz")
 def march_section(rows):
     """ao.raymarch with each screen-space march on the same samples: time against error."""
     table = defaultdict(dict)
-    for r in rows:
+    for r in varying_only(rows, "march"):
         if r["technique"] != "ao.raymarch" or r["quantity"] != "ao":
             continue
         settings = r.get("settings", {})
@@ -329,12 +336,12 @@ def row_key(r):
     return (os.path.basename(r["scene"]), r["technique"], r["preset"], r["quantity"], r["width"], r["height"])
 
 
-def gpu_section(gpu_rows, cpu_rows, provenance=()):
+def gpu_section(gpu_rows, cpu_rows, provenance=(), study_rows=()):
     """The same bench on a GPU: its half-resolution study, and its rows beside llvmpipe's (time and error)."""
-    if not gpu_rows:
+    if not gpu_rows and not study_rows:
         return []
-    renderers = sorted({r["renderer"] for r in gpu_rows})
-    clocks = sorted({r["clock"] for r in gpu_rows})
+    renderers = sorted({r["renderer"] for r in list(gpu_rows) + list(study_rows)})
+    clocks = sorted({r["clock"] for r in list(gpu_rows) + list(study_rows)})
     lines = ["## On a GPU", "",
              f"The same code and bench on {', '.join(renderers)} (headless EGL, device platform), clock "
              f"{', '.join(clocks)}: GPU timer queries, the median of the timed frames. These runs come from "
@@ -353,7 +360,10 @@ def gpu_section(gpu_rows, cpu_rows, provenance=()):
                   "threads, at any resolution: only 1920x1080 (256 spp references) shows what half resolution saves, "
                   "and only where the full-resolution pass fills the GPU.", ""]
         lines += RESOLUTION_HEADER + study + [""]
-    lines += lanes_section(gpu_rows, "###")
+    # The studies' runs (run.sh lanes, tiles) in tables of their own: their rows repeat the
+    # resolution runs' keys, timed in other processes.
+    lines += lanes_section(list(study_rows), "###")
+    lines += tiles_section(list(study_rows), "###")
     cpu = {row_key(r): r for r in default_runs(cpu_rows)}
     matched = [(r, cpu[row_key(r)]) for r in default_runs(gpu_rows) if row_key(r) in cpu]
     if matched:
@@ -463,7 +473,7 @@ def shown(path):
 
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
-                 lanes_rows=(), tiles_rows=()):
+                 lanes_rows=(), tiles_rows=(), gpu_study_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -527,7 +537,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += march_section(list(march_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
-    lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance)
+    lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
     with open(os.path.join(out_dir, "results.md"), "w") as f:
         f.write("\n".join(lines))
 
@@ -547,6 +557,9 @@ def main():
     parser.add_argument("--gpu", action="append", default=[],
                         help="bench.json from a GPU machine (benchmarks/gpu/run.sh): its own section, with the "
                              "provenance.md beside it (when, at which commit, what ran) quoted there")
+    parser.add_argument("--gpu-study", action="append", default=[],
+                        help="bench.json of a lanes or tiles study from a GPU machine (run.sh lanes, tiles): "
+                             "the GPU section's ray-lanes and geometry-tiles tables only")
     args = parser.parse_args()
     rows, perf, voxel = load(args.inputs)
     if not rows:
@@ -561,13 +574,16 @@ def main():
     sources += [f"{shown(p)} (tiles study)" for p in args.tiles_study]
     gpu_rows = load(args.gpu)[0] if args.gpu else []
     sources += [f"{shown(p)} (GPU)" for p in args.gpu]
+    gpu_study_rows = load(args.gpu_study)[0] if args.gpu_study else []
+    sources += [f"{shown(p)} (GPU study)" for p in args.gpu_study]
     provenance = []
-    for directory in sorted({os.path.dirname(os.path.abspath(p)) for p in args.gpu}):
+    for directory in sorted({os.path.dirname(os.path.abspath(p)) for p in args.gpu + args.gpu_study}):
         path = os.path.join(directory, "provenance.md")
         if os.path.isfile(path):
             with open(path) as f:
                 provenance.append(f.read())
-    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows)
+    write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
+                 gpu_study_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

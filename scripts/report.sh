@@ -71,8 +71,15 @@ for steps in preset 128; do
     --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
   marches+=(--march-study "$dir/bench.json")
 done
-# Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section.
+# Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
+# the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()
-for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do [ -f "$f" ] && gpu+=(--gpu "$f"); done
+for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do
+  [ -f "$f" ] || continue
+  case $(basename "$f") in
+  lanes* | tiles*) gpu+=(--gpu-study "$f") ;;
+  *) gpu+=(--gpu "$f") ;;
+  esac
+done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

@@ -206,6 +206,11 @@ OBSCURA_API Reference renderCached(const std::filesystem::path& directory, const
                                    const ShadingPoints& points, const Quantity& quantity,
                                    const RenderSettings& settings);
 
+//! The key renderCached files a reference under: a hash of everything render() depends on.
+//! Equal keys give the same reference (e.g. for a cache in memory).
+OBSCURA_API std::uint64_t referenceKey(const RayScene& scene, const ShadingPoints& points, const Quantity& quantity,
+                                       const RenderSettings& settings);
+
 //! Which pixels have a surface (1) or not (0), as a 1-channel image for metrics masks.
 OBSCURA_API Image surfaceMask(const ShadingPoints& points);
 

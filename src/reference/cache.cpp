@@ -11,10 +11,9 @@
 #include <fstream>
 
 namespace obscura::reference {
-namespace {
 
-std::uint64_t cacheKey(const RayScene& scene, const ShadingPoints& points, const Quantity& quantity,
-                       const RenderSettings& settings) {
+std::uint64_t referenceKey(const RayScene& scene, const ShadingPoints& points, const Quantity& quantity,
+                           const RenderSettings& settings) {
     detail::Hasher h;
     // v2: materials emit from their front side only.
     h.add(std::string_view("obscura.reference.cache.v2")).add(scene.contentHash());
@@ -25,6 +24,8 @@ std::uint64_t cacheKey(const RayScene& scene, const ShadingPoints& points, const
     h.add(std::string_view(describe(quantity))).add(settings.samplesPerPixel).add(settings.seed);
     return h.value();
 }
+
+namespace {
 
 Image slice(const Image& packed, int part, int c) {
     Image img;
@@ -56,7 +57,7 @@ Image pack(const Reference& r) {
 Reference renderCached(const std::filesystem::path& directory, const RayScene& scene, const ShadingPoints& points,
                        const Quantity& quantity, const RenderSettings& settings) {
     char name[32];
-    std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(cacheKey(scene, points, quantity, settings)));
+    std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(referenceKey(scene, points, quantity, settings)));
     const auto exr = directory / (std::string(name) + ".exr"), meta = directory / (std::string(name) + ".json");
     const int c = channels(quantity);
     if (std::filesystem::exists(exr) && std::filesystem::exists(meta)) {

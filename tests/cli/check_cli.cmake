@@ -292,17 +292,17 @@ endforeach()
 # --variant: every preset runs once more with each variant's settings (a comma-separated list)
 # after --set's, its frames timed in turn with the preset's own (20 samples per pass, as above),
 # and its rows say so. The ray-lanes and geometry-tiles studies are such runs, each in a table
-# of its own that leaves the other's variant out.
+# of its own that compares only variants of its own setting.
 run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques ao.points
     --presets medium_half,medium --set bent_normals=0 --set ray_lanes=1 --variant ray_lanes=2
-    --variant geometry_tiles=0,blur_radius=1 --out "${WORK_DIR}/bench_variant")
+    --variant geometry_tiles=0 --variant geometry_tiles=0,blur_radius=1 --out "${WORK_DIR}/bench_variant")
 file(READ "${WORK_DIR}/bench_variant/bench.json" bench)
 string(JSON rowCount LENGTH "${bench}" rows)
-if(NOT rowCount EQUAL 6)
-  message(FATAL_ERROR "medium and medium_half with two variants gave ${rowCount} rows, expected 6")
+if(NOT rowCount EQUAL 8)
+  message(FATAL_ERROR "medium and medium_half with three variants gave ${rowCount} rows, expected 8")
 endif()
 set(seen "")
-foreach(i RANGE 5)
+foreach(i RANGE 7)
   string(JSON preset GET "${bench}" rows ${i} preset)
   string(JSON variant GET "${bench}" rows ${i} variant)
   string(JSON got GET "${bench}" rows ${i} settings)
@@ -311,6 +311,8 @@ foreach(i RANGE 5)
     set(expected "ray_lanes=1")
   elseif(variant STREQUAL "ray_lanes=2")
     set(expected "ray_lanes=2")
+  elseif(variant STREQUAL "geometry_tiles=0")
+    set(expected "ray_lanes=1;geometry_tiles=0")
   elseif(variant STREQUAL "geometry_tiles=0,blur_radius=1")
     set(expected "ray_lanes=1;geometry_tiles=0;blur_radius=1")
   else()
@@ -333,7 +335,7 @@ foreach(i RANGE 5)
 endforeach()
 list(REMOVE_DUPLICATES seen)
 list(LENGTH seen distinct)
-if(NOT distinct EQUAL 6)
+if(NOT distinct EQUAL 8)
   message(FATAL_ERROR "the rows are not one per preset and variant: ${seen}")
 endif()
 file(STRINGS "${WORK_DIR}/bench_variant/bench.csv" csv)
@@ -350,6 +352,31 @@ if(NOT report MATCHES "## Ray lanes" OR NOT report MATCHES "\\| cornell \\| 16x1
 endif()
 if(NOT report MATCHES "## Geometry tiles" OR NOT report MATCHES "\\| cornell \\| 16x16 \\| ao.points \\| ao \\| medium_half \\|")
   message(FATAL_ERROR "results.md lacks the geometry-tiles table or its ao.points medium_half row")
+endif()
+# The geometry-tiles table pairs the preset with geometry_tiles=0 alone, not with the variant that
+# also blurs otherwise: one row per preset, and (bit-identical results) equal RMSEs.
+string(REGEX MATCHALL "\\| cornell \\| 16x16 \\| ao.points \\| ao \\| medium_half \\|[^\n]*" tileRows "${report}")
+list(LENGTH tileRows tileRowCount)
+if(NOT tileRowCount EQUAL 1)
+  message(FATAL_ERROR "the geometry-tiles table has ${tileRowCount} medium_half rows, expected 1: ${tileRows}")
+endif()
+string(REGEX REPLACE " *\\| *$" "" tileRow "${tileRows}") # the last column's closing bar
+string(REPLACE "|" ";" cells "${tileRow}")
+list(LENGTH cells cellCount)
+math(EXPR everyTileRmse "${cellCount} - 2")
+math(EXPR tiledRmse "${cellCount} - 1")
+list(GET cells ${everyTileRmse} a)
+list(GET cells ${tiledRmse} b)
+string(STRIP "${a}" a)
+string(STRIP "${b}" b)
+if(NOT a STREQUAL b)
+  message(FATAL_ERROR "the geometry-tiles table's RMSEs differ (${a} and ${b}): ${tileRows}")
+endif()
+execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques ao.points --presets medium
+                        --variant ray_lanes=2 --variant ray_lanes=2 --out "${WORK_DIR}/bench_bad_variant"
+                RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "each variant must be a new")
+  message(FATAL_ERROR "bench with a repeated --variant was not refused clearly: ${err}")
 endif()
 
 # --set overrides every preset's settings (here the maps' size: six 256^2 32F layers, plus the

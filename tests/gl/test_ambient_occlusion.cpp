@@ -84,7 +84,7 @@ double wallBentTilt(double c) {
 
 // The same for the points method: a direction with component u toward the wall, c = distance /
 // radius < u, keeps its point (at distance r s, density 3 s^2) open with probability (c / u)^3,
-// which adds (1/2) Integral_c^1 (1 - u^2) (c/u)^3 du = c/2 - c^3/2 + c^3 ln c to E[y] and
+// which adds (1/2) Integral_c^1 (1 - u^2) (c/u)^3 du = c/4 - c^3/4 + (c^3/2) ln c to E[y] and
 // -(2/pi) Integral_c^1 u sqrt(1 - u^2) (c/u)^3 du = -(2 c^3/pi) (sqrt(1 - c^2)/c + asin c - pi/2)
 // to E[z].
 double pointsBentTilt(double c) {
