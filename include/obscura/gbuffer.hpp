@@ -38,12 +38,23 @@ namespace obscura {
 
 class Context;
 
+//! The rounding of a unit normal stored as half floats that may round toward zero (llvmpipe's
+//! stores do): each component within 2^-10 of its size, so the vector within 2^-10.
+inline constexpr float kHalfNormalError = 1.0f / 1024.0f;
+
 struct GBufferView {
     TextureView depth;
     TextureView normal;
     TextureView albedo;         //!< adopted host buffers: the host's, if it gave one
     TextureView directRadiance; //!< adopted host buffers: the host's, if it gave one
     TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
+    //! Unitless, [0, 0.25]: a bound on the distance between a stored normal and the unit
+    //! normal it stands for. Screen-space tests allow a point at distance d from a pixel, in
+    //! that pixel's plane, up to d * normalError off the stored tangent plane (so a plane
+    //! does not occlude itself). Ours and the default: 2^-10, the half-float store's
+    //! rounding. adopt() adds what the host's format lost before that store (an 8-bit
+    //! encoding: 7.8e-3 in all), see kHalfNormalError and adoptedNormalError.
+    float normalError = kHalfNormalError;
     Camera camera;
     int width = 0;  //!< pixels
     int height = 0; //!< pixels
@@ -69,6 +80,17 @@ enum class NormalEncoding {
     Signed,   //!< float formats holding n in [-1,1] (GL_RGB(A)16F/32F)
     Unsigned, //!< n * 0.5 + 0.5 in a normalized format (GL_RGB(A)8, GL_RGB10_A2, GL_RGB(A)16)
 };
+
+//! GBufferView::normalError of host normals with `bits` per channel (GL_TEXTURE_RED_SIZE) in
+//! `encoding`, after adopt() normalizes them and stores them as half floats. The host's
+//! encoding moves a unit normal by delta: Unsigned rounds each component to a step of [0, 1],
+//! half a step off, 1 / (2^bits - 1) in [-1, 1], delta = sqrt(3) / (2^bits - 1); Signed floats
+//! keep each component within 2^-10 (16-bit, rounded toward zero) or 2^-23 (32-bit) of its
+//! size, delta = that. Normalizing turns the direction by at most asin(delta), which bounds
+//! the chord; then kHalfNormalError for our store. Normals
+//! reconstructed from depth (no HostGBuffer::normal) get kHalfNormalError only: their own
+//! error depends on the depth's precision and the surface, and is not bounded here.
+OBSCURA_API float adoptedNormalError(NormalEncoding encoding, int bits);
 
 //! The host's own buffers, for post-process use.
 struct HostGBuffer {

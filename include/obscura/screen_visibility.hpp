@@ -8,7 +8,9 @@
 // grazing angles), or the second depth layer of GBufferSettings::depthLayers = 2 (DepthPeeling;
 // the constant thickness where that layer is empty). A point is hidden when it projects
 // into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
-// plane never hits it again at any resolution) and is not beyond the back. Points outside
+// plane never hits it again at any resolution; beyond the rounding of depth, positions and
+// normals: GBufferView::normalError times |from - o| + 2 |s - from| for a sample s of a
+// segment from -> to, |s - o| for a point) and is not beyond the back. Points outside
 // the image or behind the camera plane are visible (the border policy). The reach of a query
 // is its segment: the radius check of the integrators is the segment's length.
 //

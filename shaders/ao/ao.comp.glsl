@@ -110,7 +110,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
-        aoAdd(e, w, normal, screenHidden(p + w * d, ao.shape.y) ? d : -1.0);
+        aoAdd(e, w, normal, screenHidden(p + w * d, p, ao.shape.y) ? d : -1.0);
     }
     return e;
 }
@@ -137,13 +137,13 @@ vec2 aoBentArc(float h1, float h2, float g) {
     return vec2(alongV.x + alongV.y + 2.0 * cg / 3.0, alongSide.x + alongSide.y + 4.0 * sg / 3.0);
 }
 
-// The G-buffer's normals are half floats (GL_RGBA16F), whose stores may round toward zero
-// (llvmpipe's do): each component within 2^-10 of its size, so the stored normal within 2^-10
-// of the true one, and a point of the pixel's own plane at distance len up to len 2^-10 off the
-// stored tangent plane. Without this margin a floor's own depth samples passed the tangent-plane
-// test on an open floor seen at 16 degrees in an orthographic view (48 x 40 pixels, the radius
-// 10 pixels), and the samples' rounding to pixels off the slice made horizons of them: AO 0.997.
-const float kNormalRounding = 1.0 / 1024.0;
+// A point of the pixel's own plane at distance len lies up to len * storedNormalError() off
+// the stored tangent plane (GBufferView::normalError: 2^-10 for the half floats the G-buffer
+// stores, which may round toward zero, as llvmpipe's do; more for a host's 8-bit normals).
+// Without this margin a floor's own depth samples passed the tangent-plane test on an open
+// floor seen at 16 degrees in an orthographic view (48 x 40 pixels, the radius 10 pixels),
+// and the samples' rounding to pixels off the slice made horizons of them: AO 0.997; with
+// 8-bit host normals, AO 0.97 on most of a floor.
 
 // Slices through the view direction at angles phi; on each side `steps` depth samples out
 // to the radius projected at p find the highest point within the radius above p's tangent
@@ -185,8 +185,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                 const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth), d = o - p;
                 const float len = length(d);
                 // Within the radius and above p's tangent plane (beyond float rounding, the
-                // depth buffer's precision and the stored normal's, kNormalRounding).
-                const float errors = depthReconstructionError(o, depth) + pError + len * kNormalRounding;
+                // depth buffer's precision and the stored normal's).
+                const float errors = depthReconstructionError(o, depth) + pError + len * storedNormalError();
                 if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(length(p) * 4.0, errors)) continue;
                 best = max(best, dot(d / len, v));
             }

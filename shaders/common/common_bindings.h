@@ -38,7 +38,8 @@ struct FrameData {
     vec4 depthXY;     // DepthReconstruction: xyScale.xy, xyOffset.xy
     vec4 depthZ;      // DepthReconstruction: zScale, zBiasHi, zBiasLo, clearDepth
     ivec4 viewport;   // width, height (pixels), projection kind, reversed-Z (0/1)
-    vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float
+    vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float;
+                         // y: GBufferView::normalError of the normals read
 };
 
 #ifdef __cplusplus

@@ -7,3 +7,5 @@ layout(std140, binding = OBSCURA_FRAME_UBO_BINDING) uniform FrameBlock {
 
 ivec2 frameSize() { return frame.viewport.xy; }
 bool isPerspective() { return frame.viewport.z == OBSCURA_PROJECTION_PERSPECTIVE; }
+// GBufferView::normalError: how far the stored normals may lie from the true ones.
+float storedNormalError() { return frame.depthPrecision.y; }

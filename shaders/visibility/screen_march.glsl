@@ -7,7 +7,8 @@
 // SCREEN_PEELED, down to the second depth layer (the surface behind it; the constant
 // thickness where there is none). A point s is hidden when it is behind that piece's tangent plane
 // (dot(s - o, n_o) < 0, so a ray leaving a plane never hits the same plane, whatever the
-// pixel grid) and not beyond the piece's back. Points outside the image or in front of the
+// pixel grid; by more than the rounding of depth, positions and normals) and not beyond the
+// piece's back. Points outside the image or in front of the
 // camera plane are visible: the border policy (nothing is known there).
 //
 // Rays are sampled at t_j = (j + jitter) / steps, j = 0 .. steps - 1, of a segment p -> p + d,
@@ -57,11 +58,20 @@ float screenPlaneTolerance(float magnitude, float reconstructionErrors) {
     return kScreenPlaneTolerance * magnitude + reconstructionErrors;
 }
 
+// The stored normals lie within storedNormalError() of the true ones. A ray leaving a plane at
+// `from` into the hemisphere of from's stored normal may reach s up to that error times
+// |from - o| + 2 |s - from| behind another pixel o's stored tangent plane of the same plane:
+// from - o lies in the true plane, off the stored one by the error per unit length, and the
+// two stored normals may differ by twice the error along the ray.
+float screenNormalSlack(vec3 from, vec3 s, vec3 o) {
+    return storedNormalError() * (length(from - o) + 2.0 * length(s - from));
+}
+
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
 // behind its tangent plane, and at most `thickness` behind it (measured along the normal,
 // so the test does not depend on how much depth one pixel's footprint spans) or, peeled,
-// not beyond the back layer.
-bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
+// not beyond the back layer. `from`: the start of the ray s lies on (s itself for a point).
+bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float thickness) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
@@ -73,14 +83,14 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, float thickness) {
 #endif
     // The ray's start carries the error of its own pixel's depth, taken as o's: a ray leaving
     // a surface meets its own plane's pixels first.
-    const float errors = 2.0 * depthReconstructionError(o, depth);
+    const float errors = 2.0 * depthReconstructionError(o, depth) + screenNormalSlack(from, s, o);
     return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), length(s)), errors) && inside;
 }
 
-// Whether s is hidden behind the depth buffer (see above).
-bool screenHidden(vec3 s, float thickness) {
+// Whether s, a point seen from `from`, is hidden behind the depth buffer (see above).
+bool screenHidden(vec3 s, vec3 from, float thickness) {
     ivec2 pixel;
-    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, thickness);
+    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, from, thickness);
 }
 
 float screenSampleT(int j, int steps, float jitter) { return (float(j) + jitter) / float(steps); }
@@ -104,7 +114,7 @@ float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness, 
         ivec2 pixel;
         if (screenPixelOf(s, pixel)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -145,7 +155,7 @@ float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thicknes
         vec3 s;
         if (screenSampleAt(r, t, pixel, s)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -215,7 +225,7 @@ float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, o
                 level -= 1;
             } else {
                 fetches += kScreenSampleFetches;
-                if (screenHiddenAt(pixel, s, thickness)) hitT = t;
+                if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
                 j += 1;
             }
         }

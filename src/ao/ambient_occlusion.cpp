@@ -151,7 +151,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
-    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name));
+    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
     bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
     const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;

@@ -12,7 +12,8 @@ public:
     //! Uploads the camera and viewport and binds the block at OBSCURA_FRAME_UBO_BINDING.
     //! `depthStep`: one step of the depth buffer read with it (TextureInfo::depthStep; 0 for
     //! float depth), whose precision bounds what screen-space tests can resolve.
-    void bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep);
+    //! `normalError`: GBufferView::normalError of the normals the pass reads (0: none).
+    void bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep, float normalError = 0.0f);
     std::size_t memoryBytes() const;
 
 private:

@@ -339,6 +339,14 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     return v;
 }
 
+float adoptedNormalError(NormalEncoding encoding, int bits) {
+    if (bits < 1 || bits > 32) throw Error(ErrorCode::InvalidArgument, "adoptedNormalError: bits must be in [1, 32]");
+    const double delta = encoding == NormalEncoding::Unsigned ? std::sqrt(3.0) / (std::ldexp(1.0, bits) - 1.0)
+                         : bits <= 16                         ? std::ldexp(1.0, -10)
+                                                              : std::ldexp(1.0, -23);
+    return static_cast<float>(std::asin(std::min(delta, 1.0)) + kHalfNormalError);
+}
+
 GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     auto& ctx = impl_->ctx;
     analyzeProjection(camera);
@@ -357,6 +365,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
     requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
     Defines defines;
+    float normalError = kHalfNormalError;
     if (host.normal.name != 0) {
         const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
         GLint componentType = 0;
@@ -371,6 +380,9 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
                                    "NormalEncoding::Signed"
                                  : "a normalized unsigned RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) "
                                    "with NormalEncoding::Unsigned"));
+        GLint bits = 0;
+        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_SIZE, &bits);
+        normalError = adoptedNormalError(host.normalEncoding, bits);
         if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
         if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
     } else {
@@ -398,6 +410,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     GBufferView v;
     v.depth = {host.depth.name, depth.internalFormat, w, h};
     v.normal = {normal, GL_RGBA16F, w, h};
+    v.normalError = normalError;
     v.albedo = albedo;
     v.directRadiance = directRadiance;
     v.camera = camera;

@@ -116,7 +116,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
 
     StateScope scope(ctx);
     d.uploadParams(g, s, size, scale);
-    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name));
+    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError);
     bindScreenInputs(ctx, view, peeled);
     if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, peeled, "gi.hiz");
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);

@@ -199,7 +199,7 @@ struct ShadowMaps::Impl {
         if (!rangeBuffer) rangeBuffer = createBuffer(ctx, sizeof init, nullptr, GL_DYNAMIC_STORAGE_BIT, "shadow.depth_range");
         gl.NamedBufferSubData(rangeBuffer.get(), 0, sizeof init, init);
         ctx.state.bindStorageBuffer(ctx, SHADOW_RANGE_SSBO, rangeBuffer.get());
-        frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name));
+        frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
         bindScreenInputs(ctx, view, false);
         gl.UseProgram(ctx.shaders->program({"shadows/depth_range.comp.glsl"}));
         dispatchCompute2D(ctx, view.width, view.height, SHADOW_WORKGROUP);
@@ -390,7 +390,7 @@ TextureView ShadowMaps::mask(const GBufferView& g, const ShadowMapSet& maps, std
     analyzeProjection(g.camera);
     const GBufferView view = checkScreenInputs(ctx, g, false, "ShadowMaps::mask");
     StateScope scope(ctx);
-    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name));
+    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
     bindScreenInputs(ctx, view, false);
     d.binding.bind(ctx, d.depth.get(), {shadowRecord(*info, g.camera, settings, d.depthResolution)}, settings.filter);
     if (isMomentFilter(settings.filter)) d.prepareMoments(*info, settings);

@@ -53,7 +53,7 @@ struct ScreenVisibility::Impl {
         analyzeProjection(view.camera);
         StateScope scope(ctx);
         auto& gl = ctx.gl;
-        frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name));
+        frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
         bindScreenInputs(ctx, view, peeled);
         batch.upload(ctx, queries); // first: it refuses oversized batches before any work
         if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, peeled, "visibility.hiz");

@@ -264,3 +264,13 @@ TEST_CASE_METHOD(BadInputFixture, "Light and camera parameters outside their ran
     wrongClip.clipDepth = ClipDepth::NegativeOneToOne;
     expectError([&] { gbuffer.render(scene, wrongClip, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "ClipDepth");
 }
+
+TEST_CASE_METHOD(BadInputFixture, "A G-buffer view's normal error outside 0..0.25 is refused", "[bad-input]") {
+    AmbientOcclusion ao(ctx);
+    ao.run(good, {}); // its shaders and images, made before the count starts
+    for (const float error : {-1e-3f, 0.3f, NAN, INFINITY}) {
+        GBufferView view = good;
+        view.normalError = error;
+        expectError([&] { ao.run(view, {}); }, ErrorCode::InvalidArgument, "GBufferView::normalError");
+    }
+}

@@ -63,7 +63,8 @@ TEST_CASE("Post-process mode: with the host's albedo and lit image, indirect lig
         host.albedo = {albedo, 0, 0, 0}; // a name is enough: adopt describes it as GL reports it
         host.directRadiance = {radiance, radianceFormat, W, H};
         GBuffer adopter(f.ctx);
-        const GBufferView adopted = adopter.adopt(host, camera);
+        GBufferView adopted = adopter.adopt(host, camera);
+        adopted.normalError = f.view.normalError; // the G-buffer's normals, rounded once (adoptedNormalError)
         CHECK(adopted.albedo.name == albedo); // read in place
         CHECK(adopted.albedo.internalFormat == GL_SRGB8_ALPHA8);
         CHECK(adopted.albedo.width == W);
