@@ -41,6 +41,9 @@ class Context;
 //! The rounding of a unit normal stored as half floats that may round toward zero (llvmpipe's
 //! stores do): each component within 2^-10 of its size, so the vector within 2^-10.
 inline constexpr float kHalfNormalError = 1.0f / 1024.0f;
+//! The largest GBufferView::normalError accepted: a tangent plane uncertain by more than
+//! about 14 degrees says little about which side of it a point lies.
+inline constexpr float kMaxNormalError = 0.25f;
 
 struct GBufferView {
     TextureView depth;
@@ -48,7 +51,7 @@ struct GBufferView {
     TextureView albedo;         //!< adopted host buffers: the host's, if it gave one
     TextureView directRadiance; //!< adopted host buffers: the host's, if it gave one
     TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
-    //! Unitless, [0, 0.25]: a bound on the distance between a stored normal and the unit
+    //! Unitless, [0, kMaxNormalError]: a bound on the distance between a stored normal and the unit
     //! normal it stands for. Screen-space tests allow a point at distance d from a pixel, in
     //! that pixel's plane, up to d * normalError off the stored tangent plane (so a plane
     //! does not occlude itself). Ours and the default: 2^-10, the half-float store's
@@ -87,9 +90,10 @@ enum class NormalEncoding {
 //! half a step off, 1 / (2^bits - 1) in [-1, 1], delta = sqrt(3) / (2^bits - 1); Signed floats
 //! keep each component within 2^-10 (16-bit, rounded toward zero) or 2^-23 (32-bit) of its
 //! size, delta = that. Normalizing turns the direction by at most asin(delta), which bounds
-//! the chord; then kHalfNormalError for our store. Normals
-//! reconstructed from depth (no HostGBuffer::normal) get kHalfNormalError only: their own
-//! error depends on the depth's precision and the surface, and is not bounded here.
+//! the chord; then kHalfNormalError for our store. Normals reconstructed from depth (no
+//! HostGBuffer::normal) get kHalfNormalError only: their own error depends on the depth's
+//! precision and the surface, and is not bounded here. Throws Error{InvalidArgument} for bits
+//! outside [1, 32].
 OBSCURA_API float adoptedNormalError(NormalEncoding encoding, int bits);
 
 //! The host's own buffers, for post-process use.

@@ -370,18 +370,24 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
         GLint componentType = 0;
         ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
-        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating;
-        const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned && componentType == GL_UNSIGNED_NORMALIZED;
+        GLint bits = 0;
+        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_SIZE, &bits);
+        // The packed float formats have no sign bit: they cannot hold a normal's components.
+        const bool unsignedFloat = n.internalFormat == GL_R11F_G11F_B10F || n.internalFormat == GL_RGB9_E5;
+        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating && !unsignedFloat;
+        // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2506, past
+        // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
+        const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned &&
+                                componentType == GL_UNSIGNED_NORMALIZED && bits >= 1 &&
+                                adoptedNormalError(NormalEncoding::Unsigned, bits) <= kMaxNormalError;
         if (n.depth || n.channels < 3 || !(signedOk || unsignedOk))
             throw Error(ErrorCode::InvalidArgument,
                         "HostGBuffer::normal has format " + formatName(n.internalFormat) + "; accepted: " +
                             (host.normalEncoding == NormalEncoding::Signed
-                                 ? "a float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) with "
-                                   "NormalEncoding::Signed"
-                                 : "a normalized unsigned RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) "
-                                   "with NormalEncoding::Unsigned"));
-        GLint bits = 0;
-        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_SIZE, &bits);
+                                 ? "a signed float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) "
+                                   "with NormalEncoding::Signed"
+                                 : "a normalized unsigned RGB/RGBA format of at least 4 bits a channel (GL_RGB8, "
+                                   "GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"));
         normalError = adoptedNormalError(host.normalEncoding, bits);
         if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
         if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");

@@ -27,8 +27,8 @@ void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBuffe
 GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool needsBack, const std::string& owner) {
     const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
     if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
-    if (!(view.normalError >= 0.0f && view.normalError <= 0.25f))
-        throw Error(ErrorCode::InvalidArgument, "GBufferView::normalError must be in [0, 0.25], got " +
+    if (!(view.normalError >= 0.0f && view.normalError <= kMaxNormalError))
+        throw Error(ErrorCode::InvalidArgument, "GBufferView::normalError must be in [0, kMaxNormalError = 0.25], got " +
                                                     std::to_string(view.normalError));
     GBufferView checked = view;
     checked.width = depth.width;

@@ -202,6 +202,17 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     expectError([&] { adopt(depth, depth); }, ErrorCode::InvalidArgument, "GL_DEPTH_COMPONENT32F");
     expectError([&] { adopt(depth, rgba8); }, ErrorCode::InvalidArgument, "NormalEncoding::Signed");
     expectError([&] { adopt(depth, rg16f); }, ErrorCode::InvalidArgument, "GL_RG16F");
+    // No sign bit: a normal's negative components would clamp to 0.
+    const GLuint r11g11b10 = hostTexture(GL_R11F_G11F_B10F, 16, 16);
+    expectError([&] { adopt(depth, r11g11b10); }, ErrorCode::InvalidArgument, "signed float");
+    // Fewer than 4 bits a channel, as the GL stores it (it may widen a requested format).
+    const GLuint r3g3b2 = hostTexture(GL_R3_G3_B2, 16, 16);
+    GLint r3Bits = 0;
+    glGetTextureLevelParameteriv(r3g3b2, 0, GL_TEXTURE_RED_SIZE, &r3Bits);
+    INFO("GL_R3_G3_B2 stored with " << r3Bits << " red bits");
+    if (r3Bits < 4) expectError([&] { adopt(depth, r3g3b2, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "at least 4 bits");
+    else CHECK_NOTHROW(adopt(depth, r3g3b2, NormalEncoding::Unsigned));
+    for (GLuint t : {r11g11b10, r3g3b2}) glDeleteTextures(1, &t);
     expectError([&] { adopt(depthOdd, rgba8, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "8x8");
     const GLuint rgba8ui = hostTexture(GL_RGBA8UI, 16, 16);
     const auto adoptLit = [&](GLuint albedo, GLuint radiance) {

@@ -76,4 +76,7 @@ TEST_CASE("adoptedNormalError bounds the simulated encodings and is within 3x of
     }
     CHECK(adoptedNormalError(NormalEncoding::Signed, 32) < 1.001f * kHalfNormalError); // 2^-23 on top of our store
     CHECK_THROWS_AS(adoptedNormalError(NormalEncoding::Unsigned, 0), Error);
+    // adopt() takes unsigned normals down to the fewest bits whose bound fits kMaxNormalError.
+    CHECK(adoptedNormalError(NormalEncoding::Unsigned, 4) <= kMaxNormalError);
+    CHECK(adoptedNormalError(NormalEncoding::Unsigned, 3) > kMaxNormalError);
 }
