@@ -171,10 +171,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, aoTexture, bent, false, size, scale};
     const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
-    if (tiled) {
-        d.filters.findGeometryTiles(ctx, size, scale, "ao.tiles");
-        clearForGeometryTiles(ctx, images, filter.background);
-    }
+    if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "ao.tiles");
     d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
                    std::max(std::size_t(size.x) * std::size_t(size.y),
                             refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}),

@@ -70,12 +70,6 @@ void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GL
 
 } // namespace
 
-void clearForGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background) {
-    clearToZero(ctx, images.guide);
-    clearValue(ctx, images.value, images.rgb, background);
-    clearToZero(ctx, images.direction);
-}
-
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner) {
     requireInRange(taps, 0, 16, owner + "::blurRadius", "taps");
     if (!(depthSigma > 0.0f && depthSigma <= 1.0f))
@@ -163,9 +157,13 @@ bool GuidedFilters::geometryTilesFit(glm::ivec2 lowSize) {
     return std::int64_t(tiles.x) * std::int64_t(tiles.y) <= 65535;
 }
 
-void GuidedFilters::findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName) {
+void GuidedFilters::findGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background, const char* passName) {
     PassScope pass(ctx, passName);
-    const glm::ivec2 tiles = tileGrid(lowSize);
+    clearToZero(ctx, images.guide);
+    clearValue(ctx, images.value, images.rgb, background);
+    clearToZero(ctx, images.direction);
+    const int scale = images.scale;
+    const glm::ivec2 tiles = tileGrid(images.size);
     // The codes, then a mark per tile (geometry_tiles.comp.glsl).
     const std::size_t bytes = (FILTER_TILES_HEADER_UINTS + 2 * std::size_t(tiles.x) * std::size_t(tiles.y)) * sizeof(GLuint);
     if (!tiles_ || tilesBytes_ != bytes) {

@@ -47,11 +47,6 @@ struct FilterImages {
 //! blurred or upsampled, and so needs a guide image from its integrator.
 inline bool filtersRun(int scale, int taps) { return scale > 1 || taps > 0; }
 
-//! Before an integrator runs over geometry tiles only: gives the low-resolution images what
-//! the tiles it skips must hold for the filters, which read them across tile edges (guide 0:
-//! background; the value `background`, the direction 0: finite, for weights of 0).
-void clearForGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background);
-
 //! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
 void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
 //! Throws Error{InvalidArgument} for a refinement threshold outside [0, 1].
@@ -66,9 +61,12 @@ public:
     //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution `lowSize` with a
     //! G-buffer pixel that is not background, for the integrator (dispatchGeometryTiles) and
     //! the filters (GuidedFilterSettings::geometryTiles), and leaves the list bound at
-    //! FILTER_TILES_SSBO for them. The caller has bound the frame block and the G-buffer's
-    //! depth (VIS_DEPTH_UNIT). Pass `passName`.
-    void findGeometryTiles(ContextImpl& ctx, glm::ivec2 lowSize, int scale, const char* passName);
+    //! FILTER_TILES_SSBO for them. Also gives `images` what the tiles the integrator skips must
+    //! hold for the filters, which read them across tile edges (guide 0: background; the value
+    //! `background`, the direction 0: finite, for weights of 0); in the pass, so that its time
+    //! counts what running over tiles costs. The caller has bound the frame block and the
+    //! G-buffer's depth (VIS_DEPTH_UNIT). Pass `passName`.
+    void findGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background, const char* passName);
     //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 pixels a
     //! group) once per listed tile.
     void dispatchGeometryTiles(ContextImpl& ctx);

@@ -136,10 +136,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
     const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
-    if (tiled) {
-        d.filters.findGeometryTiles(ctx, size, scale, "gi.tiles");
-        clearForGeometryTiles(ctx, images, filter.background);
-    }
+    if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "gi.tiles");
     const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                        : screenRayIterations(s.march, s.steps, fullSize);
     d.batches.plan(ctx, s.rays, perRay,
