@@ -215,31 +215,6 @@ TEST_CASE("Post-process mode: on a host's 16-, 24- and 32-bit depth an open plan
     CHECK(test::drainGlErrors().empty());
 }
 
-namespace {
-
-// The G-buffer's view-space normals re-encoded as a host's normal target: n * 0.5 + 0.5 in a
-// normalized format (the driver rounds the floats to the format's steps), view or world space.
-GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum format, NormalSpace space) {
-    const glm::mat3 toWorld = glm::transpose(glm::mat3(camera.view));
-    std::vector<float> encoded(normals.pixels.size());
-    for (int y = 0; y < normals.height; ++y)
-        for (int x = 0; x < normals.width; ++x) {
-            glm::vec3 n(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
-            if (space == NormalSpace::World) n = toWorld * n;
-            // Image rows run top down, GL's uploads bottom up.
-            const std::size_t i = (static_cast<std::size_t>(normals.height - 1 - y) * normals.width + x) * 4;
-            for (int c = 0; c < 3; ++c) encoded[i + c] = n[c] * 0.5f + 0.5f;
-            encoded[i + 3] = 1.0f;
-        }
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, format, normals.width, normals.height);
-    glTextureSubImage2D(tex, 0, 0, 0, normals.width, normals.height, GL_RGBA, GL_FLOAT, encoded.data());
-    return tex;
-}
-
-} // namespace
-
 TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals an open plane gives AO = 1", "[ao][host]") {
     // The encodings tilt the floor's stored tangent plane by up to GBufferView::normalError
     // (adoptedNormalError), which adopt() reports and the screen tests allow for. Without
@@ -260,7 +235,7 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals an open pla
         const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
         for (const GLenum format : {GL_RGBA8, GL_RGB10_A2, GL_RGBA16})
             for (const NormalSpace space : {NormalSpace::View, NormalSpace::World}) {
-                const GLuint normal = hostNormalTexture(normals, camera, format, space);
+                const GLuint normal = test::hostNormalTexture(normals, camera, format, space);
                 HostGBuffer host;
                 host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
                 host.normal = {normal, format, W, H};

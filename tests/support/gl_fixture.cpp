@@ -63,6 +63,25 @@ GLuint compiledShader(GLenum kind, const char* source) {
 
 } // namespace
 
+GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum format, NormalSpace space) {
+    const glm::mat3 toWorld = glm::transpose(glm::mat3(camera.view));
+    std::vector<float> encoded(normals.pixels.size());
+    for (int y = 0; y < normals.height; ++y)
+        for (int x = 0; x < normals.width; ++x) {
+            glm::vec3 n(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
+            if (space == NormalSpace::World) n = toWorld * n;
+            // Image rows run top down, GL's uploads bottom up.
+            const std::size_t i = (static_cast<std::size_t>(normals.height - 1 - y) * normals.width + x) * 4;
+            for (int c = 0; c < 3; ++c) encoded[i + c] = n[c] * 0.5f + 0.5f;
+            encoded[i + 3] = 1.0f;
+        }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, format, normals.width, normals.height);
+    glTextureSubImage2D(tex, 0, 0, 0, normals.width, normals.height, GL_RGBA, GL_FLOAT, encoded.data());
+    return tex;
+}
+
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format) {
     const GLuint vs = compiledShader(GL_VERTEX_SHADER, R"(#version 450
 void main() { gl_Position = vec4(vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0, 0.0, 1.0); })");

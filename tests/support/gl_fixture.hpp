@@ -8,6 +8,7 @@
 #include <glad/gl.h>
 
 #include "obscura/context.hpp"
+#include "obscura/gbuffer.hpp"
 #include "obscura/headless.hpp"
 
 #include <set>
@@ -40,6 +41,11 @@ std::vector<unsigned> drainGlErrors();
 //! engine's depth pass would leave it (quantized to its format). The caller deletes it. Sets
 //! the GL state the draw needs and leaves the defaults bound (for test contexts only).
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
+
+//! A host's normal target: `normals` (a G-buffer's view-space normals, read back) encoded as
+//! n * 0.5 + 0.5 in a new texture of the normalized `format` (the driver rounds the floats to
+//! its steps), in view or world space. The caller deletes it.
+GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum format, NormalSpace space);
 
 //! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
 //! its text `call` replaced by `replacement` and `prelude` inserted before its main(). A test
