@@ -108,7 +108,8 @@ struct HostGBuffer {
     NormalEncoding normalEncoding = NormalEncoding::Signed;
     //! Optional, same size, used in place: diffuse reflectance, for IndirectLight and
     //! Composer. A normalized or float RGB/RGBA format; sRGB ones (GL_SRGB8,
-    //! GL_SRGB8_ALPHA8) are decoded when read, others hold linear reflectance in [0, 1].
+    //! GL_SRGB8_ALPHA8) are decoded when read, others hold linear reflectance in [0, 1]
+    //! (read clamped to it, NaN as 0).
     TextureView albedo;
     //! Optional, same size, used in place: the radiance each pixel sends to the camera from
     //! direct light, W/(sr·m²), linear (the host's lit image before AO, indirect light and

@@ -36,6 +36,10 @@ vec3 clampRadiance(vec3 radiance) {
     return clamp(radiance, vec3(0.0), vec3(kHalfMax));
 }
 
+// A reflectance as the shaders use it: in [0, 1], NaN as 0. A host's float albedo may hold
+// anything (HostGBuffer::albedo), and its product with radiance must stay finite.
+vec3 clampAlbedo(vec3 albedo) { return clamp(mix(albedo, vec3(0.0), isnan(albedo)), vec3(0.0), vec3(1.0)); }
+
 // A spot light's cone (the reference's spotCone, src/reference/estimators.hpp): smooth from
 // cos(outer) to cos(inner); a hard edge when they coincide (smoothstep is undefined for equal
 // edges).

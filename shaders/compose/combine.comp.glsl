@@ -16,7 +16,7 @@ void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, compose.size.xy))) return;
     const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
-    const vec3 rho = texelFetch(albedo, pixel, 0).rgb;
+    const vec3 rho = clampAlbedo(texelFetch(albedo, pixel, 0).rgb);
     const float ao = (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
     const bool hasIndirect = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
     const vec3 l1 = hasIndirect ? clampRadiance(texelFetch(indirect, pixel, 0).rgb) : vec3(0.0);

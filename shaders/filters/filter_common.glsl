@@ -45,7 +45,7 @@ layout(binding = FILTER_MODULATE_UNIT) uniform sampler2D filterModulate;
 // they do not write.
 FILTER_VALUE modulated(ivec2 pixel, FILTER_VALUE v) {
     const ivec2 texel = min(pixel, textureSize(filterModulate, 0) - 1);
-    return vec4(v.rgb * texelFetch(filterModulate, texel, 0).rgb, v.a);
+    return vec4(v.rgb * clampAlbedo(texelFetch(filterModulate, texel, 0).rgb), v.a);
 }
 #else
 FILTER_VALUE modulated(ivec2 pixel, FILTER_VALUE v) { return v; }

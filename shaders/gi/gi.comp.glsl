@@ -152,7 +152,7 @@ void main() {
     // so an albedo multiplied in here would be blurred across texture edges and, at a reduced
     // resolution, taken from the block's top-left pixel for the whole block. They multiply
     // each G-buffer pixel's own albedo in after the last step (FilterImages::modulate).
-    const vec3 albedo = guide ? vec3(1.0) : texelFetch(albedoTexture, full, 0).rgb;
+    const vec3 albedo = guide ? vec3(1.0) : clampAlbedo(texelFetch(albedoTexture, full, 0).rgb);
     const vec3 meanRadiance = sums.a.rgb / float(gi.counts.x); // E / pi: the directions are cosine-weighted
     imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * meanRadiance), 1.0)));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));

@@ -39,7 +39,8 @@ struct FilterImages {
     int scale = 1;        //!< to the full resolution
     //! With `rgb`: a texture of the G-buffer's size whose rgb the last step (the upsampling,
     //! or at full resolution the blur's second pass) multiplies each written pixel's rgb by;
-    //! 0: none. Indirect light's albedo, which the guide does not see.
+    //! 0: none. Indirect light's albedo, which the guide does not see; read as a reflectance
+    //! (clampAlbedo: [0, 1], NaN as 0).
     GLuint modulate = 0;
 };
 

@@ -41,7 +41,8 @@ vec3 filterTestDirection(ivec2 q) {
 // model has no albedo (and could not repeat the texture unit's sRGB decoding exactly): the
 // step is left out where the filters' arithmetic is checked.
 const test::ShaderEdit kNoModulation{"filters/filter_common.glsl",
-                                     "return vec4(v.rgb * texelFetch(filterModulate, texel, 0).rgb, v.a);", "return v;", ""};
+                                     "return vec4(v.rgb * clampAlbedo(texelFetch(filterModulate, texel, 0).rgb), v.a);",
+                                     "return v;", ""};
 
 std::uint32_t hashOf(int x, int y, std::uint32_t salt) {
     std::uint32_t h = (std::uint32_t(x) * 73856093u) ^ (std::uint32_t(y) * 19349663u) ^ (salt * 83492791u);

@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+#include <utility>
 #include <vector>
 
 using namespace obscura;
@@ -173,5 +175,133 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals a lit open 
             }
         glDeleteTextures(1, &depth);
     }
+    CHECK(test::drainGlErrors().empty());
+}
+
+namespace {
+
+// What a host's float buffers may hold where its own passes went wrong, one pattern a pixel
+// in turn (pixels whose index is 0 mod 9 keep their value).
+glm::vec3 poisonOf(std::size_t pixel, glm::vec3 value) {
+    const float nan = std::nanf(""), inf = INFINITY;
+    switch (pixel % 9) {
+    case 1: return {nan, value.y, value.z};
+    case 2: return glm::vec3(inf);
+    case 3: return {-inf, value.y, inf};
+    case 4: return glm::vec3(0.0f);
+    case 5: return glm::vec3(1e-40f);   // subnormal
+    case 6: return glm::vec3(3e38f);    // overflows any sum of squares
+    case 7: return -value;              // a normal facing away, a negative colour
+    case 8: return value * 1e6f;
+    }
+    return value;
+}
+
+// `image` (row 0 at the top) poisoned by poisonOf, as a new GL_RGBA32F host texture.
+GLuint poisonedTexture(const Image& image) {
+    std::vector<float> rows(std::size_t(image.width) * image.height * 4);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const std::size_t pixel = std::size_t(y) * image.width + x;
+            const glm::vec3 v = poisonOf(pixel, {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)});
+            const std::size_t i = (std::size_t(image.height - 1 - y) * image.width + x) * 4; // GL rows bottom up
+            rows[i] = v.x;
+            rows[i + 1] = v.y;
+            rows[i + 2] = v.z;
+            rows[i + 3] = 1.0f;
+        }
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA32F, image.width, image.height);
+    glTextureSubImage2D(texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
+    return texture;
+}
+
+// Non-finite values, and values outside [lo, hi], in an image's first `channels` channels.
+std::size_t outsideCount(const Image& image, int channels, float lo, float hi) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const float v = image.pixels[i];
+        if (int(i % std::size_t(image.channels)) < channels) n += !(std::isfinite(v) && v >= lo && v <= hi);
+    }
+    return n;
+}
+
+} // namespace
+
+TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albedo and radiance give finite AO, "
+          "bent normals, indirect light and display values", "[ao][gi][compose][host][stability]") {
+    // A host's float buffers are not ours to trust: every pixel of the Cornell box view holds
+    // one of poisonOf's patterns in its normal, albedo and lit image. Outputs must stay finite
+    // and in their ranges: AO in [0, 1], bent normals unit, indirect light in [0, 65504],
+    // display values in [0, 1].
+    test::AoFixture f;
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    constexpr int W = 48, H = 40;
+    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                                              float(W) / float(H), 10.0f, 5000.0f);
+    f.view = f.gbuffer.render(cornell.scene, camera, {W, H, true, {}});
+    const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
+    const GLuint normal = poisonedTexture(readTexture(f.ctx, f.view.normal));
+    const GLuint albedo = poisonedTexture(readTexture(f.ctx, f.view.albedo));
+    const GLuint radiance = poisonedTexture(readTexture(f.ctx, f.view.directRadiance));
+    HostGBuffer host;
+    host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
+    host.normal = {normal, GL_RGBA32F, W, H};
+    host.albedo = {albedo, GL_RGBA32F, W, H};
+    host.directRadiance = {radiance, GL_RGBA32F, W, H};
+    GBuffer adopter(f.ctx);
+    const GBufferView adopted = adopter.adopt(host, camera);
+    CHECK(outsideCount(readTexture(f.ctx, adopted.normal), 3, -1.0f, 1.0f) == 0);
+    const VoxelGrid& voxels = f.voxelizer.voxelize(cornell.scene, {});
+    IndirectLight gi(f.ctx);
+    Composer composer(f.ctx);
+    // Full resolution with and without the blur, half with it: each place the albedo is
+    // multiplied in (the integrator, the blur's last pass, the upsampling).
+    for (const auto [resolution, blur] : {std::pair{AoResolution::Full, 0}, std::pair{AoResolution::Full, 2},
+                                          std::pair{AoResolution::Half, 2}}) {
+        CAPTURE(static_cast<int>(resolution), blur);
+        TextureView aoTexture;
+        for (const AoMethod method : {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel}) {
+            CAPTURE(static_cast<int>(method));
+            AmbientOcclusionSettings s;
+            s.method = method;
+            s.radius = 300.0f;
+            s.rays = 16;
+            s.resolution = resolution;
+            s.blurRadius = blur;
+            s.bentNormals = true;
+            if (method == AoMethod::Voxel) s.voxels = &voxels;
+            const AmbientOcclusionView out = f.ao.run(adopted, s);
+            CHECK(outsideCount(readTexture(f.ctx, out.ao), 1, 0.0f, 1.0f) == 0);
+            const Image bent = readTexture(f.ctx, out.bentNormal);
+            CHECK(outsideCount(bent, 3, -1.0f, 1.0f) == 0);
+            aoTexture = out.ao;
+        }
+        for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
+            CAPTURE(static_cast<int>(method));
+            IndirectLightSettings s;
+            s.method = method;
+            s.radius = 300.0f;
+            s.rays = 16;
+            s.resolution = resolution;
+            s.blurRadius = blur;
+            if (method == GiMethod::Hybrid) s.voxels = &voxels;
+            const TextureView indirect = gi.run(adopted, s).radiance;
+            CHECK(outsideCount(readTexture(f.ctx, indirect), 3, 0.0f, 65504.0f) == 0);
+            for (const CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+                for (const ToneMapper mapper : {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}) {
+                    CAPTURE(formula == CombineFormula::Thesis, static_cast<int>(mapper));
+                    ComposeSettings c;
+                    c.formula = formula;
+                    c.toneMapper = mapper;
+                    c.ambient = glm::vec3(0.5f);
+                    const TextureView display = composer.compose({adopted, aoTexture, indirect}, c);
+                    CHECK(outsideCount(readTexture(f.ctx, composer.radiance()), 3, 0.0f, 65504.0f) == 0);
+                    CHECK(outsideCount(readTexture(f.ctx, display), 3, 0.0f, 1.0f) == 0);
+                }
+        }
+    }
+    for (const GLuint t : {depth, normal, albedo, radiance}) glDeleteTextures(1, &t);
     CHECK(test::drainGlErrors().empty());
 }
