@@ -59,7 +59,7 @@ public:
     //! group count per dimension every GL 4.5 implementation takes (about 4096 x 4096 G-buffer
     //! pixels at half resolution). Larger images run every tile.
     static bool geometryTilesFit(glm::ivec2 lowSize);
-    //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution `lowSize` with a
+    //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution (images.size) with a
     //! G-buffer pixel that is not background, for the integrator (dispatchGeometryTiles) and
     //! the filters (GuidedFilterSettings::geometryTiles), and leaves the list bound at
     //! FILTER_TILES_SSBO for them. Also gives `images` what the tiles the integrator skips must
