@@ -80,11 +80,13 @@ struct GBufferSettings {
 
 enum class NormalSpace { View, World };
 enum class NormalEncoding {
-    Signed,   //!< float formats holding n in [-1,1] (GL_RGB(A)16F/32F)
-    Unsigned, //!< n * 0.5 + 0.5 in a normalized format (GL_RGB(A)8, GL_RGB10_A2, GL_RGB(A)16)
+    Signed,   //!< signed float formats holding n in [-1,1] (GL_RGB(A)16F/32F)
+    //! n * 0.5 + 0.5 in a normalized format of at least 4 bits a channel (GL_RGB(A)8,
+    //! GL_RGB10_A2, GL_RGB(A)16)
+    Unsigned,
 };
 
-//! GBufferView::normalError of host normals with `bits` per channel (GL_TEXTURE_RED_SIZE) in
+//! GBufferView::normalError of host normals with `bits` in their coarsest channel in
 //! `encoding`, after adopt() normalizes them and stores them as half floats. The host's
 //! encoding moves a unit normal by delta: Unsigned rounds each component to a step of [0, 1],
 //! half a step off, 1 / (2^bits - 1) in [-1, 1], delta = sqrt(3) / (2^bits - 1); Signed floats

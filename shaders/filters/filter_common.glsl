@@ -41,7 +41,7 @@ layout(binding = FILTER_MODULATE_UNIT) uniform sampler2D filterModulate;
 // A filtered value times the factor at G-buffer pixel `pixel`. Indirect light is filtered
 // without its albedo, whose texture edges the guide does not see, and gets each pixel's own
 // albedo here: after the blur at full resolution, in the upsampling otherwise.
-// The clamp: the upsampling's quads of odd sizes reach a column or row past the image, which
+// The min: the upsampling's quads of odd sizes reach a column or row past the image, which
 // they do not write.
 FILTER_VALUE modulated(ivec2 pixel, FILTER_VALUE v) {
     const ivec2 texel = min(pixel, textureSize(filterModulate, 0) - 1);
@@ -68,11 +68,13 @@ vec3 directionFromOffset(vec3 normal, vec3 meanOffset) { return safeNormalize(no
 // for a constant image, so it stays exactly constant (an open plane's AO stays 1).
 FILTER_VALUE weightedMean(FILTER_VALUE anchor, FILTER_VALUE offsets, float total) { return anchor + offsets / total; }
 
-// A value as stored: clamped to [0, 1] when it is a fraction, rounded to the nearest half
-// float (see roundedToHalf).
+// A value as stored: clamped to [0, 1] when it is a fraction, else to [0, kHalfMax] (radiance:
+// a weighted mean of values near kHalfMax and near 0 can round a hair below 0, -4.4e-4 seen
+// on a host's radiance poisoned with such values), rounded to the nearest half float (see
+// roundedToHalf).
 FILTER_VALUE filterFinish(FILTER_VALUE v) {
-    if ((filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0) v = clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(1.0));
-    return roundedToHalf(v);
+    const float hi = (filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0 ? 1.0 : kHalfMax;
+    return roundedToHalf(clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(hi)));
 }
 
 // log2 of how much a sample with view normal n2 and view z z2 counts for a pixel with n1, z1:

@@ -5,7 +5,8 @@
 // Background pixels get the background value (and no direction). MODULATE: each written
 // pixel's value times its own texel of the factor (filter_common.glsl). REFINE: pixels whose
 // similar neighbours carry less than the threshold's share of the bilinear weight are listed
-// for the integrator to compute instead (refine_list.glsl); they are not written here.
+// for the integrator to compute instead (refine_list.glsl); they are written here too, so
+// that they hold the blended value when the list overflows and nothing is refined.
 //
 // One invocation writes a 2 x 2 quad of G-buffer pixels. With an even scale the quad's four
 // pixels share the same four low-resolution neighbours, so they are loaded once per quad,
@@ -77,11 +78,11 @@ bool inImage(ivec2 pixel) { return all(lessThan(pixel, frameSize())); }
 bool wantsRefinement(ivec2 pixel, Target t, Blend b) { return inImage(pixel) && !t.background && b.total < filterParams.weights.w; }
 
 // Single exit: Mesa 22.3 llvmpipe miscompiles early returns in inlined code (see
-// voxel_traversal.glsl). `listed`: left to the refinement.
-void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor, bool listed) {
+// voxel_traversal.glsl).
+void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
     const bool weighted = b.total > 1e-6;
     const FILTER_VALUE blended = filterFinish(modulated(pixel, weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest));
-    const bool inside = inImage(pixel) && !listed;
+    const bool inside = inImage(pixel);
     if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.weights.z) : blended));
 #ifdef DIRECTION
     if (inside) {
@@ -145,13 +146,11 @@ void main() {
         accumulate(b11, t11, corner, guide, value, anchor, direction);
     }
 #ifdef REFINE
-    const bvec4 listed = refineAppendQuad(p00, bvec4(wantsRefinement(p00, t00, b00), wantsRefinement(p00 + ivec2(1, 0), t10, b10),
-                                                     wantsRefinement(p00 + ivec2(0, 1), t01, b01), wantsRefinement(p00 + ivec2(1, 1), t11, b11)));
-#else
-    const bvec4 listed = bvec4(false);
+    refineAppendQuad(p00, bvec4(wantsRefinement(p00, t00, b00), wantsRefinement(p00 + ivec2(1, 0), t10, b10),
+                                wantsRefinement(p00 + ivec2(0, 1), t01, b01), wantsRefinement(p00 + ivec2(1, 1), t11, b11)));
 #endif
-    writePixel(p00, t00, b00, anchor, listed.x);
-    writePixel(p00 + ivec2(1, 0), t10, b10, anchor, listed.y);
-    writePixel(p00 + ivec2(0, 1), t01, b01, anchor, listed.z);
-    writePixel(p00 + ivec2(1, 1), t11, b11, anchor, listed.w);
+    writePixel(p00, t00, b00, anchor);
+    writePixel(p00 + ivec2(1, 0), t10, b10, anchor);
+    writePixel(p00 + ivec2(0, 1), t01, b01, anchor);
+    writePixel(p00 + ivec2(1, 1), t11, b11, anchor);
 }

@@ -2,8 +2,10 @@
 // low-resolution neighbours, for the integrator to compute at full resolution: the
 // upsampling appends them, then the integrator's REFINE variant is dispatched indirectly
 // from the header, one invocation per listed pixel. The header starts as (0, 1, 1, 0); the
-// count may pass the capacity, the group count never does. Without REFINE, only
-// integratorPixel.
+// count may pass the capacity, the group count never does. When the count passes the
+// capacity, no pixel is refined: which ones made the list depends on the order the GPU ran
+// the upsampling's invocations, and a frame must not (they keep the upsampled value).
+// Without REFINE, only integratorPixel.
 #ifndef OBSCURA_REFINE_LIST_GLSL
 #define OBSCURA_REFINE_LIST_GLSL
 #include "filter_bindings.h"
@@ -27,30 +29,27 @@ uint refineCapacity() { return uint(refinePixels.length()); }
 // `wanted`, in that order, with one atomic add for all of them. On llvmpipe every SIMD batch
 // runs each atomic and store lane by lane, masked off or not: the appends took about 3 of the
 // upsampling's 11 ms on the Cornell box at 512 x 512, and one add a quad instead of one a
-// pixel saved about 1.2 ms. Returns which were listed (past the capacity, none: the caller
-// fills those itself).
-bvec4 refineAppendQuad(ivec2 quad, bvec4 wanted) {
+// pixel saved about 1.2 ms.
+void refineAppendQuad(ivec2 quad, bvec4 wanted) {
     const uvec4 want = uvec4(wanted);
     const uint n = want.x + want.y + want.z + want.w;
-    bvec4 listed = bvec4(false);
     if (n > 0u) {
         const uint first = atomicAdd(refineCount, n), end = min(first + n, refineCapacity());
         // The groups the list's length now starts: the multiples of the group size in [first, end).
         const uint group = uint(FILTER_REFINE_GROUP), firstStart = (first + group - 1u) / group * group;
         if (firstStart < end) atomicAdd(refineGroups[0], (end - 1u - firstStart) / group + 1u);
         const uvec4 slot = first + uvec4(0u, want.x, want.x + want.y, want.x + want.y + want.z); // in list order
-        listed = bvec4(uvec4(wanted) * uvec4(lessThan(slot, uvec4(end))));
+        const bvec4 listed = bvec4(uvec4(wanted) * uvec4(lessThan(slot, uvec4(end))));
         for (int k = 0; k < 4; ++k)
             if (listed[k]) refinePixels[slot[k]] = uint(quad.x + (k & 1)) | (uint(quad.y + (k >> 1)) << 16);
     }
-    return listed;
 }
 
 // The listed pixel of this invocation (groups of FILTER_REFINE_GROUP, in list order); false
-// past the list's end.
+// past the list's end, and for every invocation when the list overflowed.
 bool refinePixel(out ivec2 pixel) {
     const uint i = gl_WorkGroupID.x * uint(FILTER_REFINE_GROUP) + integratorGroupPixel();
-    const bool listed = i < min(refineCount, refineCapacity());
+    const bool listed = refineCount <= refineCapacity() && i < refineCount;
     const uint code = listed ? refinePixels[i] : 0u;
     pixel = ivec2(code & 0xFFFFu, code >> 16);
     return listed;

@@ -31,6 +31,10 @@ std::string formatName(GLenum f) {
     case GL_RGBA16: return "GL_RGBA16";
     case GL_RGB16: return "GL_RGB16";
     case GL_R8: return "GL_R8";
+    case GL_SRGB8: return "GL_SRGB8";
+    case GL_R11F_G11F_B10F: return "GL_R11F_G11F_B10F";
+    case GL_RGB9_E5: return "GL_RGB9_E5";
+    case GL_R3_G3_B2: return "GL_R3_G3_B2";
     case GL_RGBA32UI: return "GL_RGBA32UI";
     case GL_R32UI: return "GL_R32UI";
     default: {

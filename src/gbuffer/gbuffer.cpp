@@ -370,12 +370,17 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
         GLint componentType = 0;
         ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
+        // The coarsest of the three channels bounds the error (GL_R3_G3_B2's blue has 2 bits).
         GLint bits = 0;
-        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_SIZE, &bits);
+        for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE}) {
+            GLint size = 0;
+            ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, channel, &size);
+            bits = channel == GL_TEXTURE_RED_SIZE ? size : std::min(bits, size);
+        }
         // The packed float formats have no sign bit: they cannot hold a normal's components.
         const bool unsignedFloat = n.internalFormat == GL_R11F_G11F_B10F || n.internalFormat == GL_RGB9_E5;
         const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating && !unsignedFloat;
-        // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2506, past
+        // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
         // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
         const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned &&
                                 componentType == GL_UNSIGNED_NORMALIZED && bits >= 1 &&

@@ -145,6 +145,10 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution fallof
         // pixel or two out and rounded off the slice, found horizons on the floor itself
         // where the half-float normal tilts its tangent plane (AO 0.997; GBufferView::normalError).
         {"orthographic, grazing", Camera::orthographic({{1, 1.5f, 5}, {0, 0, 0}, {0, 1, 0}}, 4.8f, float(W) / H, 0.05f, 100.0f)},
+        // Far / near = 1e10 with standard depth: the floor's depths lie within 2e-5 of 1, where
+        // a float step (6e-8) spans 0.4 % of the view distance. The tangent-plane tests must
+        // allow for that (depthReconstructionError), not find the floor under itself.
+        {"perspective, near 1e-4 far 1e6", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 1e-4f, 1e6f)},
     };
     // Every method, the depth-peeled screen methods and the other voxel traversals.
     std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));

@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <functional>
@@ -203,16 +204,21 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     expectError([&] { adopt(depth, rgba8); }, ErrorCode::InvalidArgument, "NormalEncoding::Signed");
     expectError([&] { adopt(depth, rg16f); }, ErrorCode::InvalidArgument, "GL_RG16F");
     // No sign bit: a normal's negative components would clamp to 0.
-    const GLuint r11g11b10 = hostTexture(GL_R11F_G11F_B10F, 16, 16);
+    const GLuint r11g11b10 = hostTexture(GL_R11F_G11F_B10F, 16, 16), rgb9e5 = hostTexture(GL_RGB9_E5, 16, 16);
     expectError([&] { adopt(depth, r11g11b10); }, ErrorCode::InvalidArgument, "signed float");
-    // Fewer than 4 bits a channel, as the GL stores it (it may widen a requested format).
+    expectError([&] { adopt(depth, rgb9e5); }, ErrorCode::InvalidArgument, "GL_RGB9_E5");
+    // Fewer than 4 bits in a channel, as the GL stores it (it may widen a requested format).
     const GLuint r3g3b2 = hostTexture(GL_R3_G3_B2, 16, 16);
-    GLint r3Bits = 0;
-    glGetTextureLevelParameteriv(r3g3b2, 0, GL_TEXTURE_RED_SIZE, &r3Bits);
-    INFO("GL_R3_G3_B2 stored with " << r3Bits << " red bits");
+    GLint r3Bits = 32; // its coarsest channel, as adopt() counts
+    for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE}) {
+        GLint size = 0;
+        glGetTextureLevelParameteriv(r3g3b2, 0, channel, &size);
+        r3Bits = std::min(r3Bits, size);
+    }
+    INFO("GL_R3_G3_B2 stored with " << r3Bits << " bits in its coarsest channel");
     if (r3Bits < 4) expectError([&] { adopt(depth, r3g3b2, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "at least 4 bits");
     else CHECK_NOTHROW(adopt(depth, r3g3b2, NormalEncoding::Unsigned));
-    for (GLuint t : {r11g11b10, r3g3b2}) glDeleteTextures(1, &t);
+    for (GLuint t : {r11g11b10, rgb9e5, r3g3b2}) glDeleteTextures(1, &t);
     expectError([&] { adopt(depthOdd, rgba8, NormalEncoding::Unsigned); }, ErrorCode::InvalidArgument, "8x8");
     const GLuint rgba8ui = hostTexture(GL_RGBA8UI, 16, 16);
     const auto adoptLit = [&](GLuint albedo, GLuint radiance) {

@@ -139,38 +139,43 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
             lmax = k.dragoMax;
         }
         // The display's error bound. The mapper reads the radiance as read back here, exactly;
-        // RGBA8 takes one of the two nearest steps (1/255, as in the combine test). The
-        // encodings (sRGB, 1/gamma for gamma >= 1) and the clamp change a relative error of the
-        // mapped value by at most that much of a value <= 1, so relative errors of the mapping
-        // add as they are: float evaluation (GLSL's log, pow: a few ulp each, about ten
-        // operations, 2^-23 * 50 < 1e-5), and for Drago with the frame's own maximum, that
-        // maximum: the shader takes it from the values before their half-float store, the test
-        // from the stored ones, within 2^-10 of them; ln L_d moves with ln L_max by at most
-        // 1 (the log10 factor) + e / ln 2 (the bias term, e = ln b / ln 0.5).
+        // RGBA8 takes one of the two nearest steps (1/255, as in the combine test). A relative
+        // error r of the mapped value moves the display value by at most r times it: the clamp
+        // and the encodings (sRGB, x^(1/gamma) with gamma >= 1) do not amplify relative errors.
+        // The mapping's relative errors: float evaluation, 1e-5 (GLSL's log and pow: a few ulp
+        // each, about ten operations, 2^-23 * 50); Drago's log(x + 1) for x = L and L_max,
+        // whose absolute error is 2^-20 (GLSL's log: 2^-21 absolute on [0.5, 2]; x + 1 rounds
+        // by 2^-24), so 2^-20 / ln(1 + x) relative, large for dark pixels; and with the frame's
+        // own maximum, that maximum: the shader takes it from the values before their
+        // half-float store, the test from the stored ones, within 2^-10 of them, and ln L_d
+        // moves with ln L_max by at most 1 (the log10 factor) + e / ln 2 (the bias term,
+        // e = ln b / ln 0.5).
+        const bool drago = k.mapper == ToneMapper::Drago;
         const double biasExponent = std::log(double(k.dragoBias)) / std::log(0.5);
-        const double maxSlack =
-            k.mapper == ToneMapper::Drago && k.dragoMax <= 0.0f ? (1.0 + biasExponent / std::log(2.0)) * std::ldexp(1.0, -10) : 0.0;
-        const double mappedError = maxSlack + 1e-5;
+        const double maxSlack = drago && k.dragoMax <= 0.0f ? (1.0 + biasExponent / std::log(2.0)) * std::ldexp(1.0, -10) : 0.0;
+        const auto logSlack = [&](double x) { return drago ? std::ldexp(1.0, -20) / std::log1p(x) : 0.0; };
         for (int y = 0; y < Frame::H; ++y)
             for (int x = 0; x < Frame::W; ++x) {
                 const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+                const double lw = luminance(l);
                 glm::dvec3 mapped;
                 if (k.mapper == ToneMapper::Aces) {
                     for (int c = 0; c < 3; ++c)
                         mapped[c] = std::clamp(l[c] * (2.51 * l[c] + 0.03) / (l[c] * (2.43 * l[c] + 0.59) + 0.14), 0.0, 1.0);
                 } else {
-                    const double lw = luminance(l), bias = k.dragoBias;
+                    const double bias = k.dragoBias;
                     const double ld = lw > 0.0 ? (k.dragoDisplayMax * 0.01 / std::log10(lmax + 1.0)) * std::log(lw + 1.0) /
                                                      std::log(2.0 + 8.0 * std::pow(lw / lmax, std::log(bias) / std::log(0.5)))
                                                : 0.0;
                     mapped = lw > 0.0 ? l * (ld / lw) : glm::dvec3(0.0);
                 }
+                const double relative = 1e-5 + maxSlack + (lw > 0.0 ? logSlack(lw) + logSlack(lmax) : 0.0);
                 for (int c = 0; c < 3; ++c) {
                     const double v = std::clamp(mapped[c], 0.0, 1.0);
                     const double encoded = k.srgb ? (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)
                                                   : std::pow(v, 1.0 / k.gamma);
                     CAPTURE(x, y, c, v, encoded);
-                    CHECK(std::abs(shown.at(x, y, c) - encoded) <= 1.0 / 255.0 + mappedError);
+                    CHECK(std::abs(shown.at(x, y, c) - encoded) <= 1.0 / 255.0 + relative * encoded);
                 }
             }
     }

@@ -162,15 +162,17 @@ LowImages blurPass(const Model& m, const LowImages& in, glm::ivec2 step) {
 }
 
 // What a G-buffer pixel may hold: the upsampling's blend, or, where it lists the pixel for
-// refinement, what the integrator writes there at full resolution. Both are allowed where
-// the model cannot tell which the GPU did: a total weight within float rounding of the
-// threshold, or more pixels to refine than the list holds (which of them got in is the
-// order of the GPU's atomics).
+// refinement, what the integrator writes there at full resolution. More pixels to refine
+// than the list holds: none is refined. Both are allowed where the model cannot tell which
+// the GPU did: a total weight within float rounding of the threshold, and every listed pixel
+// when such pixels decide whether the list overflows.
 struct Expected {
     std::vector<glm::vec4> value, direction;          // the blend
     std::vector<glm::vec4> refinedValue, refinedDirection;
     std::vector<char> refined, either;
     int qualifying = 0;                               // pixels below the threshold
+    bool overflow = false;                            // surely more than the list holds
+    bool maybeOverflow = false;                       // possibly
 };
 
 // The integrator's full-resolution value and direction at a G-buffer pixel.
@@ -238,8 +240,16 @@ Expected upsample(const Model& m, const LowImages& low, const FullResolution& fu
                 noRefinement();
             }
         }
-    if (e.qualifying > refineCapacity(m))
+    const int surely = int(std::count(e.refined.begin(), e.refined.end(), 1)) - int(std::count(e.either.begin(), e.either.end(), 1));
+    const int possibly = int(std::count(e.refined.begin(), e.refined.end(), 1));
+    e.overflow = surely > refineCapacity(m);
+    e.maybeOverflow = possibly > refineCapacity(m);
+    if (e.overflow) {
+        std::fill(e.refined.begin(), e.refined.end(), 0);
+        std::fill(e.either.begin(), e.either.end(), 0);
+    } else if (e.maybeOverflow) {
         for (std::size_t i = 0; i < e.refined.size(); ++i) e.either[i] |= e.refined[i];
+    }
     return e;
 }
 
@@ -267,14 +277,18 @@ double worstDifference(const Image& gpu, const Expected& e, bool directions, int
 
 // How many pixels the GPU refined (`refined`, counted by worstDifference) against the model.
 // The box's edges and the background's give pixels to refine at any threshold above 0; at 1
-// nearly all but the exact ones qualify, more than the list holds. Counted are the refined
-// pixels whose blend differs from the refined value by more than the tolerance; a few
-// coincide (values are multiples of 1/256), hence the 9/10.
+// nearly all but the exact ones qualify, more than the list holds, and none is refined.
+// Counted are the refined pixels whose blend differs from the refined value by more than
+// the tolerance; a few coincide (values are multiples of 1/256), hence the 9/10.
 void checkRefinedCount(const Model& m, const Expected& expected, int refined) {
-    CAPTURE(m.refineThreshold, expected.qualifying, refined);
+    CAPTURE(m.refineThreshold, expected.qualifying, expected.overflow, refined);
     if (m.refineThreshold > 0.0) CHECK(expected.qualifying > 0);
+    if (expected.overflow) {
+        CHECK(refined == 0);
+        return;
+    }
     CHECK(refined <= std::min(expected.qualifying, refineCapacity(m)));
-    CHECK(refined >= std::min(expected.qualifying, refineCapacity(m)) * 9 / 10);
+    if (!expected.maybeOverflow) CHECK(refined >= expected.qualifying * 9 / 10);
 }
 
 // Each step's result is rounded to a half float (to nearest in the shaders, roundedToHalf;

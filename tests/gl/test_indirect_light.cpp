@@ -588,6 +588,9 @@ TEST_CASE("A lit open plane gives exactly no indirect light for every method mar
         {"reversed-Z, infinite far",
          Camera::perspective(look, glm::radians(50.0f), float(W) / H, 0.05f, INFINITY, DepthMode::Reversed)},
         {"orthographic, zero to one", Camera::orthographic(look, 3.0f, float(W) / H, 0.05f, 200.0f, DepthMode::StandardZeroToOne)},
+        // Far / near = 1e10, standard depth: a float step of depth spans 0.4 % of the view
+        // distance here (as in the AO open-plane test).
+        {"perspective, near 1e-4 far 1e6", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 1e-4f, 1e6f)},
     };
     struct Variant {
         GiMethod method;
@@ -684,8 +687,8 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
                     headOn += normals.at(x, y, 0) == 0.0f && normals.at(x, y, 1) == 0.0f && normals.at(x, y, 2) == 1.0f;
             CHECK(headOn > 0);
         }
-        for (const auto [method, resolution] : {std::pair{GiMethod::Screen, AoResolution::Full}, std::pair{GiMethod::Screen, AoResolution::Half},
-                                                std::pair{GiMethod::Hybrid, AoResolution::Full}, std::pair{GiMethod::Hybrid, AoResolution::Half}}) {
+        for (const auto& [method, resolution] : {std::pair{GiMethod::Screen, AoResolution::Full}, std::pair{GiMethod::Screen, AoResolution::Half},
+                                                 std::pair{GiMethod::Hybrid, AoResolution::Full}, std::pair{GiMethod::Hybrid, AoResolution::Half}}) {
             CAPTURE(method == GiMethod::Hybrid, static_cast<int>(resolution));
             IndirectLightSettings s;
             s.method = method;
