@@ -88,7 +88,8 @@ struct AmbientOcclusionSettings {
     //! bilinear ones, summed) are computed at full resolution instead, pass "ao.refine":
     //! mostly the edges of parts thinner than the low resolution's pixels. [0, 1]; 0: none
     //! (where no neighbour is similar, the one nearest in depth fills in). At most a quarter
-    //! of the G-buffer's pixels are refined; past that they are blended as with 0.
+    //! of the G-buffer's pixels are refined: when more ask for it, none is (all are blended
+    //! as with 0), so that a frame does not depend on the order the GPU lists them.
     float refineThreshold = 0.25f;
     //! Invocations that share each pixel's rays (Horizon: slices): 1, 2, 4, 8 or 16. With 1 a
     //! pixel's rays run one after another in one invocation, so a pass over few pixels (the
