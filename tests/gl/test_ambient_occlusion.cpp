@@ -240,11 +240,7 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals an open pla
         for (const GLenum format : {GL_RGBA8, GL_RGB10_A2, GL_RGBA16})
             for (const NormalSpace space : {NormalSpace::View, NormalSpace::World}) {
                 const GLuint normal = test::hostNormalTexture(normals, camera, format, space);
-                HostGBuffer host;
-                host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
-                host.normal = {normal, format, W, H};
-                host.normalSpace = space;
-                host.normalEncoding = NormalEncoding::Unsigned;
+                const HostGBuffer host = test::unsignedNormalHost(depth, normal, format, space, W, H);
                 GBuffer adopter(f.ctx);
                 const GBufferView adopted = adopter.adopt(host, camera);
                 for (const AoVariant variant : kAllVariants) {

@@ -144,11 +144,7 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals a lit open 
         for (const GLenum format : {GL_RGBA8, GL_RGB10_A2, GL_RGBA16})
             for (const NormalSpace space : {NormalSpace::View, NormalSpace::World}) {
                 const GLuint normal = test::hostNormalTexture(normals, camera, format, space);
-                HostGBuffer host;
-                host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
-                host.normal = {normal, format, W, H};
-                host.normalSpace = space;
-                host.normalEncoding = NormalEncoding::Unsigned;
+                HostGBuffer host = test::unsignedNormalHost(depth, normal, format, space, W, H);
                 host.albedo = f.view.albedo;
                 host.directRadiance = f.view.directRadiance;
                 GBuffer adopter(f.ctx);
@@ -200,24 +196,7 @@ glm::vec3 poisonOf(std::size_t pixel, glm::vec3 value) {
 }
 
 // `image` (row 0 at the top) poisoned by poisonOf, as a new GL_RGBA32F host texture.
-GLuint poisonedTexture(const Image& image) {
-    std::vector<float> rows(std::size_t(image.width) * image.height * 4);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const std::size_t pixel = std::size_t(y) * image.width + x;
-            const glm::vec3 v = poisonOf(pixel, {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)});
-            const std::size_t i = (std::size_t(image.height - 1 - y) * image.width + x) * 4; // GL rows bottom up
-            rows[i] = v.x;
-            rows[i + 1] = v.y;
-            rows[i + 2] = v.z;
-            rows[i + 3] = 1.0f;
-        }
-    GLuint texture = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, GL_RGBA32F, image.width, image.height);
-    glTextureSubImage2D(texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
-    return texture;
-}
+GLuint poisonedTexture(const Image& image) { return test::hostRgbTexture(image, GL_RGBA32F, poisonOf); }
 
 // Non-finite values, and values outside [lo, hi], in an image's first `channels` channels.
 std::size_t outsideCount(const Image& image, int channels, float lo, float hi) {

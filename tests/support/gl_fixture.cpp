@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -63,23 +64,36 @@ GLuint compiledShader(GLenum kind, const char* source) {
 
 } // namespace
 
+GLuint hostRgbTexture(const Image& image, GLenum format, const std::function<glm::vec3(std::size_t, glm::vec3)>& map) {
+    std::vector<float> rows(std::size_t(image.width) * image.height * 4);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec3 v = map(std::size_t(y) * image.width + x, {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)});
+            const std::size_t i = (std::size_t(image.height - 1 - y) * image.width + x) * 4; // GL rows bottom up
+            for (int c = 0; c < 3; ++c) rows[i + c] = v[c];
+            rows[i + 3] = 1.0f;
+        }
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, format, image.width, image.height);
+    glTextureSubImage2D(texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rows.data());
+    return texture;
+}
+
 GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum format, NormalSpace space) {
     const glm::mat3 toWorld = glm::transpose(glm::mat3(camera.view));
-    std::vector<float> encoded(normals.pixels.size());
-    for (int y = 0; y < normals.height; ++y)
-        for (int x = 0; x < normals.width; ++x) {
-            glm::vec3 n(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
-            if (space == NormalSpace::World) n = toWorld * n;
-            // Image rows run top down, GL's uploads bottom up.
-            const std::size_t i = (static_cast<std::size_t>(normals.height - 1 - y) * normals.width + x) * 4;
-            for (int c = 0; c < 3; ++c) encoded[i + c] = n[c] * 0.5f + 0.5f;
-            encoded[i + 3] = 1.0f;
-        }
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, format, normals.width, normals.height);
-    glTextureSubImage2D(tex, 0, 0, 0, normals.width, normals.height, GL_RGBA, GL_FLOAT, encoded.data());
-    return tex;
+    return hostRgbTexture(normals, format, [&](std::size_t, glm::vec3 n) {
+        return (space == NormalSpace::World ? toWorld * n : n) * 0.5f + 0.5f;
+    });
+}
+
+HostGBuffer unsignedNormalHost(GLuint depth, GLuint normal, GLenum format, NormalSpace space, int width, int height) {
+    HostGBuffer host;
+    host.depth = {depth, GL_DEPTH_COMPONENT32F, width, height};
+    host.normal = {normal, format, width, height};
+    host.normalSpace = space;
+    host.normalEncoding = NormalEncoding::Unsigned;
+    return host;
 }
 
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format) {

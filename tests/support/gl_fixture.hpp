@@ -11,6 +11,7 @@
 #include "obscura/gbuffer.hpp"
 #include "obscura/headless.hpp"
 
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -42,10 +43,18 @@ std::vector<unsigned> drainGlErrors();
 //! the GL state the draw needs and leaves the defaults bound (for test contexts only).
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 
+//! A new host texture of `format` (a float or normalized RGBA one) from `image` (row 0 at the
+//! top): each pixel's rgb through `map(pixel index in row order, rgb)`, alpha 1. The caller
+//! deletes it.
+GLuint hostRgbTexture(const Image& image, GLenum format, const std::function<glm::vec3(std::size_t, glm::vec3)>& map);
+
 //! A host's normal target: `normals` (a G-buffer's view-space normals, read back) encoded as
 //! n * 0.5 + 0.5 in a new texture of the normalized `format` (the driver rounds the floats to
 //! its steps), in view or world space. The caller deletes it.
 GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum format, NormalSpace space);
+
+//! Host buffers of GL_DEPTH_COMPONENT32F `depth` and `normal` (hostNormalTexture's encoding).
+HostGBuffer unsignedNormalHost(GLuint depth, GLuint normal, GLenum format, NormalSpace space, int width, int height);
 
 //! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
 //! its text `call` replaced by `replacement` and `prelude` inserted before its main(). A test
