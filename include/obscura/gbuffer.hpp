@@ -6,7 +6,9 @@
 // GBufferView with the same contract:
 //   depth           hardware depth of `camera` (32F when ours); background = clear depth
 //   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
-//                   toward the camera; alpha = 1 on geometry, 0 on background
+//                   toward the camera; alpha = 0 on background, and on geometry the
+//                   pixel's normal error in units of normalError, >= 1: 1 for ours and
+//                   for a host's normals, more for normals reconstructed from depth
 //   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours; or the
 //                   host's, HostGBuffer::albedo)
 //   backDepth       second depth layer (depthLayers = 2, ours only): per pixel the nearest
@@ -52,11 +54,13 @@ struct GBufferView {
     TextureView directRadiance; //!< adopted host buffers: the host's, if it gave one
     TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
     //! Unitless, [0, kMaxNormalError]: a bound on the distance between a stored normal and the unit
-    //! normal it stands for. Screen-space tests allow a point at distance d from a pixel, in
-    //! that pixel's plane, up to d * normalError off the stored tangent plane (so a plane
-    //! does not occlude itself). Ours and the default: 2^-10, the half-float store's
-    //! rounding. adopt() adds what the host's format lost before that store (an 8-bit
-    //! encoding: 7.8e-3 in all), see kHalfNormalError and adoptedNormalError.
+    //! normal it stands for, times each pixel's normal alpha. Screen-space tests allow a point
+    //! at distance d from a pixel, in that pixel's plane, up to d * normalError * alpha off
+    //! the stored tangent plane (so a plane does not occlude itself). Ours and the default:
+    //! 2^-10, the half-float store's rounding. adopt() adds what the host's format lost
+    //! before that store (an 8-bit encoding: 7.8e-3 in all), see kHalfNormalError and
+    //! adoptedNormalError, or, reconstructing normals from depth, puts each pixel's own
+    //! bound in alpha.
     float normalError = kHalfNormalError;
     Camera camera;
     int width = 0;  //!< pixels
@@ -93,9 +97,8 @@ enum class NormalEncoding {
 //! keep each component within 2^-10 (16-bit, rounded toward zero) or 2^-23 (32-bit) of its
 //! size, delta = that. Normalizing turns the direction by at most asin(delta), which bounds
 //! the chord; then kHalfNormalError for our store. Normals reconstructed from depth (no
-//! HostGBuffer::normal) get kHalfNormalError only: their own error depends on the depth's
-//! precision and the surface, and is not bounded here. Throws Error{InvalidArgument} for bits
-//! outside [1, 32].
+//! HostGBuffer::normal) get kHalfNormalError here and a bound per pixel in their alpha (see
+//! HostGBuffer::normal). Throws Error{InvalidArgument} for bits outside [1, 32].
 OBSCURA_API float adoptedNormalError(NormalEncoding encoding, int bits);
 
 //! The host's own buffers, for post-process use.
@@ -104,7 +107,15 @@ struct HostGBuffer {
     //! GL_DEPTH24_STENCIL8/GL_DEPTH32F_STENCIL8 (then GL_DEPTH_STENCIL_TEXTURE_MODE must be
     //! GL_DEPTH_COMPONENT). name, width and height are required; internalFormat is checked.
     TextureView depth;
-    //! Optional, same size. Without it normals are reconstructed from depth.
+    //! Optional, same size. Without it normals are reconstructed from depth: the cross product
+    //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
+    //! then bounds its error from the depth's precision (a step of the depth format through
+    //! the projection) where the pixel and the two neighbours lie on one plane: 2 (any
+    //! direction) where that precision cannot tell the plane or whether it faces the camera.
+    //! With 24-bit depth a floor 6 units away (near plane 0.05, 64 x 48 pixels) gets at most
+    //! 0.014; with 16-bit depth 0.3-0.56, which the screen tests then allow for, finding
+    //! less occlusion near such planes. Across creases and silhouettes the reconstruction
+    //! is not the face normal, and no bound holds there.
     TextureView normal;
     NormalSpace normalSpace = NormalSpace::View;
     NormalEncoding normalEncoding = NormalEncoding::Signed;

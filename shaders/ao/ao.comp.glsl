@@ -85,14 +85,14 @@ void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
 }
 
 #if METHOD == AO_METHOD_RAYMARCH
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        aoAdd(e, w, normal, screenMarch(p, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
+        aoAdd(e, w, normal, screenMarch(p, normalError, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
     }
     return e;
 }
@@ -101,7 +101,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
 // directions aoDirection weighs (uniform ones make the points uniform in the half-ball) at
 // distance r u^(1/3), u the 3D Hammersley set's third coordinate; a hidden point counts as
 // occluded at its distance.
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -110,7 +110,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
-        aoAdd(e, w, normal, screenHidden(p + w * d, p, ao.shape.y) ? d : -1.0);
+        aoAdd(e, w, normal, screenHidden(p + w * d, p, normalError, ao.shape.y) ? d : -1.0);
     }
     return e;
 }
@@ -137,9 +137,10 @@ vec2 aoBentArc(float h1, float h2, float g) {
     return vec2(alongV.x + alongV.y + 2.0 * cg / 3.0, alongSide.x + alongSide.y + 4.0 * sg / 3.0);
 }
 
-// A point of the pixel's own plane at distance len lies up to len * storedNormalError() off
-// the stored tangent plane (GBufferView::normalError: 2^-10 for the half floats the G-buffer
-// stores, which may round toward zero, as llvmpipe's do; more for a host's 8-bit normals).
+// A point of the pixel's own plane at distance len lies up to len * normalError off the
+// stored tangent plane (storedNormalError: 2^-10 for the half floats the G-buffer stores,
+// which may round toward zero, as llvmpipe's do; more for a host's 8-bit normals and for
+// normals reconstructed from depth).
 // Without this margin a floor's own depth samples passed the tangent-plane test on an open
 // floor seen at 16 degrees in an orthographic view (48 x 40 pixels, the radius 10 pixels),
 // and the samples' rounding to pixels off the slice made horizons of them: AO 0.997; with
@@ -149,7 +150,7 @@ vec2 aoBentArc(float h1, float h2, float g) {
 // to the radius projected at p find the highest point within the radius above p's tangent
 // plane. The result is normalized by the same sum for an open hemisphere, so a plane with
 // nothing above it is exactly 1 for any number of slices. Slices are this batch's "rays".
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -186,7 +187,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
                 const float len = length(d);
                 // Within the radius and above p's tangent plane (beyond float rounding, the
                 // depth buffer's precision and the stored normal's).
-                const float errors = depthReconstructionError(o, depth) + pError + len * storedNormalError();
+                const float errors = depthReconstructionError(o, depth) + pError + len * normalError;
                 if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(length(p) * 4.0, errors)) continue;
                 best = max(best, dot(d / len, v));
             }
@@ -213,7 +214,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
 }
 #else
 // Rays of length r through the voxel grid from a start lifted off the surface's voxels.
-Estimate aoEstimate(vec3 p, vec3 normal, ivec2 pixel, ivec2 fullPixel) {
+Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
@@ -254,7 +255,7 @@ void main() {
     if (mine && !background) {
         p = viewPositionFromDepth(pixelCenterUv(full), depth);
         normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-        own = aoEstimate(p, normal, pixel, full);
+        own = aoEstimate(p, normal, storedNormalError(normalTexel), pixel, full);
     }
     const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own.occluded, own.bent), vec4(own.count)));
     if (!mine || rayLane() != 0u) return;

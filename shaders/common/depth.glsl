@@ -36,6 +36,10 @@ float depthReconstructionError(vec3 o, float depth) {
     return abs(o.z) / abs(frame.depthZ.x) * length(o) * step;
 }
 
+// Float rounding of reconstructed positions and of differences between them, relative to
+// their magnitude: a few ulp (2^-23 each).
+const float kPositionRounding = 4e-6;
+
 vec2 pixelCenterUv(ivec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frameSize()); }
 
 // Unit vector from the surface point toward the camera.

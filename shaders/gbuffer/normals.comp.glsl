@@ -14,24 +14,55 @@ layout(binding = GBUFFER_NORMAL_TEXTURE_UNIT) uniform sampler2D normalTexture;
 layout(binding = GBUFFER_OUTPUT_IMAGE_UNIT, rgba16f) writeonly uniform image2D normals;
 
 #ifdef FROM_DEPTH
-// Position of a neighbour, or `valid = false` outside the image or on background.
-vec3 neighbour(ivec2 pixel, out bool valid) {
+// A reconstructed point and how far it may lie from the surface point it samples: the depth's
+// step (depthReconstructionError) and float rounding.
+struct SurfacePoint {
+    vec3 p;
+    float error;
+};
+
+SurfacePoint surfacePoint(ivec2 pixel, float depth) {
+    const vec3 p = viewPositionFromDepth(pixelCenterUv(pixel), depth);
+    return SurfacePoint(p, depthReconstructionError(p, depth) + kPositionRounding * length(p));
+}
+
+// A neighbour's point, or `valid = false` outside the image or on background.
+SurfacePoint neighbour(ivec2 pixel, out bool valid) {
     valid = all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, frameSize()));
-    if (!valid) return vec3(0.0);
-    float d = texelFetch(depthTexture, pixel, 0).r;
+    if (!valid) return SurfacePoint(vec3(0.0), 0.0);
+    const float d = texelFetch(depthTexture, pixel, 0).r;
     valid = !isBackground(d);
-    return valid ? viewPositionFromDepth(pixelCenterUv(pixel), d) : vec3(0.0);
+    return valid ? surfacePoint(pixel, d) : SurfacePoint(vec3(0.0), 0.0);
 }
 
 // Of the two one-sided differences along an axis, the one with the smaller depth step
-// stays on the same surface at silhouettes.
-vec3 tangent(ivec2 pixel, ivec2 axis, vec3 p) {
+// stays on the same surface at silhouettes. `error` bounds its distance from the difference
+// of the surface points: the sum of the two points' errors. Zero where neither neighbour is
+// geometry.
+SurfacePoint tangent(ivec2 pixel, ivec2 axis, SurfacePoint p) {
     bool okPlus, okMinus;
-    vec3 plus = neighbour(pixel + axis, okPlus);
-    vec3 minus = neighbour(pixel - axis, okMinus);
-    if (okPlus && (!okMinus || abs(plus.z - p.z) <= abs(p.z - minus.z))) return plus - p;
-    if (okMinus) return p - minus;
-    return vec3(0.0);
+    const SurfacePoint plus = neighbour(pixel + axis, okPlus);
+    const SurfacePoint minus = neighbour(pixel - axis, okMinus);
+    if (okPlus && (!okMinus || abs(plus.p.z - p.p.z) <= abs(p.p.z - minus.p.z)))
+        return SurfacePoint(plus.p - p.p, plus.error + p.error);
+    if (okMinus) return SurfacePoint(p.p - minus.p, p.error + minus.error);
+    return SurfacePoint(vec3(0.0), 0.0);
+}
+
+// A bound on the distance between the unit normal of a x b, turned toward the camera c, and
+// that of the plane the points lie on. The surface points' differences lie within a.error and
+// b.error of a and b, so their cross product lies within m = ea |b| + eb |a| + ea eb (plus
+// the cross product's rounding) of a x b, and its direction within asin(m / |a x b|); a
+// chord is shorter than its arc. Turning toward the camera keeps that only where the normal
+// is farther than the bound from edge-on; elsewhere, and where m >= |a x b|, 2: any
+// direction.
+float crossNormalError(SurfacePoint a, SurfacePoint b, vec3 c) {
+    const vec3 n = cross(a.p, b.p);
+    const float lenA = length(a.p), lenB = length(b.p), lenN = length(n);
+    const float m = a.error * lenB + b.error * lenA + a.error * b.error + kPositionRounding * lenA * lenB;
+    if (!(m < lenN)) return 2.0;
+    const float angle = asin(m / lenN);
+    return abs(dot(n, c)) > angle * lenN ? angle : 2.0;
 }
 #endif
 
@@ -45,8 +76,15 @@ void main() {
     }
     vec3 p = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     vec3 toCamera = viewDirectionTo(p);
+    float errorScale = 1.0; // alpha: this pixel's normal error in units of the view's
 #ifdef FROM_DEPTH
-    vec3 n = cross(tangent(pixel, ivec2(1, 0), p), tangent(pixel, ivec2(0, 1), p));
+    const SurfacePoint centre = surfacePoint(pixel, depth);
+    const SurfacePoint along = tangent(pixel, ivec2(1, 0), centre), across = tangent(pixel, ivec2(0, 1), centre);
+    vec3 n = cross(along.p, across.p);
+    // The view's normalError (kHalfNormalError) covers the half-float store; the reconstruction
+    // adds its own bound, scaled up by 2^-9 so that the store's rounding of alpha (2^-10
+    // relative, toward zero on llvmpipe) cannot lower it.
+    errorScale = (1.0 + crossNormalError(along, across, toCamera) / storedNormalError()) * (1.0 + 1.0 / 512.0);
 #else
     vec3 n = texelFetch(normalTexture, pixel, 0).xyz;
 #ifdef UNSIGNED_ENCODING
@@ -58,5 +96,5 @@ void main() {
 #endif
     n = safeNormalize(n, toCamera);
     if (dot(n, toCamera) < 0.0) n = -n;
-    imageStore(normals, pixel, vec4(n, 1.0));
+    imageStore(normals, pixel, vec4(n, errorScale));
 }

@@ -76,7 +76,7 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
 }
 
 // The sum of the radiance read over this batch's rays (ray_batch.glsl).
-vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
+vec3 giRadianceSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x;
     const uint n = uint(gi.counts.x);
@@ -89,7 +89,7 @@ vec3 giRadianceSum(vec3 p, vec3 normal, ivec2 pixel) {
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
-        const float t = screenMarch(p, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
+        const float t = screenMarch(p, normalError, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
         // The hidden sample lies behind the surface it projects to: read that surface, if the
         // ray crossed it after the previous sample (a step of r / steps before, with half a
         // step of slack).
@@ -133,7 +133,7 @@ void main() {
     if (mine && !background) {
         p = viewPositionFromDepth(pixelCenterUv(full), depth);
         normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-        own = giRadianceSum(p, normal, pixel);
+        own = giRadianceSum(p, normal, storedNormalError(normalTexel), pixel);
     }
     const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own, 0.0), vec4(0.0)));
     if (!mine || rayLane() != 0u) return;

@@ -47,34 +47,33 @@ bool screenPixelOfClip(vec4 clip, out ivec2 pixel) {
 // The pixel a view-space point projects to; false outside the image or behind the camera.
 bool screenPixelOf(vec3 s, out ivec2 pixel) { return screenPixelOfClip(frame.projection * vec4(s, 1.0), pixel); }
 
-// Relative tolerance of the tangent-plane test: reconstructed positions carry float
-// rounding of a few ulp of their magnitude.
-const float kScreenPlaneTolerance = 4e-6;
-
 // How far from a tangent plane a point must be to count as behind or above it: float
 // rounding of points of this magnitude, plus the reconstruction errors (depthReconstructionError)
 // of the plane's point and of the one compared with it.
 float screenPlaneTolerance(float magnitude, float reconstructionErrors) {
-    return kScreenPlaneTolerance * magnitude + reconstructionErrors;
+    return kPositionRounding * magnitude + reconstructionErrors;
 }
 
-// The stored normals lie within storedNormalError() of the true ones. A ray leaving a plane at
-// `from` into the hemisphere of from's stored normal may reach s up to that error times
-// |from - o| + 2 |s - from| behind another pixel o's stored tangent plane of the same plane:
-// from - o lies in the true plane, off the stored one by the error per unit length, and the
-// two stored normals may differ by twice the error along the ray.
-float screenNormalSlack(vec3 from, vec3 s, vec3 o) {
-    return storedNormalError() * (length(from - o) + 2.0 * length(s - from));
+// Each stored normal lies within its pixel's storedNormalError of the true one. A ray leaving a
+// plane at `from` (normal error fromError) into the hemisphere of from's stored normal may
+// reach s up to oError |from - o| + (fromError + oError) |s - from| behind another pixel o's
+// stored tangent plane of the same plane: from - o lies in the true plane, off o's stored one
+// by oError per unit length, and the two stored normals differ by at most the sum of their
+// errors along the ray.
+float screenNormalSlack(vec3 from, float fromError, vec3 s, vec3 o, float oError) {
+    return oError * length(from - o) + (fromError + oError) * length(s - from);
 }
 
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
 // behind its tangent plane, and at most `thickness` behind it (measured along the normal,
 // so the test does not depend on how much depth one pixel's footprint spans) or, peeled,
-// not beyond the back layer. `from`: the start of the ray s lies on (s itself for a point).
-bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float thickness) {
+// not beyond the back layer. `from`: the start of the ray s lies on (s itself for a point),
+// `fromError`: the normal error of from's pixel (storedNormalError).
+bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float fromError, float thickness) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
-    const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
+    const vec4 normalTexel = texelFetch(visNormal, pixel, 0);
+    const vec3 n = normalTexel.xyz;
     const float behind = -dot(s - o, n);
     bool inside = behind <= thickness;
 #ifdef SCREEN_PEELED
@@ -83,14 +82,15 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float thickness) {
 #endif
     // The ray's start carries the error of its own pixel's depth, taken as o's: a ray leaving
     // a surface meets its own plane's pixels first.
-    const float errors = 2.0 * depthReconstructionError(o, depth) + screenNormalSlack(from, s, o);
+    const float errors =
+        2.0 * depthReconstructionError(o, depth) + screenNormalSlack(from, fromError, s, o, storedNormalError(normalTexel));
     return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), length(s)), errors) && inside;
 }
 
 // Whether s, a point seen from `from`, is hidden behind the depth buffer (see above).
-bool screenHidden(vec3 s, vec3 from, float thickness) {
+bool screenHidden(vec3 s, vec3 from, float fromError, float thickness) {
     ivec2 pixel;
-    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, from, thickness);
+    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, from, fromError, thickness);
 }
 
 float screenSampleT(int j, int steps, float jitter) { return (float(j) + jitter) / float(steps); }
@@ -105,7 +105,7 @@ const uint kScreenSampleFetches = 2u;
 // 3D march of the segment p -> p + d: the parameter t_j of the first hidden sample, or -1;
 // `fetches` counts texel fetches. The loop carries no early exit (see voxel_traversal.glsl
 // on llvmpipe).
-float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchView(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     float hitT = -1.0;
     fetches = 0u;
     for (int j = 0; j < steps && hitT < 0.0; ++j) {
@@ -114,7 +114,7 @@ float screenMarchView(vec3 p, vec3 d, int steps, float jitter, float thickness, 
         ivec2 pixel;
         if (screenPixelOf(s, pixel)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -145,7 +145,7 @@ bool screenSampleAt(ScreenRay r, float t, out ivec2 pixel, out vec3 s) {
 }
 
 // 2D march of the segment p -> p + d in texture space: t_j of the first hidden sample, or -1.
-float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchTexture(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     const ScreenRay r = screenRayOf(p, d);
     float hitT = -1.0;
     fetches = 0u;
@@ -155,7 +155,7 @@ float screenMarchTexture(vec3 p, vec3 d, int steps, float jitter, float thicknes
         vec3 s;
         if (screenSampleAt(r, t, pixel, s)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -190,7 +190,7 @@ float screenCellExit(ScreenRay r, vec2 lo, vec2 hi, float t0) {
 // segment's exit from the cell and is kept only when sample k lands in the cell itself
 // (else the run is j alone), so no sample outside the cell's bounds is ever skipped.
 // Returns t of the first hidden sample or -1; `fetches` counts texel fetches.
-float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchHiZ(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     const ScreenRay r = screenRayOf(p, d);
     const int top = textureQueryLevels(visHiZ) - 1;
     float hitT = -1.0;
@@ -225,7 +225,7 @@ float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, o
                 level -= 1;
             } else {
                 fetches += kScreenSampleFetches;
-                if (screenHiddenAt(pixel, s, p, thickness)) hitT = t;
+                if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
                 j += 1;
             }
         }
@@ -235,20 +235,20 @@ float screenMarchHiZ(vec3 p, vec3 d, int steps, float jitter, float thickness, o
 #endif
 
 // The march SCREEN_MARCH selects over the segment p -> p + d: t of the first hidden sample or -1.
-float screenMarchSegment(vec3 p, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchSegment(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
 #if SCREEN_MARCH == VIS_MARCH_TEXTURE
-    return screenMarchTexture(p, d, steps, jitter, thickness, fetches);
+    return screenMarchTexture(p, pError, d, steps, jitter, thickness, fetches);
 #elif SCREEN_MARCH == VIS_MARCH_HIZ
-    return screenMarchHiZ(p, d, steps, jitter, thickness, fetches);
+    return screenMarchHiZ(p, pError, d, steps, jitter, thickness, fetches);
 #else
-    return screenMarchView(p, d, steps, jitter, thickness, fetches);
+    return screenMarchView(p, pError, d, steps, jitter, thickness, fetches);
 #endif
 }
 
 // The distance along the unit direction w of the first hidden of `steps` samples out to
-// `radius`, or -1 when none is.
-float screenMarch(vec3 p, vec3 w, float radius, int steps, float jitter, float thickness) {
+// `radius`, or -1 when none is. pError: the normal error of p's pixel (storedNormalError).
+float screenMarch(vec3 p, float pError, vec3 w, float radius, int steps, float jitter, float thickness) {
     uint fetches;
-    const float t = screenMarchSegment(p, w * radius, steps, jitter, thickness, fetches);
+    const float t = screenMarchSegment(p, pError, w * radius, steps, jitter, thickness, fetches);
     return t < 0.0 ? -1.0 : t * radius;
 }

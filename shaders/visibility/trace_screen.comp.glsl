@@ -21,6 +21,15 @@ layout(location = VIS_LOC_THICKNESS) uniform float thickness;
 layout(location = VIS_LOC_COUNT) uniform uint count;
 layout(location = VIS_LOC_FIRST) uniform uint first;
 
+// The normal error of the pixel a segment starts in (segments from surface points start in
+// their own pixel); the view's normalError elsewhere.
+float fromNormalError(vec3 from) {
+    ivec2 pixel;
+    if (!screenPixelOf(from, pixel)) return storedNormalError();
+    const vec4 normalTexel = texelFetch(visNormal, pixel, 0);
+    return normalTexel.a > 0.0 ? storedNormalError(normalTexel) : storedNormalError();
+}
+
 void main() {
     const uint i = first + gl_GlobalInvocationID.x;
     if (i >= count) return;
@@ -29,7 +38,7 @@ void main() {
     float t = -1.0;
     uint fetches = 0u;
     if (allFinite(from) && allFinite(to)) {
-        t = screenMarchSegment(from, d, steps, jitter, thickness, fetches);
+        t = screenMarchSegment(from, fromNormalError(from), d, steps, jitter, thickness, fetches);
     }
     const bool hit = t >= 0.0;
     // The sample index back from t (exact: t = (j + jitter) / steps was computed that way).

@@ -408,7 +408,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     const GLuint normal = impl_->adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
     const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
     ctx.gl.UseProgram(program);
-    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, host.depth.name));
+    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, host.depth.name), normalError);
     ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, host.depth.name);
     ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
     if (host.normal.name != 0) {
