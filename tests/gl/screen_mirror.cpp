@@ -121,6 +121,14 @@ ScreenMirror::ScreenMirror(Context& ctx, const GBufferView& view)
     if (view.backDepth) backDepth = readTexture(ctx, view.backDepth);
 }
 
+double ScreenMirror::startNormalError(glm::dvec3 from) const {
+    const glm::dvec4 clip = glm::dmat4(camera.projection) * glm::dvec4(from, 1.0);
+    const double X = (clip.x / clip.w * 0.5 + 0.5) * width, Y = (clip.y / clip.w * 0.5 + 0.5) * height;
+    if (!(clip.w > 0.0) || X < 0.0 || Y < 0.0 || X >= width || Y >= height) return normalError;
+    const float alpha = normals.at(int(X), height - 1 - int(Y), 3);
+    return alpha > 0.0f ? normalError * alpha : normalError;
+}
+
 Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
                                bool peeled) const {
     const double t = (j + jitter) / steps;
@@ -144,7 +152,7 @@ Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, 
     const double reconstruction = rec.kind == ProjectionKind::Perspective
                                       ? std::abs(o.z) / std::abs(double(rec.zScale)) * glm::length(o) * step
                                       : std::abs(double(rec.zScale)) * step;
-    const double oError = normalError * normals.at(px, row, 3), fromError = normalError; // ours: alpha 1 everywhere
+    const double oError = normalError * normals.at(px, row, 3), fromError = startNormalError(from);
     const double tolerance = kPositionRounding * std::max(glm::length(o), glm::length(s)) + 2.0 * reconstruction +
                              oError * glm::length(from - o) + (fromError + oError) * glm::length(s - from);
     // How far a march's behind - tolerance may lie from this one: its point's rounding, through

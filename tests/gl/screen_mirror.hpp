@@ -27,6 +27,10 @@ struct ScreenMirror {
     //! with peeled, the back layer where there is one.
     Verdict classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
                      bool peeled) const;
+
+    //! The normal error the marches take for a ray from `from`: its pixel's (trace_screen's
+    //! fromNormalError; the integrators' rays start in their own pixel).
+    double startNormalError(glm::dvec3 from) const;
 };
 
 } // namespace obscura::test
