@@ -110,12 +110,16 @@ struct HostGBuffer {
     //! Optional, same size. Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
     //! then bounds its error from the depth's precision (a step of the depth format through
-    //! the projection) where the pixel and the two neighbours lie on one plane: 2 (any
-    //! direction) where that precision cannot tell the plane or whether it faces the camera.
-    //! With 24-bit depth a floor 6 units away (near plane 0.05, 64 x 48 pixels) gets at most
-    //! 0.014; with 16-bit depth 0.3-0.56, which the screen tests then allow for, finding
-    //! less occlusion near such planes. Across creases and silhouettes the reconstruction
-    //! is not the face normal, and no bound holds there.
+    //! the projection; the host's depth must lie within one step of the surface's) where the
+    //! pixel and the two neighbours lie on one plane: 2 (any direction) where that precision
+    //! cannot tell the plane or whether it faces the camera. The bound is about twice the
+    //! depth error over the pixel spacing: it grows with the resolution and, for standard
+    //! perspective depth, with the square of the distance. A floor 6 units away at 64 x 48
+    //! pixels (50 degree field of view, near plane 0.05, seen from 15 degrees up or more)
+    //! gets at most 0.014 with 24-bit depth, 0.3-0.56 with 16-bit depth. Alpha is in units of
+    //! the adopted view's normalError (kHalfNormalError), and per-pixel bounds are not held
+    //! to kMaxNormalError. Across creases and silhouettes the reconstruction is not the face
+    //! normal, and no bound holds there.
     TextureView normal;
     NormalSpace normalSpace = NormalSpace::View;
     NormalEncoding normalEncoding = NormalEncoding::Signed;

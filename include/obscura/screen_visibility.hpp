@@ -9,8 +9,10 @@
 // the constant thickness where that layer is empty). A point is hidden when it projects
 // into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
 // plane never hits it again at any resolution; beyond the rounding of depth, positions and
-// normals: GBufferView::normalError times |from - o| + 2 |s - from| for a sample s of a
-// segment from -> to, |s - o| for a point) and is not beyond the back. Points outside
+// normals: where o may lie on the plane a segment from -> to starts on (within the start
+// pixel's normal error of its tangent plane), e_o |from - o| + (e_from + e_o) |s - from| for
+// a sample s, e being each pixel's normal error, GBufferView::normalError times its normal's
+// alpha) and is not beyond the back. Points outside
 // the image or behind the camera plane are visible (the border policy). The reach of a query
 // is its segment: the radius check of the integrators is the segment's length.
 //
@@ -59,7 +61,7 @@ struct ScreenHit {
     bool hit = false;
     int sample = -1;           //!< index j of the first hidden sample; -1 for a miss
     float t = 1.0f;            //!< its parameter t_j on the segment; 1 for a miss
-    std::uint32_t fetches = 0; //!< texel fetches the query made (depth, normal, back, pyramid)
+    std::uint32_t fetches = 0; //!< texel fetches the query made (the start's normal; depth, normal, back, pyramid)
 };
 
 class OBSCURA_API ScreenVisibility {

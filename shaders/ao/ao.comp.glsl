@@ -92,7 +92,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        aoAdd(e, w, normal, screenMarch(p, normalError, w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
+        aoAdd(e, w, normal, screenMarch(ScreenRayStart(p, normal, normalError), w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
     }
     return e;
 }
@@ -110,7 +110,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
         const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
-        aoAdd(e, w, normal, screenHidden(p + w * d, p, normalError, ao.shape.y) ? d : -1.0);
+        aoAdd(e, w, normal, screenHidden(p + w * d, ScreenRayStart(p, normal, normalError), ao.shape.y) ? d : -1.0);
     }
     return e;
 }

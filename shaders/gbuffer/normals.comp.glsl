@@ -52,17 +52,20 @@ SurfacePoint tangent(ivec2 pixel, ivec2 axis, SurfacePoint p) {
 // A bound on the distance between the unit normal of a x b, turned toward the camera c, and
 // that of the plane the points lie on. The surface points' differences lie within a.error and
 // b.error of a and b, so their cross product lies within m = ea |b| + eb |a| + ea eb (plus
-// the cross product's rounding) of a x b, and its direction within asin(m / |a x b|); a
-// chord is shorter than its arc. Turning toward the camera keeps that only where the normal
-// is farther than the bound from edge-on; elsewhere, and where m >= |a x b|, 2: any
+// the cross product's rounding) of a x b, and its direction within the angle whose sine is
+// r = m / |a x b|: apart by the chord 2 sin(angle / 2) = r sqrt(2 / (1 + sqrt(1 - r^2)))
+// (sqrt and division only: GLSL leaves asin's precision open). Turning toward the camera
+// keeps that where the normal's dot product with c exceeds the chord (the dot products of
+// the two unit normals differ by at most it); elsewhere, and where m >= |a x b|, 2: any
 // direction.
 float crossNormalError(SurfacePoint a, SurfacePoint b, vec3 c) {
     const vec3 n = cross(a.p, b.p);
     const float lenA = length(a.p), lenB = length(b.p), lenN = length(n);
     const float m = a.error * lenB + b.error * lenA + a.error * b.error + kPositionRounding * lenA * lenB;
     if (!(m < lenN)) return 2.0;
-    const float angle = asin(m / lenN);
-    return abs(dot(n, c)) > angle * lenN ? angle : 2.0;
+    const float r = m / lenN;
+    const float chord = r * sqrt(2.0 / (1.0 + sqrt(1.0 - r * r)));
+    return abs(dot(n, c)) > chord * lenN ? chord : 2.0;
 }
 #endif
 

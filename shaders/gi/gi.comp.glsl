@@ -89,7 +89,7 @@ vec3 giRadianceSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
-        const float t = screenMarch(p, normalError, w, radius, gi.counts.y, jitter, gi.shape.y); // distance
+        const float t = screenMarch(ScreenRayStart(p, normal, normalError), w, radius, gi.counts.y, jitter, gi.shape.y); // distance
         // The hidden sample lies behind the surface it projects to: read that surface, if the
         // ray crossed it after the previous sample (a step of r / steps before, with half a
         // step of slack).

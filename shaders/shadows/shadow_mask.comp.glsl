@@ -34,7 +34,7 @@ void main() {
             const vec3 start = p + n * shadowTexel(0, p, 0);
             const bool directional = shadowLightType(0) == SHADOW_LIGHT_DIRECTIONAL;
             const float reach = directional ? contact.x : min(contact.x, length(shadowLights[0].light.xyz - start));
-            const float hit = screenMarch(start, storedNormalError(normalTexel), shadowToLight(0, p), reach, int(contact.y), 0.5, contact.z);
+            const float hit = screenMarch(ScreenRayStart(start, n, storedNormalError(normalTexel)), shadowToLight(0, p), reach, int(contact.y), 0.5, contact.z);
             v = hit >= 0.0 ? 0.0 : v;
         }
     }

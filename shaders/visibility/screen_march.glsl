@@ -54,22 +54,34 @@ float screenPlaneTolerance(float magnitude, float reconstructionErrors) {
     return kPositionRounding * magnitude + reconstructionErrors;
 }
 
+// The start of a ray: its point, its pixel's stored normal (zero where unknown) and that
+// normal's error (storedNormalError).
+struct ScreenRayStart {
+    vec3 p;
+    vec3 n;
+    float normalError;
+};
+
 // Each stored normal lies within its pixel's storedNormalError of the true one. A ray leaving a
-// plane at `from` (normal error fromError) into the hemisphere of from's stored normal may
-// reach s up to oError |from - o| + (fromError + oError) |s - from| behind another pixel o's
-// stored tangent plane of the same plane: from - o lies in the true plane, off o's stored one
-// by oError per unit length, and the two stored normals differ by at most the sum of their
-// errors along the ray.
-float screenNormalSlack(vec3 from, float fromError, vec3 s, vec3 o, float oError) {
-    return oError * length(from - o) + (fromError + oError) * length(s - from);
+// plane at `from` into the hemisphere of from's stored normal may reach s up to
+// oError |from - o| + (fromError + oError) |s - from| behind another pixel o's stored
+// tangent plane of the same plane: from - o lies in the true plane, off o's stored one by
+// oError per unit length, and the two stored normals differ by at most the sum of their
+// errors along the ray. Only a pixel that may lie on from's plane needs that: one farther
+// from from's stored tangent plane than from's normal error (and the points' own errors,
+// positionErrors) allow is another surface, which hides what is behind it.
+float screenNormalSlack(ScreenRayStart from, vec3 s, vec3 o, float oError, float positionErrors) {
+    const vec3 toO = o - from.p;
+    const float distance = length(toO);
+    if (abs(dot(toO, from.n)) > from.normalError * distance + positionErrors) return 0.0;
+    return oError * distance + (from.normalError + oError) * length(s - from.p);
 }
 
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
 // behind its tangent plane, and at most `thickness` behind it (measured along the normal,
 // so the test does not depend on how much depth one pixel's footprint spans) or, peeled,
-// not beyond the back layer. `from`: the start of the ray s lies on (s itself for a point),
-// `fromError`: the normal error of from's pixel (storedNormalError).
-bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float fromError, float thickness) {
+// not beyond the back layer. `from`: the start of the ray s lies on (s itself for a point).
+bool screenHiddenAt(ivec2 pixel, vec3 s, ScreenRayStart from, float thickness) {
     const float depth = texelFetch(visDepth, pixel, 0).r;
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec4 normalTexel = texelFetch(visNormal, pixel, 0);
@@ -82,15 +94,16 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, vec3 from, float fromError, float thick
 #endif
     // The ray's start carries the error of its own pixel's depth, taken as o's: a ray leaving
     // a surface meets its own plane's pixels first.
-    const float errors =
-        2.0 * depthReconstructionError(o, depth) + screenNormalSlack(from, fromError, s, o, storedNormalError(normalTexel));
+    const float depthErrors = 2.0 * depthReconstructionError(o, depth);
+    const float positionErrors = screenPlaneTolerance(max(length(o), length(from.p)), depthErrors);
+    const float errors = depthErrors + screenNormalSlack(from, s, o, storedNormalError(normalTexel), positionErrors);
     return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), length(s)), errors) && inside;
 }
 
 // Whether s, a point seen from `from`, is hidden behind the depth buffer (see above).
-bool screenHidden(vec3 s, vec3 from, float fromError, float thickness) {
+bool screenHidden(vec3 s, ScreenRayStart from, float thickness) {
     ivec2 pixel;
-    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, from, fromError, thickness);
+    return screenPixelOf(s, pixel) && screenHiddenAt(pixel, s, from, thickness);
 }
 
 float screenSampleT(int j, int steps, float jitter) { return (float(j) + jitter) / float(steps); }
@@ -105,16 +118,16 @@ const uint kScreenSampleFetches = 2u;
 // 3D march of the segment p -> p + d: the parameter t_j of the first hidden sample, or -1;
 // `fetches` counts texel fetches. The loop carries no early exit (see voxel_traversal.glsl
 // on llvmpipe).
-float screenMarchView(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchView(ScreenRayStart start, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
     float hitT = -1.0;
     fetches = 0u;
     for (int j = 0; j < steps && hitT < 0.0; ++j) {
         const float t = screenSampleT(j, steps, jitter);
-        const vec3 s = p + d * t;
+        const vec3 s = start.p + d * t;
         ivec2 pixel;
         if (screenPixelOf(s, pixel)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, start, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -145,8 +158,8 @@ bool screenSampleAt(ScreenRay r, float t, out ivec2 pixel, out vec3 s) {
 }
 
 // 2D march of the segment p -> p + d in texture space: t_j of the first hidden sample, or -1.
-float screenMarchTexture(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
-    const ScreenRay r = screenRayOf(p, d);
+float screenMarchTexture(ScreenRayStart start, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+    const ScreenRay r = screenRayOf(start.p, d);
     float hitT = -1.0;
     fetches = 0u;
     for (int j = 0; j < steps && hitT < 0.0; ++j) {
@@ -155,7 +168,7 @@ float screenMarchTexture(vec3 p, float pError, vec3 d, int steps, float jitter, 
         vec3 s;
         if (screenSampleAt(r, t, pixel, s)) {
             fetches += kScreenSampleFetches;
-            if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
+            if (screenHiddenAt(pixel, s, start, thickness)) hitT = t;
         }
     }
     return hitT;
@@ -190,8 +203,8 @@ float screenCellExit(ScreenRay r, vec2 lo, vec2 hi, float t0) {
 // segment's exit from the cell and is kept only when sample k lands in the cell itself
 // (else the run is j alone), so no sample outside the cell's bounds is ever skipped.
 // Returns t of the first hidden sample or -1; `fetches` counts texel fetches.
-float screenMarchHiZ(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
-    const ScreenRay r = screenRayOf(p, d);
+float screenMarchHiZ(ScreenRayStart start, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+    const ScreenRay r = screenRayOf(start.p, d);
     const int top = textureQueryLevels(visHiZ) - 1;
     float hitT = -1.0;
     fetches = 0u;
@@ -225,7 +238,7 @@ float screenMarchHiZ(vec3 p, float pError, vec3 d, int steps, float jitter, floa
                 level -= 1;
             } else {
                 fetches += kScreenSampleFetches;
-                if (screenHiddenAt(pixel, s, p, pError, thickness)) hitT = t;
+                if (screenHiddenAt(pixel, s, start, thickness)) hitT = t;
                 j += 1;
             }
         }
@@ -235,20 +248,20 @@ float screenMarchHiZ(vec3 p, float pError, vec3 d, int steps, float jitter, floa
 #endif
 
 // The march SCREEN_MARCH selects over the segment p -> p + d: t of the first hidden sample or -1.
-float screenMarchSegment(vec3 p, float pError, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
+float screenMarchSegment(ScreenRayStart start, vec3 d, int steps, float jitter, float thickness, out uint fetches) {
 #if SCREEN_MARCH == VIS_MARCH_TEXTURE
-    return screenMarchTexture(p, pError, d, steps, jitter, thickness, fetches);
+    return screenMarchTexture(start, d, steps, jitter, thickness, fetches);
 #elif SCREEN_MARCH == VIS_MARCH_HIZ
-    return screenMarchHiZ(p, pError, d, steps, jitter, thickness, fetches);
+    return screenMarchHiZ(start, d, steps, jitter, thickness, fetches);
 #else
-    return screenMarchView(p, pError, d, steps, jitter, thickness, fetches);
+    return screenMarchView(start, d, steps, jitter, thickness, fetches);
 #endif
 }
 
 // The distance along the unit direction w of the first hidden of `steps` samples out to
-// `radius`, or -1 when none is. pError: the normal error of p's pixel (storedNormalError).
-float screenMarch(vec3 p, float pError, vec3 w, float radius, int steps, float jitter, float thickness) {
+// `radius` from start.p, or -1 when none is.
+float screenMarch(ScreenRayStart start, vec3 w, float radius, int steps, float jitter, float thickness) {
     uint fetches;
-    const float t = screenMarchSegment(p, pError, w * radius, steps, jitter, thickness, fetches);
+    const float t = screenMarchSegment(start, w * radius, steps, jitter, thickness, fetches);
     return t < 0.0 ? -1.0 : t * radius;
 }

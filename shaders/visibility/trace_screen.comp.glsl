@@ -21,13 +21,17 @@ layout(location = VIS_LOC_THICKNESS) uniform float thickness;
 layout(location = VIS_LOC_COUNT) uniform uint count;
 layout(location = VIS_LOC_FIRST) uniform uint first;
 
-// The normal error of the pixel a segment starts in (segments from surface points start in
-// their own pixel); the view's normalError elsewhere.
-float fromNormalError(vec3 from) {
+// A segment's start with the normal and normal error of the pixel it lies in (segments from
+// surface points start in their own pixel); elsewhere no normal and the view's normalError.
+// `fetches` counts the normal's fetch.
+ScreenRayStart rayStartOf(vec3 from, inout uint fetches) {
     ivec2 pixel;
-    if (!screenPixelOf(from, pixel)) return storedNormalError();
-    const vec4 normalTexel = texelFetch(visNormal, pixel, 0);
-    return normalTexel.a > 0.0 ? storedNormalError(normalTexel) : storedNormalError();
+    if (screenPixelOf(from, pixel)) {
+        fetches += 1u;
+        const vec4 normalTexel = texelFetch(visNormal, pixel, 0);
+        if (normalTexel.a > 0.0) return ScreenRayStart(from, normalTexel.xyz, storedNormalError(normalTexel));
+    }
+    return ScreenRayStart(from, vec3(0.0), storedNormalError());
 }
 
 void main() {
@@ -38,7 +42,10 @@ void main() {
     float t = -1.0;
     uint fetches = 0u;
     if (allFinite(from) && allFinite(to)) {
-        t = screenMarchSegment(from, fromNormalError(from), d, steps, jitter, thickness, fetches);
+        uint startFetches = 0u;
+        const ScreenRayStart start = rayStartOf(from, startFetches);
+        t = screenMarchSegment(start, d, steps, jitter, thickness, fetches);
+        fetches += startFetches;
     }
     const bool hit = t >= 0.0;
     // The sample index back from t (exact: t = (j + jitter) / steps was computed that way).

@@ -5,7 +5,7 @@
 #define OBSCURA_VISIBILITY_BINDINGS_H
 
 #define VIS_DEPTH_UNIT 5      // the G-buffer's hardware depth (sampler2D, texelFetch)
-#define VIS_NORMAL_UNIT 6     // the G-buffer's view-space geometric normal (alpha 1 on geometry)
+#define VIS_NORMAL_UNIT 6     // the G-buffer's view-space geometric normal (alpha: 0 on background, else the normal error scale)
 #define VIS_BACK_DEPTH_UNIT 7 // the second depth layer (SCREEN_PEELED)
 #define VIS_HIZ_UNIT 8        // the min/max view-z pyramid (SCREEN_MARCH = VIS_MARCH_HIZ), RG32F with mips
 

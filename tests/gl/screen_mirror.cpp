@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace obscura::test {
 namespace {
@@ -121,12 +122,27 @@ ScreenMirror::ScreenMirror(Context& ctx, const GBufferView& view)
     if (view.backDepth) backDepth = readTexture(ctx, view.backDepth);
 }
 
-double ScreenMirror::startNormalError(glm::dvec3 from) const {
-    const glm::dvec4 clip = glm::dmat4(camera.projection) * glm::dvec4(from, 1.0);
+std::vector<ScreenMirror::Start> ScreenMirror::starts(glm::dvec3 from) const {
+    const glm::dmat4 P(camera.projection);
+    const glm::dvec4 clip = P * glm::dvec4(from, 1.0);
+    glm::dvec4 clipError;
+    for (int r = 0; r < 4; ++r) clipError[r] = 4.0 * u * rowMagnitude(P, r, glm::dvec4(from, 1.0));
+    const glm::dvec2 error = pixelRounding(clip, clipError, width, height).pixel;
     const double X = (clip.x / clip.w * 0.5 + 0.5) * width, Y = (clip.y / clip.w * 0.5 + 0.5) * height;
-    if (!(clip.w > 0.0) || X < 0.0 || Y < 0.0 || X >= width || Y >= height) return normalError;
-    const float alpha = normals.at(int(X), height - 1 - int(Y), 3);
-    return alpha > 0.0f ? normalError * alpha : normalError;
+    std::vector<Start> out;
+    // The pixels the shader's float projection may put `from` in: those within its rounding.
+    for (const double x : {X - error.x, X + error.x})
+        for (const double y : {Y - error.y, Y + error.y}) {
+            Start start{glm::dvec3(0.0), normalError};
+            if (clip.w > 0.0 && x >= 0.0 && y >= 0.0 && x < width && y < height) {
+                const int px = int(x), row = height - 1 - int(y);
+                const float alpha = normals.at(px, row, 3);
+                if (alpha > 0.0f) start = {texel3(normals, px, row), normalError * alpha};
+            }
+            if (std::none_of(out.begin(), out.end(), [&](const Start& s) { return s.normal == start.normal && s.error == start.error; }))
+                out.push_back(start);
+        }
+    return out;
 }
 
 Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
@@ -152,32 +168,58 @@ Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, 
     const double reconstruction = rec.kind == ProjectionKind::Perspective
                                       ? std::abs(o.z) / std::abs(double(rec.zScale)) * glm::length(o) * step
                                       : std::abs(double(rec.zScale)) * step;
-    const double oError = normalError * normals.at(px, row, 3), fromError = startNormalError(from);
-    const double tolerance = kPositionRounding * std::max(glm::length(o), glm::length(s)) + 2.0 * reconstruction +
-                             oError * glm::length(from - o) + (fromError + oError) * glm::length(s - from);
-    // How far a march's behind - tolerance may lie from this one: its point's rounding, through
-    // n and through the tolerance's terms in s; o's reconstruction (a division and the xy
-    // terms, 10 ulp of |o|); the dot product's rounding; the tolerance's own sums.
-    double dotRounding = 0.0;
-    for (int c = 0; c < 3; ++c) dotRounding += (4.0 * u * std::abs(s[c] - o[c]) + u * (std::abs(s[c]) + std::abs(o[c]))) * std::abs(n[c]);
-    const double margin = r.point * (glm::length(n) + kPositionRounding + fromError + oError) +
-                          10.0 * u * glm::length(o) * (glm::length(n) + kPositionRounding + 2.0 * oError) + dotRounding +
-                          24.0 * u * tolerance;
-    const bool planeTie = std::abs(behind - tolerance) <= margin;
-    if (!planeTie && behind <= tolerance) return Verdict::Visible;
-    bool inside = false, insideTie = false;
+    const double oError = normalError * normals.at(px, row, 3);
     const double back = peeled && !backDepth.pixels.empty() ? backDepth.at(px, row, 0) : rec.clearDepth;
-    if (back != rec.clearDepth) {
-        // s.z against the back layer's view z (or o's): each within 10 ulp of its value.
-        const double limit = std::min(viewPositionFromDepth(camera, ndc, back).z, o.z);
-        inside = s.z >= limit;
-        insideTie = std::abs(s.z - limit) <= r.point + 10.0 * u * std::abs(limit);
-    } else {
-        inside = behind <= thickness;
-        insideTie = std::abs(behind - thickness) <= margin + u * thickness;
+    // The verdict for one start pixel's normal error and one choice of the slack.
+    const auto verdict = [&](double fromError, double slack) {
+        const double tolerance = kPositionRounding * std::max(glm::length(o), glm::length(s)) + 2.0 * reconstruction + slack;
+        // How far a march's behind - tolerance may lie from this one: its point's rounding,
+        // through n and through the tolerance's terms in s; o's reconstruction (a division and
+        // the xy terms, 10 ulp of |o|); the dot product's rounding; the tolerance's own sums.
+        double dotRounding = 0.0;
+        for (int c = 0; c < 3; ++c)
+            dotRounding += (4.0 * u * std::abs(s[c] - o[c]) + u * (std::abs(s[c]) + std::abs(o[c]))) * std::abs(n[c]);
+        const double margin = r.point * (glm::length(n) + kPositionRounding + fromError + oError) +
+                              10.0 * u * glm::length(o) * (glm::length(n) + kPositionRounding + 2.0 * oError) +
+                              dotRounding + 24.0 * u * tolerance;
+        const bool planeTie = std::abs(behind - tolerance) <= margin;
+        if (!planeTie && behind <= tolerance) return Verdict::Visible;
+        bool inside = false, insideTie = false;
+        if (back != rec.clearDepth) {
+            // s.z against the back layer's view z (or o's): each within 10 ulp of its value.
+            const double limit = std::min(viewPositionFromDepth(camera, ndc, back).z, o.z);
+            inside = s.z >= limit;
+            insideTie = std::abs(s.z - limit) <= r.point + 10.0 * u * std::abs(limit);
+        } else {
+            inside = behind <= thickness;
+            insideTie = std::abs(behind - thickness) <= margin + u * thickness;
+        }
+        if (!insideTie && !inside) return Verdict::Visible;
+        return planeTie || insideTie ? Verdict::Tie : Verdict::Hidden;
+    };
+    // screenNormalSlack: only where o may lie on the start's plane. The test's own rounding
+    // (o's reconstruction, the dot product, its limit's sums) may take it either way.
+    std::vector<Verdict> verdicts;
+    const glm::dvec3 toO = o - from;
+    const double positionErrors = kPositionRounding * std::max(glm::length(o), glm::length(from)) + 2.0 * reconstruction;
+    for (const Start& start : starts(from)) {
+        const double offPlane = std::abs(glm::dot(toO, start.normal));
+        const double limit = start.error * glm::length(toO) + positionErrors;
+        // The integrators take the normal normalized (within 2^-10 of unit length stored).
+        double gateRounding = 8.0 * u * limit + 10.0 * u * glm::length(o) * glm::length(start.normal) +
+                              std::abs(1.0 - glm::length(start.normal)) * offPlane;
+        for (int c = 0; c < 3; ++c)
+            gateRounding += (4.0 * u * std::abs(toO[c]) + u * (std::abs(o[c]) + std::abs(from[c]))) * std::abs(start.normal[c]);
+        const double slack = oError * glm::length(toO) + (start.error + oError) * glm::length(s - from);
+        if (std::abs(offPlane - limit) > gateRounding) {
+            verdicts.push_back(verdict(start.error, offPlane <= limit ? slack : 0.0));
+        } else {
+            verdicts.push_back(verdict(start.error, slack));
+            verdicts.push_back(verdict(start.error, 0.0));
+        }
     }
-    if (!insideTie && !inside) return Verdict::Visible;
-    return planeTie || insideTie ? Verdict::Tie : Verdict::Hidden;
+    const bool agree = std::all_of(verdicts.begin(), verdicts.end(), [&](Verdict v) { return v == verdicts.front(); });
+    return agree ? verdicts.front() : Verdict::Tie;
 }
 
 } // namespace obscura::test

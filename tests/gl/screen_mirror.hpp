@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace obscura::test {
 
 enum class Verdict { Visible, Hidden, Tie };
@@ -28,9 +30,15 @@ struct ScreenMirror {
     Verdict classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
                      bool peeled) const;
 
-    //! The normal error the marches take for a ray from `from`: its pixel's (trace_screen's
-    //! fromNormalError; the integrators' rays start in their own pixel).
-    double startNormalError(glm::dvec3 from) const;
+    //! A ray's start as the marches take it: its pixel's stored normal and normal error
+    //! (trace_screen's rayStartOf; the integrators' rays start in their own pixel), none and
+    //! normalError off the geometry.
+    struct Start {
+        glm::dvec3 normal;
+        double error;
+    };
+    //! The starts of the pixels the shader's float projection of `from` may fall in.
+    std::vector<Start> starts(glm::dvec3 from) const;
 };
 
 } // namespace obscura::test
