@@ -21,8 +21,7 @@ struct SurfacePoint {
     float error;
 };
 
-SurfacePoint surfacePoint(ivec2 pixel, float depth) {
-    const vec3 p = viewPositionFromDepth(pixelCenterUv(pixel), depth);
+SurfacePoint surfacePoint(vec3 p, float depth) {
     return SurfacePoint(p, depthReconstructionError(p, depth) + kPositionRounding * length(p));
 }
 
@@ -32,7 +31,7 @@ SurfacePoint neighbour(ivec2 pixel, out bool valid) {
     if (!valid) return SurfacePoint(vec3(0.0), 0.0);
     const float d = texelFetch(depthTexture, pixel, 0).r;
     valid = !isBackground(d);
-    return valid ? surfacePoint(pixel, d) : SurfacePoint(vec3(0.0), 0.0);
+    return valid ? surfacePoint(viewPositionFromDepth(pixelCenterUv(pixel), d), d) : SurfacePoint(vec3(0.0), 0.0);
 }
 
 // Of the two one-sided differences along an axis, the one with the smaller depth step
@@ -81,7 +80,7 @@ void main() {
     vec3 toCamera = viewDirectionTo(p);
     float errorScale = 1.0; // alpha: this pixel's normal error in units of the view's
 #ifdef FROM_DEPTH
-    const SurfacePoint centre = surfacePoint(pixel, depth);
+    const SurfacePoint centre = surfacePoint(p, depth);
     const SurfacePoint along = tangent(pixel, ivec2(1, 0), centre), across = tangent(pixel, ivec2(0, 1), centre);
     vec3 n = cross(along.p, across.p);
     // The view's normalError (kHalfNormalError) covers the half-float store; the reconstruction
