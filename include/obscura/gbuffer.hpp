@@ -110,7 +110,10 @@ struct HostGBuffer {
     //! Optional, same size. Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
     //! then bounds its error from the depth's precision (a step of the depth format through
-    //! the projection; the host's depth must lie within one step of the surface's) where the
+    //! the projection; each pixel's depth must lie within one step of one plane through it and
+    //! its neighbours: a smooth offset, like that of the host's own transform's rounding, does
+    //! not count, the rasterizer's per-pixel rounding does; llvmpipe's rasterization into
+    //! 16-, 24- and 32-bit depth keeps it, tests/gl/test_depth_normals.cpp) where the
     //! pixel and the two neighbours lie on one plane: 2 (any direction) where that precision
     //! cannot tell the plane or whether it faces the camera. The bound is about twice the
     //! depth error over the pixel spacing: it grows with the resolution and, for standard

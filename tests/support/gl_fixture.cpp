@@ -96,12 +96,10 @@ HostGBuffer unsignedNormalHost(GLuint depth, GLuint normal, GLenum format, Norma
     return host;
 }
 
-GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format) {
-    const GLuint vs = compiledShader(GL_VERTEX_SHADER, R"(#version 450
-void main() { gl_Position = vec4(vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0, 0.0, 1.0); })");
-    const GLuint fs = compiledShader(GL_FRAGMENT_SHADER, R"(#version 450
-layout(binding = 0) uniform sampler2D source;
-void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })");
+namespace {
+
+GLuint linkedProgram(const char* vertex, const char* fragment) {
+    const GLuint vs = compiledShader(GL_VERTEX_SHADER, vertex), fs = compiledShader(GL_FRAGMENT_SHADER, fragment);
     const GLuint program = glCreateProgram();
     glAttachShader(program, vs);
     glAttachShader(program, fs);
@@ -111,36 +109,101 @@ void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })
     GLint linked = 0;
     glGetProgramiv(program, GL_LINK_STATUS, &linked);
     REQUIRE(linked == GL_TRUE);
-    GLuint target = 0, fbo = 0, vao = 0;
+    return program;
+}
+
+// A host's depth pass: a new depth texture of `format`, cleared to `clear`, and `draw` run into it
+// with `program`, the depth test `func`, and the clip control `depthMode`. Sets the GL state the
+// pass needs explicitly and leaves the defaults (test contexts only).
+GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float clear, GLenum func, GLenum depthMode,
+                     const std::function<void()>& draw) {
+    GLuint target = 0, fbo = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, format, width, height);
     glCreateFramebuffers(1, &fbo);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, target, 0);
     glNamedFramebufferDrawBuffer(fbo, GL_NONE);
     REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
-    glCreateVertexArrays(1, &vao);
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    // The state the copy needs, set explicitly (the caller's is not kept: test contexts only).
     glViewport(0, 0, width, height);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_RASTERIZER_DISCARD);
     glDepthRange(0.0, 1.0);
+    glClipControl(GL_LOWER_LEFT, depthMode);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
+    glDepthFunc(func);
     glDepthMask(GL_TRUE);
     glUseProgram(program);
-    glBindTextureUnit(0, depth);
-    glBindVertexArray(vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glBindTextureUnit(0, 0);
+    draw();
     glUseProgram(0);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteVertexArrays(1, &vao);
     glDeleteFramebuffers(1, &fbo);
+    return target;
+}
+
+} // namespace
+
+GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format) {
+    const GLuint program = linkedProgram(R"(#version 450
+void main() { gl_Position = vec4(vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0, 0.0, 1.0); })",
+                                         R"(#version 450
+layout(binding = 0) uniform sampler2D source;
+void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })");
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    const GLuint target = hostDepthPass(width, height, format, program, 1.0f, GL_ALWAYS, GL_NEGATIVE_ONE_TO_ONE, [&] {
+        glBindTextureUnit(0, depth);
+        glBindVertexArray(vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(0);
+        glBindTextureUnit(0, 0);
+    });
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(program);
+    return target;
+}
+
+GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format) {
+    std::vector<glm::vec3> world; // every mesh's triangles in world space, as a host's vertex shader would see them
+    for (const Mesh& mesh : scene.meshes) {
+        const MeshData& data = *mesh.data;
+        const std::size_t count = data.indices.empty() ? data.positions.size() : data.indices.size();
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::vec3 p = data.positions[data.indices.empty() ? i : data.indices[i]];
+            world.push_back(glm::vec3(mesh.model * glm::vec4(p, 1.0f)));
+        }
+    }
+    REQUIRE(scene.meshRefs.empty());
+    const GLuint program = linkedProgram(R"(#version 450
+layout(location = 0) in vec3 position;
+layout(location = 0) uniform mat4 viewProjection;
+void main() { gl_Position = viewProjection * vec4(position, 1.0); })",
+                                         "#version 450\nvoid main() {}");
+    const glm::mat4 viewProjection = camera.projection * camera.view;
+    glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &viewProjection[0][0]);
+    GLuint buffer = 0, vao = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, GLsizeiptr(world.size() * sizeof(glm::vec3)), world.data(), 0);
+    glCreateVertexArrays(1, &vao);
+    glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    const bool reversed = analyzeProjection(camera).reversedZ;
+    const GLuint target = hostDepthPass(
+        width, height, format, program, reversed ? 0.0f : 1.0f, reversed ? GL_GREATER : GL_LESS,
+        camera.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE, [&] {
+            glBindVertexArray(vao);
+            glDrawArrays(GL_TRIANGLES, 0, GLsizei(world.size()));
+            glBindVertexArray(0);
+        });
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &buffer);
     glDeleteProgram(program);
     return target;
 }
