@@ -49,7 +49,11 @@ enum class AoMethod {
               //!< for height fields, darker than AO_r under overhangs: below a disc as high
               //!< as it is wide, 0.09-0.19 on 0.5); `rays` / 2 slices; cosine weighting only;
               //!< the bent normal integrates each slice's visible arc in closed form
-    Voxel,    //!< "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance)
+    //! "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance), from a
+    //! start lifted off the surface's own voxels by a voxel diagonal and the depth's error,
+    //! more for a pixel whose normal is only known within a bound (HostGBuffer::normal); a
+    //! segment that may sink back toward its own plane ends where it might (open beyond).
+    Voxel,
 };
 
 enum class AoResolution { Full = 1, Half = 2, Quarter = 4 }; //!< of the G-buffer, per axis

@@ -43,6 +43,7 @@
 #include "ao_common.glsl"
 #if METHOD == AO_METHOD_VOXEL
 #include "../voxel/voxel_traversal.glsl"
+#include "../voxel/surface_rays.glsl"
 #endif
 #include "../filters/refine_list.glsl"
 #include "../common/ray_batch.glsl"
@@ -213,17 +214,24 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     return e;
 }
 #else
-// Rays of length r through the voxel grid from a start lifted off the surface's voxels.
+// Rays of length r through the voxel grid from a start lifted off the surface's voxels, each
+// only as far as it provably stays above them (surface_rays.glsl).
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelJitter(pixel);
-    const vec3 start = p + normal * ao.shape.z;
-    const vec3 startVoxel = (ao.viewToVoxel * vec4(start, 1.0)).xyz;
+    const VoxelSurfaceStart from =
+        voxelSurfaceStart(p, texelFetch(visDepth, fullPixel, 0).r, normal, normalError, ao.shape.z);
+    const vec3 startVoxel = (ao.viewToVoxel * vec4(from.start, 1.0)).xyz;
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        const vec3 endVoxel = (ao.viewToVoxel * vec4(start + w * ao.shape.x, 1.0)).xyz;
+        const float reach = voxelClearLength(from, normal, w, ao.shape.x);
+        if (!(reach > 0.0)) {
+            aoAdd(e, w, normal, -1.0);
+            continue;
+        }
+        const vec3 endVoxel = (ao.viewToVoxel * vec4(from.start + w * reach, 1.0)).xyz;
         // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
 #if TRAVERSAL == VOXEL_METHOD_MARCH
         const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, ao.counts.y, jitter);
@@ -232,7 +240,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
 #else
         const VoxelHit hit = voxelTraceHierarchical(startVoxel, endVoxel);
 #endif
-        aoAdd(e, w, normal, hit.hit ? hit.t * ao.shape.x : -1.0);
+        aoAdd(e, w, normal, hit.hit ? hit.t * reach : -1.0);
     }
     return e;
 }

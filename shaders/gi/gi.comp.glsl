@@ -31,6 +31,7 @@
 #include "gi_bindings.h"
 #if METHOD == GI_METHOD_HYBRID
 #include "../voxel/voxel_traversal.glsl"
+#include "../voxel/surface_rays.glsl"
 #endif
 #include "../filters/refine_list.glsl"
 #include "../common/ray_batch.glsl"
@@ -76,15 +77,15 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
 }
 
 // The sum of the radiance read over this batch's rays (ray_batch.glsl).
-vec3 giRadianceSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
+vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pixel) {
     const vec2 rotation = pixelRotation(pixel);
     const float jitter = pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x;
     const uint n = uint(gi.counts.x);
     const float radius = gi.shape.x;
     vec3 sum = vec3(0.0);
 #if METHOD == GI_METHOD_HYBRID
-    const vec3 start = p + normal * gi.shape.z;
-    const vec3 startVoxel = (gi.viewToVoxel * vec4(start, 1.0)).xyz;
+    const VoxelSurfaceStart from = voxelSurfaceStart(p, depth, normal, normalError, gi.shape.z);
+    const vec3 startVoxel = (gi.viewToVoxel * vec4(from.start, 1.0)).xyz;
 #endif
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
@@ -96,7 +97,11 @@ vec3 giRadianceSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
         const float entryFrom = t - 1.5 * radius / float(gi.counts.y);
         if (t >= 0.0) sum += giScreenRadiance(p, w, t, entryFrom, gi.shape.y + radius);
 #else
-        const vec3 endVoxel = (gi.viewToVoxel * vec4(start + w * radius, 1.0)).xyz;
+        // Only as far as the ray provably stays above the surface's own voxels
+        // (surface_rays.glsl); a ray traced no farther reads nothing.
+        const float reach = voxelClearLength(from, normal, w, radius);
+        if (!(reach > 0.0)) continue;
+        const vec3 endVoxel = (gi.viewToVoxel * vec4(from.start + w * reach, 1.0)).xyz;
 #if TRAVERSAL == VOXEL_METHOD_MARCH
         const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, gi.counts.y, jitter);
 #elif TRAVERSAL == VOXEL_METHOD_EXACT
@@ -109,9 +114,9 @@ vec3 giRadianceSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
         // step before, its sample being up to a step late). A crossing more than a voxel
         // diagonal (the slack of the tangent plane) before the hit means the ray went under
         // the visible surface and entered something the camera does not see.
-        const float t = hit.t * radius;
-        const float slack = gi.shape.z + (TRAVERSAL == VOXEL_METHOD_MARCH ? radius / float(gi.counts.y) : 0.0);
-        if (hit.hit) sum += giScreenRadiance(start, w, t, t - slack, gi.shape.y);
+        const float t = hit.t * reach;
+        const float slack = gi.shape.z + (TRAVERSAL == VOXEL_METHOD_MARCH ? reach / float(gi.counts.y) : 0.0);
+        if (hit.hit) sum += giScreenRadiance(from.start, w, t, t - slack, gi.shape.y);
 #endif
     }
     return sum;
@@ -133,7 +138,7 @@ void main() {
     if (mine && !background) {
         p = viewPositionFromDepth(pixelCenterUv(full), depth);
         normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-        own = giRadianceSum(p, normal, storedNormalError(normalTexel), pixel);
+        own = giRadianceSum(p, depth, normal, storedNormalError(normalTexel), pixel);
     }
     const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own, 0.0), vec4(0.0)));
     if (!mine || rayLane() != 0u) return;

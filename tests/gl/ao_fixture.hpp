@@ -6,6 +6,7 @@
 
 #include "obscura/obscura.hpp"
 
+#include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -42,6 +43,23 @@ struct AoFixture {
         return glm::dvec3(glm::inverse(glm::dmat4(view.camera.view)) * v);
     }
 };
+
+// AO exactly 1 on every pixel of the fixture's own G-buffer that holds geometry (a plane
+// that covers more than half the image).
+inline void checkOpenEverywhere(const AoFixture& f, const Image& ao) {
+    std::size_t notOne = 0, pixels = 0;
+    double lowest = 1.0;
+    for (int y = 0; y < ao.height; ++y)
+        for (int x = 0; x < ao.width; ++x) {
+            if (!f.geometry(x, y)) continue;
+            ++pixels;
+            notOne += ao.at(x, y, 0) != 1.0f;
+            lowest = std::min(lowest, double(ao.at(x, y, 0)));
+        }
+    INFO(notOne << " of " << pixels << " pixels below 1, lowest " << lowest);
+    CHECK(pixels > std::size_t(ao.width * ao.height / 2));
+    CHECK(notOne == 0);
+}
 
 //! The AO tests' camera: 50 degrees vertical field of view, near 0.05, far 200.
 inline Camera lookAt(glm::vec3 eye, glm::vec3 target, int width, int height, DepthMode mode = DepthMode::Standard) {

@@ -96,23 +96,6 @@ double pointsBentTilt(double c) {
     return std::atan2(z, y);
 }
 
-// AO exactly 1 on every pixel of the fixture's own G-buffer that holds geometry (a plane
-// that covers more than half the image).
-void checkOpenEverywhere(const AoFixture& f, const Image& ao) {
-    std::size_t notOne = 0, pixels = 0;
-    double lowest = 1.0;
-    for (int y = 0; y < ao.height; ++y)
-        for (int x = 0; x < ao.width; ++x) {
-            if (!f.geometry(x, y)) continue;
-            ++pixels;
-            notOne += ao.at(x, y, 0) != 1.0f;
-            lowest = std::min(lowest, double(ao.at(x, y, 0)));
-        }
-    INFO(notOne << " of " << pixels << " pixels below 1, lowest " << lowest);
-    CHECK(pixels > std::size_t(ao.width * ao.height / 2));
-    CHECK(notOne == 0);
-}
-
 // The open floor's AO through adopted host buffers (radius 2, 24 rays).
 void checkAdoptedPlaneOpen(AoFixture& f, const GBufferView& adopted, const Scene& scene, const AoVariant& variant) {
     AmbientOcclusionSettings s;
@@ -121,7 +104,7 @@ void checkAdoptedPlaneOpen(AoFixture& f, const GBufferView& adopted, const Scene
     s.radius = 2.0f;
     s.rays = 24;
     if (variant.method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(scene, {});
-    checkOpenEverywhere(f, readTexture(f.ctx, f.ao.run(adopted, s).ao));
+    test::checkOpenEverywhere(f, readTexture(f.ctx, f.ao.run(adopted, s).ao));
 }
 
 } // namespace
@@ -182,7 +165,7 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution fallof
                     s.falloff = falloff;
                     VoxelizerSettings v;
                     v.resolution = 64;
-                    checkOpenEverywhere(f, f.run(scene, s, v));
+                    test::checkOpenEverywhere(f, f.run(scene, s, v));
                 }
     }
 }

@@ -114,12 +114,7 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals a lit open 
     // GI also reads a hit only through a face the ray enters (giScreenRadiance), which a ray
     // leaving the plane does not; so it guards the result, not the margin (the AO test does).
     test::AoFixture f;
-    Scene scene = test::floorScene();
-    Light sun;
-    sun.type = LightType::Directional;
-    sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);
-    sun.intensity = 3.0f;
-    scene.lights.push_back(sun);
+    const Scene scene = test::withSun(test::floorScene());
     constexpr int W = 64, H = 48;
     const Camera cameras[] = {
         Camera::perspective({{0, 3, 6}, {0, 0, 0}, {0, 1, 0}}, glm::radians(50.0f), float(W) / H, 0.05f, 200.0f),

@@ -575,12 +575,7 @@ TEST_CASE("A lit open plane gives exactly no indirect light for every method mar
     GBuffer gbuffer(ctx);
     IndirectLight gi(ctx);
     Voxelizer voxelizer(ctx);
-    Scene scene = test::floorScene(50.0);
-    Light sun;
-    sun.type = LightType::Directional;
-    sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);
-    sun.intensity = 3.0f;
-    scene.lights.push_back(sun);
+    const Scene scene = test::withSun(test::floorScene(50.0));
     constexpr int W = 64, H = 48;
     const LookAt look{{0, 3, 6}, {0, 0, 0}, {0, 1, 0}};
     const std::pair<const char*, Camera> projections[] = {

@@ -104,6 +104,15 @@ Scene floorScene(double half) {
     return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
 }
 
+Scene withSun(Scene scene) {
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    return scene;
+}
+
 Scene withDisc(Scene scene, double a, double h) {
     auto disc = std::make_shared<MeshData>();
     constexpr int n = 256;

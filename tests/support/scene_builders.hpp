@@ -28,6 +28,9 @@ struct AnalyticQuad {
 Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::vec3(0.5f));
 //! A floor square of half side `half` at y = 0, facing up (quadScene's material).
 Scene floorScene(double half = 50.0);
+//! `scene` with a sun added: a directional light from above, (0.3, -1, 0.2), intensity 3
+//! (the indirect-light tests' lit open plane).
+Scene withSun(Scene scene);
 //! `scene` with a horizontal disc of radius a at height h added: a 256-gon of the disc's area
 //! (its edges' midpoints at a (1 - 2.5e-5), its corners at a (1 + 5e-5)), seen from both sides.
 Scene withDisc(Scene scene, double a, double h);

@@ -1,0 +1,34 @@
+// Rays from a surface point through the voxel grid. The surface's own voxels lie within a
+// voxel diagonal of its plane, so a ray sees only other geometry while it stays more than that
+// above the plane. The point is known within its depth's reconstruction error, and its normal n
+// within a chord e (its pixel's bound, storedNormalError): the true normal m has
+// dot(n, m) >= 1 - e^2/2, and a ray w rises off the true plane by at least dot(w, n) - e per
+// unit length. The start is lifted along n until it lies, for every such m, a 2^-8 margin
+// above the own voxels; each ray is then traced only as far as it provably stays above them
+// (all of it where dot(w, n) > e). A hit beyond may be the surface itself, as the screen tests'
+// own-plane gate (screen_march.glsl) treats it: the ray counts as open. With e past 1 (60
+// degrees) no ray is trusted.
+#include "../common/depth.glsl"
+
+struct VoxelSurfaceStart {
+    vec3 start;        // the point lifted along n
+    float clearance;   // how far above the own voxels the start lies, at least
+    float normalError; // e
+};
+
+// diagonal: one voxel's diagonal in view units (the host's shape.z).
+VoxelSurfaceStart voxelSurfaceStart(vec3 p, float depth, vec3 n, float normalError, float diagonal) {
+    const float cosine = 1.0 - 0.5 * normalError * normalError;
+    const float below = diagonal + depthReconstructionError(p, depth) + kPositionRounding * length(p);
+    const float lift = below * (1.0 + 1.0 / 256.0) / max(cosine, 0.5);
+    const float clearance = cosine >= 0.5 ? lift * cosine - below : -1.0;
+    return VoxelSurfaceStart(p + n * lift, clearance, normalError);
+}
+
+// The length along w, at most `reach`, over which the ray provably stays above the surface's
+// own voxels (0: trace nothing).
+float voxelClearLength(VoxelSurfaceStart s, vec3 n, vec3 w, float reach) {
+    if (!(s.clearance > 0.0)) return 0.0;
+    const float sink = s.normalError - dot(w, n); // the most the ray may fall per unit length
+    return sink <= 0.0 ? reach : min(reach, s.clearance / sink);
+}
