@@ -40,6 +40,13 @@ float depthReconstructionError(vec3 o, float depth) {
 // their magnitude: a few ulp (2^-23 each).
 const float kPositionRounding = 4e-6;
 
+// The magnitude a reconstructed point's rounding scales with: |o|, and in an orthographic
+// view also the view's half-extent and offset, from which x and y are interpolated (a point
+// near the camera plane at the image's centre is small, its x and y's rounding is not).
+float positionRoundingScale(vec3 o) {
+    return isPerspective() ? length(o) : length(o) + length(abs(frame.depthXY.xy) + abs(frame.depthXY.zw));
+}
+
 vec2 pixelCenterUv(ivec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frameSize()); }
 
 // Unit vector from the surface point toward the camera.

@@ -22,7 +22,7 @@ struct SurfacePoint {
 };
 
 SurfacePoint surfacePoint(vec3 p, float depth) {
-    return SurfacePoint(p, depthReconstructionError(p, depth) + kPositionRounding * length(p));
+    return SurfacePoint(p, depthReconstructionError(p, depth) + kPositionRounding * positionRoundingScale(p));
 }
 
 // A neighbour's point, or `valid = false` outside the image or on background.

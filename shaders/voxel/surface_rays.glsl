@@ -19,7 +19,7 @@ struct VoxelSurfaceStart {
 // diagonal: one voxel's diagonal in view units (the host's shape.z).
 VoxelSurfaceStart voxelSurfaceStart(vec3 p, float depth, vec3 n, float normalError, float diagonal) {
     const float cosine = 1.0 - 0.5 * normalError * normalError;
-    const float below = diagonal + depthReconstructionError(p, depth) + kPositionRounding * length(p);
+    const float below = diagonal + depthReconstructionError(p, depth) + kPositionRounding * positionRoundingScale(p);
     const float lift = below * (1.0 + 1.0 / 256.0) / max(cosine, 0.5);
     const float clearance = cosine >= 0.5 ? lift * cosine - below : -1.0;
     return VoxelSurfaceStart(p + n * lift, clearance, normalError);
