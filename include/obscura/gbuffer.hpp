@@ -113,7 +113,7 @@ struct HostGBuffer {
     //! the projection; each pixel's depth must lie within one step of one plane through it and
     //! its neighbours: a smooth offset, like that of the host's own transform's rounding, does
     //! not count, the rasterizer's per-pixel rounding does; llvmpipe's rasterization into
-    //! 16-, 24- and 32-bit depth keeps it, tests/gl/test_depth_normals.cpp) where the
+    //! 16-, 24- and 32-bit depth keeps it in tests/gl/test_depth_normals.cpp's views) where the
     //! pixel and the two neighbours lie on one plane: 2 (any direction) where that precision
     //! cannot tell the plane or whether it faces the camera. The bound is about twice the
     //! depth error over the pixel spacing: it grows with the resolution and, for standard

@@ -17,7 +17,8 @@
 // visible surface through a side the camera does not see counts as dark, not as the light
 // of the face in front of it.
 //   Screen: hits found by marching the depth buffer (as AoMethod::RayMarch).
-//   Hybrid: hits found in the voxel grid (as AoMethod::Voxel), then looked up on screen; a
+//   Hybrid: hits found in the voxel grid (as AoMethod::Voxel, a ray that may sink back toward
+//           its own plane reading nothing beyond where it might), then looked up on screen; a
 //           hit farther than `thickness` from the tangent plane of the surface its pixel
 //           shows is not on that surface, and contributes nothing.
 //

@@ -3,11 +3,17 @@
 // above the plane. The point is known within its depth's reconstruction error, and its normal n
 // within a chord e (its pixel's bound, storedNormalError): the true normal m has
 // dot(n, m) >= 1 - e^2/2, and a ray w rises off the true plane by at least dot(w, n) - e per
-// unit length. The start is lifted along n until it lies, for every such m, a 2^-8 margin
-// above the own voxels; each ray is then traced only as far as it provably stays above them
-// (all of it where dot(w, n) > e). A hit beyond may be the surface itself, as the screen tests'
-// own-plane gate (screen_march.glsl) treats it: the ray counts as open. With e past 1 (60
-// degrees) no ray is trusted.
+// unit length. The start is lifted along n until it lies, for every such m, above the own
+// voxels with a margin of 2^-8 of that height; each ray is then traced only as far as it
+// provably stays above them (all of it where dot(w, n) > e; else until half the margin is
+// spent, the other half left to the rounding of the segment's end): in practice less than a
+// voxel once the ray may sink faster than 1/300. A hit beyond may be the surface itself, as
+// the screen tests' own-plane gate (screen_march.glsl) treats it: the ray counts as open (AO)
+// or dark (GI).
+// With e past 1 (60 degrees) no ray is trusted. This assumes the point lies within its
+// depth's reconstruction error of the voxelized surface: a host whose depth is further off
+// the scene it voxelizes (its own transforms' rounding, another level of detail) needs a
+// coarser grid, or its rays may start inside the surface's own voxels.
 #include "../common/depth.glsl"
 
 struct VoxelSurfaceStart {
@@ -30,5 +36,5 @@ VoxelSurfaceStart voxelSurfaceStart(vec3 p, float depth, vec3 n, float normalErr
 float voxelClearLength(VoxelSurfaceStart s, vec3 n, vec3 w, float reach) {
     if (!(s.clearance > 0.0)) return 0.0;
     const float sink = s.normalError - dot(w, n); // the most the ray may fall per unit length
-    return sink <= 0.0 ? reach : min(reach, s.clearance / sink);
+    return sink <= 0.0 ? reach : min(reach, 0.5 * s.clearance / sink);
 }

@@ -79,7 +79,8 @@ struct IndirectLight::Impl {
         p.viewToVoxel = glm::mat4(1.0f);
         if (s.method == GiMethod::Hybrid) {
             p.viewToVoxel = viewToVoxel(*s.voxels, g.camera);
-            // As voxel AO: rays start a voxel diagonal off the surface; a voxel hit lies
+            // As voxel AO: rays start about a voxel diagonal off the surface (plus the depth's
+            // error and the normal bound, surface_rays.glsl); a voxel hit lies
             // within a voxel diagonal of the surface it stands for, so two diagonals is the
             // default tolerance for finding that surface on screen.
             p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));

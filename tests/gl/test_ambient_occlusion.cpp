@@ -499,8 +499,9 @@ TEST_CASE("AO under a disc matches one minus its view factor within the march an
                     lo = discAo(rho, a + 4.2 * thickness / (h - eye.y), h);
                     hi = discAo(rho, a - delta, h);
                 } else {
-                    // Rays start a voxel diagonal up; the disc's voxels reach a voxel side
-                    // down and a side diagonal out (conservative surface voxelization).
+                    // Rays start a voxel diagonal up (and a little more: the depth's error and
+                    // a 2^-8 margin, well within the side below); the disc's voxels reach a
+                    // voxel side down and a side diagonal out (conservative surface voxelization).
                     lo = discAo(rho, a + std::sqrt(2.0) * voxelSide, h - lift - voxelSide);
                     hi = discAo(rho, a, h - lift);
                 }

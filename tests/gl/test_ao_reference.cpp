@@ -201,7 +201,8 @@ TEST_CASE("Voxel AO in a box room lies between the reference's AO of the room an
           "[ao][reference][voxel]") {
     // A voxel is set when a triangle overlaps its closed box (voxelize_surface.geom.glsl), so
     // the set voxels hold every surface and lie within one voxel side of one (per axis).
-    // Voxel AO's rays start a voxel diagonal off the surface (p + n lift) and count a hit in
+    // Voxel AO's rays start a voxel diagonal off the surface (p + n lift; the shader adds the
+    // depth's error and a 2^-8 margin, about 1 % of it here) and count a hit in
     // any set voxel they cross within r (exact and hierarchical traversals): a ray that meets
     // the room from there meets a set voxel no later, and a ray that meets a set voxel meets
     // the room grown by a side. So its expectation lies between the reference's AO_r from the

@@ -114,7 +114,8 @@ GLuint linkedProgram(const char* vertex, const char* fragment) {
 
 // A host's depth pass: a new depth texture of `format`, cleared to `clear`, and `draw` run into it
 // with `program`, the depth test `func`, and the clip control `depthMode`. Sets the GL state the
-// pass needs explicitly and leaves the defaults (test contexts only).
+// pass needs explicitly and leaves the defaults, except the viewport, which stays the pass's
+// (test contexts only).
 GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float clear, GLenum func, GLenum depthMode,
                      const std::function<void()>& draw) {
     GLuint target = 0, fbo = 0;
@@ -124,17 +125,19 @@ GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, target, 0);
     glNamedFramebufferDrawBuffer(fbo, GL_NONE);
     REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
-    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, width, height);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_RASTERIZER_DISCARD);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthRange(0.0, 1.0);
     glClipControl(GL_LOWER_LEFT, depthMode);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(func);
     glDepthMask(GL_TRUE);
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear); // after the state that limits clears
     glUseProgram(program);
     draw();
     glUseProgram(0);

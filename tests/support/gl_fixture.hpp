@@ -40,7 +40,8 @@ std::vector<unsigned> drainGlErrors();
 //! A host's depth texture: `depth` (a depth texture the size width x height) drawn into a new
 //! GL_TEXTURE_2D of `format` (e.g. GL_DEPTH_COMPONENT24) by the host's own program, as a host
 //! engine's depth pass would leave it (quantized to its format). The caller deletes it. Sets
-//! the GL state the draw needs and leaves the defaults bound (for test contexts only).
+//! the GL state the draw needs and leaves the defaults bound, the viewport set to the
+//! texture (for test contexts only).
 GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 
 //! A host's depth pass over `scene` (its meshes; no MeshRefs) seen by `camera`, drawn directly
