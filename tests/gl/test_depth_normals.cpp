@@ -61,7 +61,8 @@ TEST_CASE("Normals reconstructed from depth lie within their pixel's bound on a 
                             // host's depth says what is floor.
                             const bool sky = truth.at(x, y, 3) == 0.0f;
                             if (rasterized ? alpha == 0.0f : sky) {
-                                CHECK((rasterized || alpha == 0.0f));
+                                // The copy keeps the truth's coverage: its sky has no normal.
+                                if (!rasterized) CHECK(alpha == 0.0f);
                                 continue;
                             }
                             ++floorPixels;
