@@ -64,13 +64,25 @@ enum class HostBlend {
     Multiply,  //!< the host's colour is multiplied by the source (e.g. AO onto a lit image)
 };
 
+//! What a source's values are. It matters only where the target's colour encoding is sRGB
+//! (GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING == GL_SRGB): into linear targets values are
+//! stored as they are either way.
+enum class HostSourceEncoding {
+    Auto,    //!< Display for this Composer's compose() result, Linear for any other source
+    Linear,  //!< linear values (AO, radiance): sRGB-encoded on write, and Multiply blends in linear
+    Display, //!< already display-encoded: stored as they are, and Multiply blends encoded values
+};
+
 //! A host framebuffer to draw into: `framebuffer` (0 = the default framebuffer), the
 //! viewport rectangle in pixels, and how to blend. The source is stretched to the viewport;
-//! one-channel sources are replicated to RGB, alpha is left as it was.
+//! one-channel sources are replicated to RGB, alpha is left as it was. Only the framebuffer's
+//! first draw buffer (GL_DRAW_BUFFER0) is written; its other draw buffers keep their values.
+//! The host's own GL_FRAMEBUFFER_SRGB setting is not used: `encoding` decides.
 struct HostTarget {
     unsigned framebuffer = 0;
     int x = 0, y = 0, width = 0, height = 0; //!< pixels, width and height >= 1
     HostBlend blend = HostBlend::Overwrite;
+    HostSourceEncoding encoding = HostSourceEncoding::Auto;
 };
 
 class OBSCURA_API Composer {
@@ -92,7 +104,9 @@ public:
     TextureView radiance() const;
 
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer
-    //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy).
+    //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
+    //! Error{InvalidArgument} for a target that is not a complete framebuffer of this context,
+    //! whose first draw buffer is GL_NONE, or with an empty rectangle or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 
     std::size_t memoryBytes() const;

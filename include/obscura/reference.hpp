@@ -110,10 +110,11 @@ using obscura::ObscuranceFalloff;
 OBSCURA_API double obscuranceWeight(ObscuranceFalloff falloff, double distance, double maxDistance);
 
 //! Obscurance, 1 channel in [0, 1]: W(x) = (1/pi) Integral rho(d(x, w)) (n.w) dw, d the
-//! distance to the first hit along w.
+//! distance to the first hit along w; uniformly weighted, (1/(2 pi)) Integral rho(d(x, w)) dw.
 struct Obscurance {
     double maxDistance = 1.0; //!< world units, (0, inf)
     ObscuranceFalloff falloff = ObscuranceFalloff::Linear;
+    bool cosineWeighted = true; //!< cosine (n.w / pi) or uniform (1 / (2 pi)) weighting of directions
 };
 
 //! Bent normal, 3 channels, world space: the normalized cosine-weighted mean unoccluded

@@ -41,6 +41,9 @@ const std::map<std::string, IntegratorSpec>& specs() {
          {Obscurance{},
           {{"max_distance",
             [](Quantity& q, const std::string& k, const std::string& v) { as<Obscurance>(q).maxDistance = distance(k, v); }},
+           {"cosine", [](Quantity& q, const std::string& k, const std::string& v) {
+                as<Obscurance>(q).cosineWeighted = parseBool(k, v);
+            }},
            {"falloff", [](Quantity& q, const std::string& k, const std::string& v) {
                 static const std::map<std::string, ObscuranceFalloff> names = {{"none", ObscuranceFalloff::None},
                                                                                {"linear", ObscuranceFalloff::Linear},

@@ -135,6 +135,8 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     if (info.integer || info.depth)
         throw Error(ErrorCode::InvalidArgument, "drawToHost: the source must be a float or normalized colour texture");
     requireEnumerator(target.blend, {HostBlend::Overwrite, HostBlend::Multiply}, "HostTarget::blend");
+    requireEnumerator(target.encoding, {HostSourceEncoding::Auto, HostSourceEncoding::Linear, HostSourceEncoding::Display},
+                      "HostTarget::encoding");
     if (target.width < 1 || target.height < 1)
         throw Error(ErrorCode::InvalidArgument, "HostTarget: width and height must be >= 1 pixel, got " +
                                                     std::to_string(target.width) + "x" + std::to_string(target.height));
@@ -150,13 +152,25 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
     StateScope scope(ctx);
-    PassScope pass(ctx, "compose.output");
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
+    GLint firstDrawBuffer = GL_NONE;
+    ctx.gl.GetIntegerv(GL_DRAW_BUFFER0, &firstDrawBuffer);
+    if (firstDrawBuffer == GL_NONE)
+        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
+                                                    ": its first draw buffer is GL_NONE, so nothing would be written");
+    PassScope pass(ctx, "compose.output");
     setViewport(ctx, target.x, target.y, target.width, target.height);
     DrawState state;
     state.multiplyBlend = target.blend == HostBlend::Multiply;
     state.writeAlpha = false;
+    // Only linear values are encoded (and, multiplied, blended in linear) by an sRGB target.
+    const bool display = target.encoding == HostSourceEncoding::Display ||
+                         (target.encoding == HostSourceEncoding::Auto && source.name != 0 && source.name == d.display.get());
+    state.framebufferSrgb = !display;
     applyDrawState(ctx, state);
+    // The shader writes location 0 only: the others would be undefined where their mask lets through.
+    for (GLuint i = 1; i < static_cast<GLuint>(ctx.info.maxDrawBuffers); ++i)
+        ctx.gl.ColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const GLuint program = ctx.shaders->program({"compose/host_output.vert.glsl", "compose/host_output.frag.glsl"});
     ctx.gl.UseProgram(program);
     ctx.gl.ProgramUniform1i(program, COMPOSE_LOC_SOURCE_CHANNELS, info.channels);

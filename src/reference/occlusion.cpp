@@ -53,7 +53,8 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
             const glm::vec3 origin = surfaceOrigin(scene, p);
             double sum = 0.0;
             for (int i = 0; i < n; ++i) {
-                const glm::dvec3 w = toWorld(cosineHemisphere(s.point(static_cast<std::uint32_t>(i))), p.normal);
+                const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
+                const glm::dvec3 w = toWorld(q.cosineWeighted ? cosineHemisphere(u) : uniformHemisphere(u), p.normal);
                 ++rays;
                 const auto hit = scene.intersect(origin, w, q.maxDistance);
                 sum += hit ? obscuranceWeight(q.falloff, hit->distance, q.maxDistance) : 1.0;

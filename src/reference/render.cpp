@@ -118,6 +118,8 @@ std::string describe(const Quantity& q) {
                    [&](const AmbientOcclusion& v) { s << "ao radius=" << v.radius << " cosine=" << v.cosineWeighted; },
                    [&](const Obscurance& v) {
                        s << "obscurance max_distance=" << v.maxDistance << " falloff=" << static_cast<int>(v.falloff);
+                       // Only when uniform: cache keys of the default stay as they were.
+                       if (!v.cosineWeighted) s << " cosine=0";
                    },
                    [&](const BentNormal& v) { s << "bent_normal radius=" << v.radius; },
                    [&](const DirectLight& v) { s << "direct visibility=" << v.visibility; },

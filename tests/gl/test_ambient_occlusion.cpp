@@ -397,7 +397,8 @@ TEST_CASE("AO obscurance and the bent normal of a floor in front of a wall match
     f.render(scene, test::wallCamera(W, H), W, H);
     for (AoMethod method : {AoMethod::RayMarch, AoMethod::Voxel, AoMethod::Points})
         for (const WallQuantity q : {WallQuantity{ObscuranceFalloff::None, true}, WallQuantity{ObscuranceFalloff::None, false},
-                                     WallQuantity{ObscuranceFalloff::Linear, true}, WallQuantity{ObscuranceFalloff::Quadratic, true},
+                                     WallQuantity{ObscuranceFalloff::Linear, true}, WallQuantity{ObscuranceFalloff::Linear, false},
+                                     WallQuantity{ObscuranceFalloff::Quadratic, true},
                                      WallQuantity{ObscuranceFalloff::Smooth, true}}) {
             CAPTURE(nameOf(method), static_cast<int>(q.falloff), q.cosine);
             checkWall(f, scene, method, ScreenMarch::View, q, 1024);

@@ -263,6 +263,94 @@ TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour a
     glDeleteTextures(1, &color);
 }
 
+namespace {
+
+double srgbEncoded(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
+double srgbDecoded(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+
+// The 8-bit texels of `texture`'s first level, as stored (sRGB textures are read back encoded).
+std::vector<std::uint8_t> storedBytes(GLuint texture, int width, int height) {
+    std::vector<std::uint8_t> texels(std::size_t(width) * height * 4);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(texels.size()), texels.data());
+    return texels;
+}
+
+} // namespace
+
+TEST_CASE("Drawing into a host framebuffer encodes linear sources for sRGB targets, stores display values as they "
+          "are and writes only the first draw buffer", "[compose][host]") {
+    Frame f;
+    constexpr int W = Frame::W, H = Frame::H;
+    // Attachment 0 holds sRGB-encoded bytes; attachment 1, a second draw buffer, plain ones.
+    GLuint color[2] = {}, fbo = 0;
+    glCreateTextures(GL_TEXTURE_2D, 2, color);
+    glTextureStorage2D(color[0], 1, GL_SRGB8_ALPHA8, W, H);
+    glTextureStorage2D(color[1], 1, GL_RGBA8, W, H);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color[0], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, color[1], 0);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, both);
+    const std::uint8_t before[4] = {200, 120, 30, 77}, second[4] = {10, 20, 30, 40};
+    const ConstantTexture half(GL_R16F, 8, 8, glm::vec4(0.5f));
+    const TextureView display = f.composer.compose({f.view, {}, {}}, {});
+    const std::vector<std::uint8_t> shown = storedBytes(display.name, W, H);
+    struct Case {
+        HostSourceEncoding encoding;
+        HostBlend blend;
+        bool hostSrgb; // the host's own GL_FRAMEBUFFER_SRGB, which must neither matter nor change
+        bool composed; // the source is compose()'s display texture, else the constant 0.5
+    };
+    for (const Case k : {Case{HostSourceEncoding::Auto, HostBlend::Overwrite, false, false},
+                         Case{HostSourceEncoding::Auto, HostBlend::Multiply, true, false},
+                         Case{HostSourceEncoding::Linear, HostBlend::Multiply, false, false},
+                         Case{HostSourceEncoding::Display, HostBlend::Overwrite, true, false},
+                         Case{HostSourceEncoding::Display, HostBlend::Multiply, false, false},
+                         Case{HostSourceEncoding::Auto, HostBlend::Overwrite, true, true}}) {
+        CAPTURE(static_cast<int>(k.encoding), static_cast<int>(k.blend), k.hostSrgb, k.composed);
+        glClearTexImage(color[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, before);
+        glClearTexImage(color[1], 0, GL_RGBA, GL_UNSIGNED_BYTE, second);
+        if (k.hostSrgb) glEnable(GL_FRAMEBUFFER_SRGB);
+        else glDisable(GL_FRAMEBUFFER_SRGB);
+        f.composer.drawToHost(k.composed ? display : half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H, k.blend, k.encoding});
+        CHECK(glIsEnabled(GL_FRAMEBUFFER_SRGB) == (k.hostSrgb ? GL_TRUE : GL_FALSE));
+        const std::vector<std::uint8_t> first = storedBytes(color[0], W, H), other = storedBytes(color[1], W, H);
+        const bool linear = k.encoding != HostSourceEncoding::Display && !k.composed;
+        std::size_t off = 0, otherChanged = 0;
+        for (std::size_t i = 0; i < first.size(); ++i) {
+            const int c = int(i % 4);
+            otherChanged += other[i] != second[c];
+            double expected = before[c] / 255.0; // alpha is left as it was
+            if (c < 3) {
+                const double source = k.composed ? shown[i] / 255.0 : 0.5;
+                const double dst = before[c] / 255.0;
+                if (linear) expected = srgbEncoded(k.blend == HostBlend::Multiply ? srgbDecoded(dst) * source : source);
+                else expected = k.blend == HostBlend::Multiply ? dst * source : source;
+            }
+            // One code: the stored value rounds the exact one to 8 bits (half a code), and GL
+            // lets the sRGB conversions approximate the curve (the other half).
+            off += std::abs(first[i] - expected * 255.0) > 1.0;
+        }
+        CHECK(off == 0);
+        CHECK(otherChanged == 0);
+    }
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    // With no first draw buffer nothing would be written: refused, and the host's state kept.
+    const GLenum secondOnly[2] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, secondOnly);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    CHECK_THROWS_AS(f.composer.drawToHost(half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H}), Error);
+    GLint bound = -1;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    CHECK(bound == 0);
+    CHECK_THROWS_AS(f.composer.drawToHost(half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H, HostBlend::Overwrite,
+                                                                     static_cast<HostSourceEncoding>(3)}),
+                    Error);
+    CHECK(test::drainGlErrors().empty());
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, color);
+}
+
 TEST_CASE("Compose refuses bad settings and inputs of the wrong size", "[compose][bad-input]") {
     Frame f;
     const ConstantTexture small(GL_R16F, 8, 8, glm::vec4(1.0f));

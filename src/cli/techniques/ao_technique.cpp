@@ -32,7 +32,7 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
     {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
-    {"bent_normals", "", "0|1", "also compute the bent normal (default 1; not for ao.horizon)"},
+    {"bent_normals", "", "0|1", "also compute the bent normal (default 1; horizon: of the directions above its slices' horizons)"},
 }, voxelGridSettings("ao.voxel"));
 
 class AoRun final : public TechniqueRun {
@@ -117,7 +117,7 @@ public:
         if (settings_.falloff == ObscuranceFalloff::None)
             m.push_back({"ao", readTexture(ctx_, result_.ao), reference::AmbientOcclusion{radius, settings_.cosineWeighted}});
         else
-            m.push_back({"obscurance", readTexture(ctx_, result_.ao), reference::Obscurance{radius, settings_.falloff}});
+            m.push_back({"obscurance", readTexture(ctx_, result_.ao), reference::Obscurance{radius, settings_.falloff, settings_.cosineWeighted}});
         if (result_.bentNormal) {
             // View space to world space, as the reference reports it.
             Image world = rgbOf(readTexture(ctx_, result_.bentNormal));
