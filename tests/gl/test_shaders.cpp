@@ -1,5 +1,6 @@
-// Shader library: lazy compilation of only the permutations used, and compile errors
-// reported against the original file and line.
+// Shader library: lazy compilation of only the permutations used, compile errors reported
+// against the original file and line, and shared GLSL functions run on the driver.
+#include "core/sampling.hpp"
 #include "gl_fixture.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
@@ -7,6 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <vector>
 
 using namespace obscura;
 
@@ -90,4 +93,81 @@ TEST_CASE("Memory is allocated on first use and reported by the module", "[shade
     gbuffer.positions(view);
     ctx.profiler().statistics(/*wait=*/true);
     CHECK(ctx.liveObjectCount() == objects);
+}
+
+TEST_CASE("The GLSL tangent frame is orthonormal and finite for normals of (0, 0, +-1) and every other unit normal",
+          "[shaders][sampling]") {
+    // sampling.glsl's tangentFrame and toFrame as the integrators run them, on the driver: the
+    // unit tests check the CPU mirror (core/sampling.hpp), this one the GLSL the integrators use.
+    // A frame built by crossing with the z axis would divide by zero at (0, 0, +-1).
+    test::GlFixture gl;
+    constexpr int kDirections = 16;
+    const GLuint program = test::libraryComputeProgram(R"(#include "common/sampling.glsl"
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Normals { vec4 normals[]; };
+layout(std430, binding = 1) writeonly buffer Frames { vec4 frames[]; }; // t, b, then the directions
+layout(location = 0) uniform uint count;
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    const vec3 n = normals[i].xyz;
+    vec3 t, b;
+    tangentFrame(n, t, b);
+    const uint at = i * 18u;
+    frames[at] = vec4(t, 0.0);
+    frames[at + 1u] = vec4(b, 0.0);
+    for (uint k = 0u; k < 16u; ++k) frames[at + 2u + k] = vec4(toFrame(cosineHemisphere(hammersley(k, 16u)), n), 0.0);
+}
+)");
+    std::vector<glm::vec4> normals = {{0, 0, 1, 0}, {0, 0, -1, 0}, {-0.0f, -0.0f, -1, 0}, {1, 0, -0.0f, 0},
+                                      {0, -1, 0, 0}, {0, 1, -0.0f, 0}, {1e-8f, 0, -1, 0}, {0, -1e-8f, 1, 0}};
+    for (std::uint32_t i = 0; i < 1000; ++i) {
+        const glm::vec3 d = detail::uniformHemisphere(detail::hammersley(i, 1000));
+        normals.emplace_back(i % 2 ? d : -d, 0.0f);
+    }
+    GLuint buffers[2];
+    glCreateBuffers(2, buffers);
+    const std::size_t outputs = normals.size() * (2 + kDirections);
+    glNamedBufferStorage(buffers[0], GLsizeiptr(normals.size() * sizeof(glm::vec4)), normals.data(), 0);
+    glNamedBufferStorage(buffers[1], GLsizeiptr(outputs * sizeof(glm::vec4)), nullptr, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
+    glUseProgram(program);
+    glUniform1ui(0, GLuint(normals.size()));
+    glDispatchCompute(GLuint((normals.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> frames(outputs);
+    glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(outputs * sizeof(glm::vec4)), frames.data());
+    glUseProgram(0);
+    glDeleteProgram(program);
+    glDeleteBuffers(2, buffers);
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+        const glm::vec3 n(normals[i]), t(frames[i * 18]), b(frames[i * 18 + 1]);
+        CAPTURE(i, n.x, n.y, n.z, t.x, t.y, t.z, b.x, b.y, b.z);
+        // The unit test's bounds: a few float operations per component, far inside 1e-5.
+        CHECK(std::isfinite(t.x + t.y + t.z + b.x + b.y + b.z));
+        CHECK(std::abs(glm::dot(t, t) - 1.0f) < 1e-5f);
+        CHECK(std::abs(glm::dot(b, b) - 1.0f) < 1e-5f);
+        CHECK(std::abs(glm::dot(t, b)) < 1e-5f);
+        CHECK(std::abs(glm::dot(t, n)) < 1e-5f);
+        CHECK(std::abs(glm::dot(b, n)) < 1e-5f);
+        CHECK(glm::dot(glm::cross(t, b), n) > 0.99999f); // right-handed
+        // The same frame as the CPU mirror the tests' closed forms use: the formula has no
+        // cancellation (|s + n.z| >= 1), so the two differ by a few ulp (1e-6 is 8 of them at 1).
+        glm::vec3 ct, cb;
+        detail::tangentFrame(n, ct, cb);
+        CHECK(glm::length(t - ct) < 1e-6f);
+        CHECK(glm::length(b - cb) < 1e-6f);
+        // x t + y b + z n with x^2 + y^2 + z^2 = 1, z >= 0: within (|x| + |y| + |z|)^2 1e-5 <=
+        // 3e-5 of unit length squared, so 2e-5 of unit length, and above the plane but for
+        // (|x| + |y|) 1e-5 <= 2e-5.
+        for (int k = 0; k < kDirections; ++k) {
+            const glm::vec3 w(frames[i * 18 + 2 + std::size_t(k)]);
+            CAPTURE(k, w.x, w.y, w.z);
+            CHECK(std::isfinite(w.x + w.y + w.z));
+            CHECK(std::abs(glm::length(w) - 1.0f) < 2e-5f);
+            CHECK(glm::dot(w, n) >= -2e-5f);
+        }
+    }
+    CHECK(test::drainGlErrors().empty());
 }

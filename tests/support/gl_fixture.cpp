@@ -1,5 +1,7 @@
 #include "gl_fixture.hpp"
 
+#include "core/shader_source.hpp"
+
 #include <EGL/egl.h>
 #include <catch2/catch.hpp>
 
@@ -209,6 +211,38 @@ void main() { gl_Position = viewProjection * vec4(position, 1.0); })",
     glDeleteBuffers(1, &buffer);
     glDeleteProgram(program);
     return target;
+}
+
+GLuint libraryComputeProgram(const std::string& source) {
+    namespace fs = std::filesystem;
+    const std::string self = "test/library_compute.comp.glsl";
+    const detail::ResolvedSource resolved =
+        detail::resolveIncludes(self, [&](const std::string& path) -> std::optional<std::string> {
+            if (path == self) return source;
+            std::ifstream in(fs::path(OBSCURA_SHADER_DIR) / path);
+            if (!in) return std::nullopt;
+            std::stringstream text;
+            text << in.rdbuf();
+            return text.str();
+        });
+    const std::string text = "#version 450 core\n" + resolved.text;
+    const char* chars = text.c_str();
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &chars, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    std::string log(4096, '\0');
+    glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+    INFO(detail::mapShaderLog(log.c_str(), resolved.files));
+    REQUIRE(ok == GL_TRUE);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDeleteShader(shader);
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    REQUIRE(ok == GL_TRUE);
+    return program;
 }
 
 void overrideShader(Context& ctx, const std::string& file, const std::string& call, const std::string& replacement,

@@ -64,6 +64,12 @@ GLuint hostNormalTexture(const Image& normals, const Camera& camera, GLenum form
 //! Host buffers of GL_DEPTH_COMPONENT32F `depth` and `normal` (hostNormalTexture's encoding).
 HostGBuffer unsignedNormalHost(GLuint depth, GLuint normal, GLenum format, NormalSpace space, int width, int height);
 
+//! A compute program from `source` (GLSL without #version), whose `#include "path"` lines
+//! are looked up in the source tree's shaders/ (the library's own GLSL functions, run by a
+//! test's own main). A test fails (REQUIRE) if it does not compile, with the log mapped to
+//! file:line. The caller deletes it.
+GLuint libraryComputeProgram(const std::string& source);
+
 //! Adds every shader file of the source tree to `ctx` (Context::addShaderSource), `file` with
 //! its text `call` replaced by `replacement` and `prelude` inserted before its main(). A test
 //! fails (REQUIRE) if `file` or `call` is not there.
