@@ -4,12 +4,14 @@
 //   obscura_example_ambient_occlusion --scene cornell --method horizon --rays 16 --out ao.png
 //   obscura_example_ambient_occlusion --window --frames 0 --scene /usr/share/assimp/models/PLY/Wuson.ply
 //   --view lit: the AO shading the direct light and an ambient term (the thesis's combine)
+//   --view bent: the bent normals (view space, n * 0.5 + 0.5); --falloff linear: obscurance
 #include "app.hpp"
 #include "integrator_controls.hpp"
 #include "obscura/obscura.hpp"
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 
 using namespace obscura;
@@ -21,23 +23,34 @@ int main(int argc, char** argv) {
     examples::IntegratorControls controls;
     controls.methods = {"raymarch", "points", "horizon", "voxel"};
     controls.addOptions(parser);
-    std::string viewName = "ao";
-    parser.add_option("--view", viewName, "ao (the AO term) or lit (AO in the combined image)")->capture_default_str();
+    const char* const views[] = {"ao", "bent", "lit"};
+    const char* const falloffs[] = {"none", "linear", "quadratic", "smooth"}; // ObscuranceFalloff's order
+    std::string viewName = "ao", falloffName = "none";
+    parser.add_option("--view", viewName, "ao (the AO or obscurance term), bent (bent normals) or lit (AO in the combined image)")
+        ->check(CLI::IsMember({"ao", "bent", "lit"}))
+        ->capture_default_str();
+    parser.add_option("--falloff", falloffName, "Obscurance's distance weighting, none (AO), linear, quadratic or smooth "
+                                               "(all but the horizon method)")
+        ->check(CLI::IsMember({"none", "linear", "quadratic", "smooth"}))
+        ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
         controls.check();
-        if (viewName != "ao" && viewName != "lit") throw Error(ErrorCode::Parse, "--view: expected ao or lit");
+        int output = int(std::find(std::begin(views), std::end(views), viewName) - std::begin(views));
+        int falloff = int(std::find(std::begin(falloffs), std::end(falloffs), falloffName) - std::begin(falloffs));
+        if (falloff != 0 && controls.methods[std::size_t(controls.method)] == "horizon")
+            throw Error(ErrorCode::Parse, "--falloff: the horizon method computes AO only (falloff none)");
         examples::App app(options);
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const assets::LoadedScene& scene = example.loaded;
         const Camera& camera = example.camera;
         const float diagonal = example.diagonal;
         if (controls.radius <= 0.0f) controls.radius = 0.1f * diagonal;
-        bool lit = viewName == "lit";
         app.setPanel([&] {
             controls.drawPanel("ambient occlusion");
             ImGui::Begin("ambient occlusion");
-            controls.changed |= ImGui::Checkbox("lit", &lit);
+            controls.changed |= ImGui::Combo("view", &output, views, 3);
+            controls.changed |= ImGui::Combo("falloff (not horizon)", &falloff, falloffs, 4);
             ImGui::End();
         });
         TextureImage shown;
@@ -57,9 +70,17 @@ int main(int argc, char** argv) {
                 s.radius = std::max(controls.radius, 1e-6f * diagonal);
                 s.resolution = controls.aoResolution();
                 s.blurRadius = controls.blur;
+                // The panel may pick a falloff with the horizon method, which has none.
+                s.falloff = s.method == AoMethod::Horizon ? ObscuranceFalloff::None : static_cast<ObscuranceFalloff>(falloff);
+                s.bentNormals = output == 1;
                 if (s.method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(scene.scene, {});
                 const AmbientOcclusionView result = ao.run(view, s);
-                if (lit) {
+                if (output == 1) {
+                    Image bent = readTexture(ctx, result.bentNormal);
+                    for (std::size_t i = 0; i < bent.pixels.size(); ++i)
+                        if (i % 4 != 3) bent.pixels[i] = bent.pixels[i] * 0.5f + 0.5f;
+                    picture = assets::encodeDisplay(bent, assets::PngEncoding::Linear);
+                } else if (output == 2) {
                     ComposeSettings c;
                     c.formula = CombineFormula::Thesis;
                     c.ambient = glm::vec3(0.5f);

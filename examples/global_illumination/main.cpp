@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
                       "--formula thesis (0: none)")
         ->check(CLI::Range(0.0f, 65504.0f))
         ->capture_default_str();
+    bool withAo = true;
+    parser.add_option("--ao", withAo, "Shade the ambient term of --formula thesis with AO (1) or not (0)")
+        ->capture_default_str();
     parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping, [0, 1e3] (0: 1, no scaling)")
         ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
@@ -53,7 +56,6 @@ int main(int argc, char** argv) {
         if (controls.radius <= 0.0f) controls.radius = 0.1f * diagonal;
         bool composed = viewName == "composed";
         bool thesis = formulaName == "thesis";
-        bool withAo = true;
         app.setPanel([&] {
             controls.drawPanel("global illumination");
             ImGui::Begin("global illumination");
