@@ -20,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from report_tables import (RESOLUTION_HEADER, default_runs, fmt, lanes_section, march_section,  # noqa: E402
+                           own_ms, resolution_rows, resolution_section, thickness_section, tiles_section)
+
 
 def measures_own_error(row):
     """False for an "indirect_unshadowed" row of a shadowed G-buffer. Before the bench emitted it
@@ -79,20 +82,6 @@ def plot(scene, quantity, rows, path):
     plt.close(fig)
 
 
-def fmt(v, digits=4):
-    if v is None:
-        return "n/a"
-    if isinstance(v, float):
-        if v == 0:
-            return "0"
-        if math.isnan(v):
-            return "n/a"
-        if math.isinf(v):
-            return "inf"
-        return f"{v:.{digits}g}"
-    return str(v)
-
-
 def plot_voxelization(rows, path):
     fig, ax = plt.subplots(figsize=(5.5, 3.8), dpi=110)
     for mode in sorted({r["mode"] for r in rows}):
@@ -131,212 +120,6 @@ def plot_traversal(rows, path):
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
-
-
-def shared_input(technique, pass_name):
-    """Whether a pass renders an input the technique shares with the others rather than its own work:
-    the G-buffer, and the shadow maps that light it, for AO, obscurance and GI; the G-buffer for the
-    shadow techniques, whose maps are their own. The gbuffer and compose techniques are whole frames."""
-    if technique in ("gbuffer", "compose"):
-        return False
-    if pass_name.startswith("gbuffer"):
-        return True
-    return pass_name == "shadow.maps" and not technique.startswith("shadow.")
-
-
-def own_ms(row):
-    """The time of the technique's own passes (see shared_input)."""
-    return sum(p["median_ms"] for p in row.get("passes", []) if not shared_input(row["technique"], p["pass"]))
-
-
-HALF_PAIRS = ("medium", "high")  # presets X and X_half: the same rays and steps, full and half resolution
-REDUCED_RESOLUTION_PASSES = (".tiles", ".blur", ".upsample", ".refine")  # what X_half runs besides its integrator
-
-
-def resolution_rows(rows):
-    """Table lines of X (full resolution) against X_half (half resolution + blur), per preset pair, technique and size."""
-    pairs = defaultdict(dict)
-    for r in default_runs(rows):
-        base = r["preset"][:-len("_half")] if r["preset"].endswith("_half") else r["preset"]
-        if base in HALF_PAIRS:
-            size = f'{r["width"]}x{r["height"]}'
-            pairs[(r["scene"], size, base, r["technique"], r["quantity"])][r["preset"]] = r
-    lines = []
-    for key, p in sorted(pairs.items()):
-        if len(p) != 2:
-            continue
-        full, half = p[key[2]], p[key[2] + "_half"]
-        full_ms, half_ms = own_ms(full), own_ms(half)
-        besides_ms = sum(q["median_ms"] for q in half["passes"] if q["pass"].endswith(REDUCED_RESOLUTION_PASSES))
-        speedup = full_ms / half_ms if half_ms > 0 else float("nan")
-        ratio = half["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
-        ok = speedup >= 2.0 and ratio < 2.0
-        lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(full_ms)} | {fmt(half_ms)} | '
-                     f'{fmt(besides_ms)} | {fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
-                     f'{"yes" if ok else "**no**"} |')
-    return lines
-
-
-def ray_lanes(row):
-    """The row's rayLanes setting (invocations per pixel's rays; 1 unless set)."""
-    return int(row.get("settings", {}).get("ray_lanes", 1))
-
-
-def default_runs(rows):
-    """The rows of no --variant, at the default of one ray lane and with geometry tiles: the other tables
-    compare those; the lanes and tiles studies have their own."""
-    return [r for r in rows if not r.get("variant") and ray_lanes(r) == 1 and geometry_tiles(r)]
-
-
-def varying_only(rows, key):
-    """The rows whose --variant (if any) sets `key` alone: a study of `key` compares those, and not a
-    variant that also changes something else."""
-    return [r for r in rows if {kv.split("=")[0] for kv in r.get("variant", "").split(",") if kv} <= {key}]
-
-
-def lanes_lines(rows):
-    """Table lines: per scene, size, technique, quantity and preset, the own time at each ray-lane count
-    present, and for X / X_half pairs the half-resolution speed-up at each."""
-    runs = defaultdict(dict)
-    for r in varying_only(rows, "ray_lanes"):
-        if not geometry_tiles(r):
-            continue
-        runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["quantity"],
-              r["preset"])][ray_lanes(r)] = r
-    counts = sorted({n for by_lanes in runs.values() for n in by_lanes})
-    if len(counts) < 2:
-        return [], counts
-    lines = []
-    for key, by_lanes in sorted(runs.items()):
-        if key[4].endswith("_half") or key[4] + "_half" not in {k[4] for k in runs if k[:4] == key[:4]}:
-            continue
-        half = runs[key[:4] + (key[4] + "_half",)]
-        cells = [fmt(own_ms(by_lanes[n])) if n in by_lanes else "" for n in counts]
-        cells += [fmt(own_ms(half[n])) if n in half else "" for n in counts]
-        cells += [fmt(own_ms(by_lanes[n]) / own_ms(half[n]), 3) if n in by_lanes and n in half and own_ms(half[n]) > 0 else ""
-                  for n in counts]
-        worst = max((abs(rs[n]["rmse"] - rs[counts[0]]["rmse"]) for rs in (by_lanes, half) for n in counts
-                     if n in rs and counts[0] in rs), default=float("nan"))
-        lines.append(f'| {" | ".join(key)} | ' + " | ".join(cells) + f" | {fmt(worst)} |")
-    return lines, counts
-
-
-def lanes_section(rows, heading="##"):
-    lines, counts = lanes_lines(rows)
-    if not lines:
-        return []
-    names = [str(n) for n in counts]
-    return [f"{heading} Ray lanes", "",
-            "`ray_lanes` (rayLanes): that many invocations share each pixel's rays and add their sums in shared "
-            "memory, the same rays in another order. Presets X at full resolution and X_half (as in the half-"
-            "resolution section), the technique's own passes at each lane count, and the half-resolution speed-up "
-            "(X over X_half) at each. The last column is the largest RMSE difference from the fewest lanes, at "
-            "either resolution (the order of the sums only). Lanes pay where both times fall; a speed-up that "
-            "grows while both times grow only says the full-resolution pass slowed more.", "",
-            "| scene | size | technique | quantity | preset | " + " | ".join(f"full ms, {n}" for n in names) + " | "
-            + " | ".join(f"half ms, {n}" for n in names) + " | " + " | ".join(f"speed-up, {n}" for n in names)
-            + " | RMSE change |",
-            "|" + "---|" * (6 + 3 * len(counts))] + lines + [""]
-
-
-RESOLUTION_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | "
-                     "of which tiles, filters, refinement ms | speed-up | full RMSE | half RMSE | RMSE ratio | goal met |",
-                     "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-
-
-def geometry_tiles(row):
-    """The row's geometryTiles setting (on unless set to 0)."""
-    return row.get("settings", {}).get("geometry_tiles", "1") not in ("0", "false", "off")
-
-
-def tiles_section(rows, heading="##"):
-    """Reduced-resolution rows over every tile (geometry_tiles=0) against the same presets with geometry
-    tiles (the default), both from the study's runs (bench --variant geometry_tiles=0: timed in turn)."""
-    rows = [r for r in varying_only(rows, "geometry_tiles") if ray_lanes(r) == 1]
-    tiled = {(os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"]): r
-             for r in rows if geometry_tiles(r)}
-    lines = []
-    for r in sorted(rows, key=lambda r: (os.path.basename(r["scene"]), r["technique"], r["quantity"], r["preset"])):
-        key = (os.path.basename(r["scene"]), r["width"], r["height"], r["technique"], r["quantity"], r["preset"])
-        if geometry_tiles(r) or key not in tiled:
-            continue
-        t = tiled[key]
-        ratio = own_ms(t) / own_ms(r) if own_ms(r) > 0 else float("nan")
-        lines.append(f'| {key[0]} | {r["width"]}x{r["height"]} | {r["technique"]} | {r["quantity"]} | {r["preset"]} | '
-                     f'{fmt(own_ms(r))} | {fmt(own_ms(t))} | {fmt(ratio, 3)} | {fmt(r["rmse"])} | {fmt(t["rmse"])} |')
-    if not lines:
-        return []
-    return [f"{heading} Geometry tiles", "",
-            "At half and quarter resolution the integrator, the blur and the upsampling run only over the tiles of "
-            "8x8 reduced pixels that hold geometry (`geometry_tiles`, geometryTiles, on by default; the listing "
-            "pass is `<module>.tiles`). Each preset ran with geometry tiles and over every tile "
-            "(`--variant geometry_tiles=0`) in one process, their frames timed in turn, so that both times share the "
-            "machine's drift; the times are the technique's own passes. The RMSEs must agree exactly (the results are "
-            "the same bit for bit, tests/gl/test_geometry_tiles.cpp).", "",
-            "| scene | size | technique | quantity | preset | every tile ms | geometry tiles ms | tiles / every tile | RMSE, every tile "
-            "| RMSE, geometry tiles |",
-            "|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
-
-
-def resolution_section(rows):
-    lines = resolution_rows(rows)
-    if not lines:
-        return []
-    return ["## Half resolution", "",
-            "Presets `medium` and `high` (full resolution, no blur) against `medium_half` and `high_half` (the same "
-            "rays and steps at half resolution, a geometry-aware blur of 3 taps each side at medium and 1 at high, "
-            "joint bilateral upsampling, and the pixels the upsampling finds no similar neighbour for computed at full "
-            "resolution: `refine_threshold`, pass `<module>.refine`), at the "
-            "size of the tables above and, where a resolution study was run (`scripts/report.sh`: 512x512), at that "
-            "size. Times are the technique's own passes (the G-buffer and its shadow maps, which they share, "
-            "excluded), X and X_half timed in turn, frame by frame. The goal: at "
-            "least 2x faster at less than 2x the RMSE. Half resolution saves the integrator's work per pixel, but the "
-            "upsampling pays again, at full resolution, what any pass pays per G-buffer pixel (reading depth and "
-            "normal, writing the results), so where the integrator does little more per pixel than that, half "
-            "resolution cannot be 2x faster. `of which tiles, filters, refinement ms`: what X_half runs besides its "
-            "integrator at half resolution (passes "
-            "`<module>.tiles`, `.blur`, `.upsample`, `.refine`); since the half-resolution integrator costs more than "
-            "nothing, a row can meet the goal only where `full ms` is more than twice that. On llvmpipe each of "
-            "these passes has a fixed cost however little it does, which weighs most at small sizes "
-            "(benchmarks/README.md).", ""] + RESOLUTION_HEADER + lines + [""]
-
-
-MARCHES = ("view", "texture", "hiz")
-
-
-def march_section(rows):
-    """ao.raymarch with each screen-space march on the same samples: time against error."""
-    table = defaultdict(dict)
-    for r in varying_only(rows, "march"):
-        if r["technique"] != "ao.raymarch" or r["quantity"] != "ao":
-            continue
-        settings = r.get("settings", {})
-        key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["preset"], settings.get("rays", ""),
-               settings.get("steps", ""))
-        table[key][settings.get("march", "view")] = r
-    lines = []
-    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], int(kv[0][4] or 0))):
-        if any(m not in runs for m in MARCHES):
-            continue
-        ms = {m: own_ms(runs[m]) for m in MARCHES}
-        pyramid = sum(p["median_ms"] for p in runs["hiz"].get("passes", []) if p["pass"].endswith(".hiz"))
-        speedup = ms["texture"] / ms["hiz"] if ms["hiz"] > 0 else float("nan")
-        lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(ms["view"])} | {fmt(ms["texture"])} | '
-                     f'{fmt(ms["hiz"])} | {fmt(pyramid)} | {fmt(speedup, 3)} | '
-                     + " | ".join(fmt(runs[m]["rmse"]) for m in MARCHES) + " |")
-    if not lines:
-        return []
-    return ["## Screen-space marches", "",
-            "`ao.raymarch` with its three depth-buffer marches on the same samples (`scripts/report.sh`): `view` (3D "
-            "samples projected to their pixels), `texture` (the same samples interpolated in texture space) and `hiz` "
-            "(the texture-space march with runs of samples skipped through a min/max view-z pyramid, built each frame: "
-            "pass `ao.hiz`, included in its time). Presets `high` (16 steps) and `ultra` (32), and `high` with 128 "
-            "steps, where the pyramid has runs to skip. Times are the technique's own passes; Hi-Z's RMSE must equal "
-            "the texture-space march's (the same first hit, asserted exactly by the tests), view space's may differ by "
-            "the rounding at pixel edges.", "",
-            "| scene | size | preset | rays | steps | view ms | texture ms | Hi-Z ms | of which pyramid ms | Hi-Z speed-up "
-            "over texture | view RMSE | texture RMSE | Hi-Z RMSE |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
 
 
 def row_key(r):
@@ -480,7 +263,7 @@ def shown(path):
 
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
-                 lanes_rows=(), tiles_rows=(), gpu_study_rows=()):
+                 lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -542,6 +325,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += tiles_section(list(tiles_rows))
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
+    lines += thickness_section(list(thickness_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
@@ -557,6 +341,8 @@ def main():
                         help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
     parser.add_argument("--march-study", action="append", default=[],
                         help="bench.json of ao.raymarch with march=view, texture and hiz (--set, --variant; screen-space march table only)")
+    parser.add_argument("--thickness-study", action="append", default=[],
+                        help="bench.json of screen-space AO with --variant thickness_mode=depth_peeling (thickness table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
@@ -575,6 +361,8 @@ def main():
     sources = [shown(p) for p in args.inputs] + [f"{shown(p)} (resolution study)" for p in args.resolution_study]
     march_rows = load(args.march_study)[0] if args.march_study else []
     sources += [f"{shown(p)} (march study)" for p in args.march_study]
+    thickness_rows = load(args.thickness_study)[0] if args.thickness_study else []
+    sources += [f"{shown(p)} (thickness study)" for p in args.thickness_study]
     lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
     sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
     tiles_rows = load(args.tiles_study)[0] if args.tiles_study else []
@@ -590,7 +378,7 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows)
+                 gpu_study_rows, thickness_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 
