@@ -372,6 +372,17 @@ string(STRIP "${b}" b)
 if(NOT a STREQUAL b)
   message(FATAL_ERROR "the geometry-tiles table's RMSEs differ (${a} and ${b}): ${tileRows}")
 endif()
+# The thickness study: each preset with depth peeling beside it, one table row per preset.
+run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques ao.points --presets low,medium
+    --variant thickness_mode=depth_peeling --out "${WORK_DIR}/bench_thickness")
+run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json"
+    --thickness-study "${WORK_DIR}/bench_thickness/bench.json" --out "${WORK_DIR}/docs_thickness")
+file(READ "${WORK_DIR}/docs_thickness/results.md" report)
+string(REGEX MATCHALL "\\| cornell \\| 16x16 \\| ao.points \\| (low|medium) \\|[^\n]*" thicknessRows "${report}")
+list(LENGTH thicknessRows thicknessRowCount)
+if(NOT report MATCHES "## Screen-space thickness" OR NOT thicknessRowCount EQUAL 2)
+  message(FATAL_ERROR "results.md lacks the thickness table or its two ao.points rows: ${thicknessRows}")
+endif()
 execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques ao.points --presets medium
                         --variant ray_lanes=2 --variant ray_lanes=2 --out "${WORK_DIR}/bench_bad_variant"
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
