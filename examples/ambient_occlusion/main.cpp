@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
             controls.drawPanel("ambient occlusion");
             ImGui::Begin("ambient occlusion");
             controls.changed |= ImGui::Combo("view", &output, views, 3);
-            controls.changed |= ImGui::Combo("falloff (not horizon)", &falloff, falloffs, 4);
+            controls.changed |= ImGui::Combo("falloff", &falloff, falloffs, 4);
             ImGui::End();
         });
         TextureImage shown;
