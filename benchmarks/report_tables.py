@@ -21,8 +21,6 @@ def fmt(v, digits=4):
     return str(v)
 
 
-
-
 def shared_input(technique, pass_name):
     """Whether a pass renders an input the technique shares with the others rather than its own work:
     the G-buffer, and the shadow maps that light it, for AO, obscurance and GI; the G-buffer for the
@@ -262,11 +260,11 @@ def thickness_section(rows):
             "pass), the same samples timed in turn (`scripts/report.sh`). `own ms` is the technique's passes, "
             "`G-buffer ms` the G-buffer's (one layer, or two). A constant thickness as large as the radius counts "
             "everything behind a surface as solid, so a ray that passes behind an object is blocked: the error of "
-            "the ray march levels off as rays and steps grow. Peeling lets such rays through, but only two layers "
+            "the ray march levels off or rises as rays and steps grow. Peeling lets such rays through, but only two layers "
             "are known: behind the second, everything counts as open, and a march's samples or the points step "
             "over anything thinner than their spacing. Where parts are thin next to the radius and stacked "
-            "(2CylinderEngine, whose second layer lies a median 0.13 radius behind the first: benchmarks/README.md) "
+            "(2CylinderEngine, whose second layer lies a median 0.13 radius behind the first: benchmarks/layer_gaps.sh) "
             "peeling misses occluders the reference finds.", "",
             "| scene | size | technique | preset | constant own ms | peeling own ms | constant G-buffer ms | "
-            "peeling G-buffer ms | constant RMSE | peeling RMSE | RMSE ratio |",
+            "peeling G-buffer ms | constant RMSE | peeling RMSE | RMSE ratio, peeling / constant |",
             "|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]

@@ -77,8 +77,9 @@ int main(int argc, char** argv) {
                 const AmbientOcclusionView result = ao.run(view, s);
                 if (output == 1) {
                     Image bent = readTexture(ctx, result.bentNormal);
+                    // Opaque, the sky too (its bent normal is 0: shown grey).
                     for (std::size_t i = 0; i < bent.pixels.size(); ++i)
-                        if (i % 4 != 3) bent.pixels[i] = bent.pixels[i] * 0.5f + 0.5f;
+                        bent.pixels[i] = i % 4 == 3 ? 1.0f : bent.pixels[i] * 0.5f + 0.5f;
                     picture = assets::encodeDisplay(bent, assets::PngEncoding::Linear);
                 } else if (output == 2) {
                     ComposeSettings c;

@@ -66,7 +66,9 @@ enum class HostBlend {
 
 //! What a source's values are. It matters only where the target's colour encoding is sRGB
 //! (GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING == GL_SRGB): into linear targets values are
-//! stored as they are either way.
+//! stored as they are either way. The default framebuffer's encoding is the window system's
+//! choice (e.g. an sRGB-capable EGL or GLFW surface): query it on GL_BACK_LEFT, or pass
+//! Display to store a source's values unchanged whatever it is.
 enum class HostSourceEncoding {
     Auto,    //!< Display for this Composer's compose() result, Linear for any other source
     Linear,  //!< linear values (AO, radiance): sRGB-encoded on write, and Multiply blends in linear

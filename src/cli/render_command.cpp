@@ -61,8 +61,10 @@ void runRender(const RenderOptions& o) {
 
     headless::HeadlessContext gl;
     Context ctx(gl.contextDesc());
-    std::printf("scene %s, %dx%d, %s on %s (%s)\n", scene.name.c_str(), width, height, ctx.info().version.c_str(),
-                ctx.info().renderer.c_str(), toString(ctx.profiler().clock()));
+    // The default radius, so that distances in the outputs can be read against it.
+    std::printf("scene %s, %dx%d, default radius %g, %s on %s (%s)\n", scene.name.c_str(), width, height,
+                defaultRadius(scene.scene), ctx.info().version.c_str(), ctx.info().renderer.c_str(),
+                toString(ctx.profiler().clock()));
     std::printf("%-12s %-22s %10s %10s %10s %7s  %s\n", "technique", "pass", "median ms", "min ms", "max ms", "frames",
                 "clock");
     for (const TechniqueInfo* t : selected) {

@@ -155,9 +155,14 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
     GLint firstDrawBuffer = GL_NONE;
     ctx.gl.GetIntegerv(GL_DRAW_BUFFER0, &firstDrawBuffer);
-    if (firstDrawBuffer == GL_NONE)
+    GLint attached = GL_NONE;
+    if (firstDrawBuffer != GL_NONE && target.framebuffer != 0)
+        ctx.gl.GetNamedFramebufferAttachmentParameteriv(target.framebuffer, static_cast<GLenum>(firstDrawBuffer),
+                                                        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
+    if (firstDrawBuffer == GL_NONE || (target.framebuffer != 0 && attached == GL_NONE))
         throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
-                                                    ": its first draw buffer is GL_NONE, so nothing would be written");
+                                                    ": its first draw buffer is GL_NONE or has no image attached, so "
+                                                    "nothing would be written");
     PassScope pass(ctx, "compose.output");
     setViewport(ctx, target.x, target.y, target.width, target.height);
     DrawState state;

@@ -84,6 +84,27 @@ if(rc EQUAL 0 OR NOT err MATCHES "rays=7.9.*whole number")
   message(FATAL_ERROR "rays=7.9 was not refused clearly: ${err}")
 endif()
 
+# The gap between the depth layers (benchmarks/layer_gaps.sh): 0 where one is missing (the
+# Cornell box's walls), nowhere longer than a path through the tall block (its space diagonal:
+# a 166 mm square footprint, 330 mm high, 405 mm; the blocks are open at the floor), and asked
+# for without the second layer, refused by name.
+run("${OBSCURA}" render --scene cornell --size 64x48 --technique gbuffer --set depth_layers=2 --output layer_gap
+    --out "${WORK_DIR}/layer_gap.exr")
+execute_process(COMMAND "${OIIOTOOL}" --stats "${WORK_DIR}/layer_gap.exr" OUTPUT_VARIABLE info)
+string(REGEX MATCH "Stats Min: ([-0-9.e+]+)" unused "${info}")
+set(gapMin "${CMAKE_MATCH_1}")
+string(REGEX MATCH "Stats Max: ([-0-9.e+]+)" unused "${info}")
+set(gapMax "${CMAKE_MATCH_1}")
+if(gapMin STREQUAL "" OR gapMax STREQUAL "" OR NOT gapMin EQUAL 0 OR NOT gapMax GREATER 0 OR gapMax GREATER 405
+   OR NOT info MATCHES "NanCount: 0 ")
+  message(FATAL_ERROR "layer_gap: expected 0 where a layer is missing, the largest gap in (0, 405] mm, no NaN: ${info}")
+endif()
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique gbuffer --output layer_gap
+                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "depth_layers=2")
+  message(FATAL_ERROR "layer_gap without the second layer was not refused clearly: ${err}")
+endif()
+
 # Every ComposeSettings field is a key (compose.hpp: the field names in snake case).
 run("${OBSCURA}" render --scene cornell --size 16x12 --technique compose --set formula=thesis --set ambient=0.1
     --set indirect_scale=0.5 --set exposure=0.05 --set tone_mapper=drago --set drago_max_luminance=5 --set drago_bias=0.7

@@ -32,8 +32,9 @@ public:
 
     void set(const std::string& key, const std::string& value) override {
         if (key == "direct_lighting") settings_.directLighting = parseBool(key, value);
+        else if (key == "depth_layers") settings_.depthLayers = parseInteger(key, value, 1, 2, "layers");
         else if (!lit_.set(key, value))
-            throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting, " +
+            throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting, depth_layers, " +
                                               settingKeys(LitGBuffer::settings()) + ")");
     }
 
@@ -119,11 +120,32 @@ private:
                 return far > 0.0f ? std::abs(s.at(x, y, c)) / far : 0.0f;
             });
             o.encoding = assets::PngEncoding::Linear;
+        } else if (name == "layer_gap") {
+            o.image = layerGap();
+            o.display = o.image;
+            o.encoding = assets::PngEncoding::Linear;
         } else {
-            throw Error(ErrorCode::InvalidArgument,
-                        "gbuffer has no output \"" + name + "\" (outputs: direct, albedo, normal, depth, position, distance)");
+            throw Error(ErrorCode::InvalidArgument, "gbuffer has no output \"" + name +
+                                                        "\" (outputs: direct, albedo, normal, depth, position, distance, layer_gap)");
         }
         return o;
+    }
+
+    // World units between the first and the second depth layer's points along each pixel's
+    // ray (what depth-peeled thickness takes as solid), 0 where either layer is missing.
+    Image layerGap() {
+        if (view_.backDepth.name == 0)
+            throw Error(ErrorCode::InvalidArgument, "gbuffer output \"layer_gap\" needs --set depth_layers=2");
+        const Image front = readTexture(ctx_, gbuffer_.positions(view_));
+        GBufferView back = view_;
+        back.depth = view_.backDepth;
+        const Image behind = readTexture(ctx_, gbuffer_.positions(back));
+        return mapped(front, 1, [&behind](const Image& f, int x, int y, int) {
+            if (f.at(x, y, 3) == 0.0f || behind.at(x, y, 3) == 0.0f) return 0.0f;
+            const glm::vec3 a(f.at(x, y, 0), f.at(x, y, 1), f.at(x, y, 2));
+            const glm::vec3 b(behind.at(x, y, 0), behind.at(x, y, 1), behind.at(x, y, 2));
+            return glm::length(b - a);
+        });
     }
 
     Context& ctx_;
@@ -136,8 +158,10 @@ private:
 const TechniqueRegistrar registrar({
     "gbuffer",
     "G-buffer: hardware depth, view-space face normal, albedo, direct radiance (shadow-mapped)",
-    {"direct", "albedo", "normal", "depth", "position", "distance"},
-    joinSettings({{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert)"}}, LitGBuffer::settings()),
+    {"direct", "albedo", "normal", "depth", "position", "distance", "layer_gap"},
+    joinSettings({{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert)"},
+                  {"depth_layers", "", "1|2", "2: also the second depth layer (depth peeling), for output layer_gap"}},
+                 LitGBuffer::settings()),
     {{"default", {}}},
     [](Context& ctx) { return std::make_unique<GBufferRun>(ctx); },
 });
