@@ -108,7 +108,8 @@ public:
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer
     //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
     //! Error{InvalidArgument} for a target that is not a complete framebuffer of this context,
-    //! whose first draw buffer is GL_NONE, or with an empty rectangle or bad enumerators.
+    //! whose first draw buffer is GL_NONE or has no image attached, or with an empty rectangle
+    //! or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 
     std::size_t memoryBytes() const;

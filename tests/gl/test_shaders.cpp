@@ -1,6 +1,7 @@
 // Shader library: lazy compilation of only the permutations used, compile errors reported
 // against the original file and line, and shared GLSL functions run on the driver.
 #include "core/sampling.hpp"
+#include "frame_checks.hpp"
 #include "gl_fixture.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
@@ -119,12 +120,8 @@ void main() {
     for (uint k = 0u; k < 16u; ++k) frames[at + 2u + k] = vec4(toFrame(cosineHemisphere(hammersley(k, 16u)), n), 0.0);
 }
 )");
-    std::vector<glm::vec4> normals = {{0, 0, 1, 0}, {0, 0, -1, 0}, {-0.0f, -0.0f, -1, 0}, {1, 0, -0.0f, 0},
-                                      {0, -1, 0, 0}, {0, 1, -0.0f, 0}, {1e-8f, 0, -1, 0}, {0, -1e-8f, 1, 0}};
-    for (std::uint32_t i = 0; i < 1000; ++i) {
-        const glm::vec3 d = detail::uniformHemisphere(detail::hammersley(i, 1000));
-        normals.emplace_back(i % 2 ? d : -d, 0.0f);
-    }
+    std::vector<glm::vec4> normals;
+    for (const glm::vec3& n : test::tangentFrameNormals()) normals.emplace_back(n, 0.0f);
     GLuint buffers[2];
     glCreateBuffers(2, buffers);
     const std::size_t outputs = normals.size() * (2 + kDirections);
@@ -144,14 +141,7 @@ void main() {
     for (std::size_t i = 0; i < normals.size(); ++i) {
         const glm::vec3 n(normals[i]), t(frames[i * 18]), b(frames[i * 18 + 1]);
         CAPTURE(i, n.x, n.y, n.z, t.x, t.y, t.z, b.x, b.y, b.z);
-        // The unit test's bounds: a few float operations per component, far inside 1e-5.
-        CHECK(std::isfinite(t.x + t.y + t.z + b.x + b.y + b.z));
-        CHECK(std::abs(glm::dot(t, t) - 1.0f) < 1e-5f);
-        CHECK(std::abs(glm::dot(b, b) - 1.0f) < 1e-5f);
-        CHECK(std::abs(glm::dot(t, b)) < 1e-5f);
-        CHECK(std::abs(glm::dot(t, n)) < 1e-5f);
-        CHECK(std::abs(glm::dot(b, n)) < 1e-5f);
-        CHECK(glm::dot(glm::cross(t, b), n) > 0.99999f); // right-handed
+        test::checkTangentFrame(n, t, b);
         // The same frame as the CPU mirror the tests' closed forms use: |s + n.z| >= 1, so a is
         // within an ulp or two, and each component, of size at most 1, is off by a few ulp of 1
         // in either (fused or not): an absolute bound, 1e-6 being 8 ulp of 1.

@@ -1,6 +1,7 @@
 // The sampling library's CPU mirror (src/core/sampling.hpp, the same formulas as
 // shaders/common/sampling.glsl): sequences, hemisphere mappings and the tangent frame.
 #include "core/sampling.hpp"
+#include "frame_checks.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -63,24 +64,11 @@ TEST_CASE("Hemisphere mappings give unit directions with the expected moments", 
 }
 
 TEST_CASE("The tangent frame is orthonormal for every normal including +z and -z", "[sampling]") {
-    std::vector<glm::vec3> normals = {{0, 0, 1}, {0, 0, -1}, {0, 0, -0.0f}, {1, 0, 0}, {0, -1, 0}};
-    normals.back() = glm::vec3(0, -1, 0);
-    normals[2] = glm::normalize(glm::vec3(1e-8f, 0, -1)); // just below the seam
-    for (std::uint32_t i = 0; i < 1000; ++i) {
-        const glm::vec3 d = uniformHemisphere(hammersley(i, 1000));
-        normals.push_back(i % 2 ? d : -d);
-    }
-    for (const glm::vec3& n : normals) {
+    for (const glm::vec3& n : obscura::test::tangentFrameNormals()) {
         CAPTURE(n.x, n.y, n.z);
         glm::vec3 t, b;
         tangentFrame(n, t, b);
-        CHECK(std::isfinite(t.x + t.y + t.z + b.x + b.y + b.z));
-        CHECK(std::abs(glm::dot(t, t) - 1.0f) < 1e-5f);
-        CHECK(std::abs(glm::dot(b, b) - 1.0f) < 1e-5f);
-        CHECK(std::abs(glm::dot(t, b)) < 1e-5f);
-        CHECK(std::abs(glm::dot(t, n)) < 1e-5f);
-        CHECK(std::abs(glm::dot(b, n)) < 1e-5f);
-        CHECK(glm::dot(glm::cross(t, b), n) > 0.99999f); // right-handed
+        obscura::test::checkTangentFrame(n, t, b);
     }
 }
 
