@@ -9,8 +9,9 @@ models=/usr/share/assimp/models
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for scene in cornell "$models/PLY/Wuson.ply" "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"; do
-  radius=$("$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$scene" --size "$size" --technique gbuffer \
-    --set depth_layers=2 --output layer_gap --out "$work/gap.exr" | sed -n 's/.*default radius \([^,]*\),.*/\1/p')
+  radius=$(obscura_default_radius "$scene" "$size")
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$scene" --size "$size" --technique gbuffer \
+    --set depth_layers=2 --output layer_gap --out "$work/gap.exr" > /dev/null
   # Pixels with both layers (gap > 0) and those with geometry but no second layer are told
   # apart by the distance output: geometry is where it is > 0.
   "$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$scene" --size "$size" --technique gbuffer \

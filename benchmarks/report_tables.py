@@ -76,10 +76,10 @@ def default_runs(rows):
     return [r for r in rows if not r.get("variant") and ray_lanes(r) == 1 and geometry_tiles(r)]
 
 
-def varying_only(rows, key):
-    """The rows whose --variant (if any) sets `key` alone: a study of `key` compares those, and not a
+def varying_only(rows, *keys):
+    """The rows whose --variant (if any) sets only `keys`: a study of them compares those, and not a
     variant that also changes something else."""
-    return [r for r in rows if {kv.split("=")[0] for kv in r.get("variant", "").split(",") if kv} <= {key}]
+    return [r for r in rows if {kv.split("=")[0] for kv in r.get("variant", "").split(",") if kv} <= set(keys)]
 
 
 def lanes_lines(rows):
@@ -227,44 +227,62 @@ def march_section(rows):
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
 
 
-THICKNESS_MODES = ("constant", "depth_peeling")
+# The thickness study's runs: (thickness_mode, whether the variant sets the thickness: a tenth
+# of the radius in scripts/report.sh, else the presets' radius). The first two are required.
+THICKNESS_RUNS = (("constant", False), ("depth_peeling", False), ("peeling_or_constant", False),
+                  ("constant", True), ("peeling_or_constant", True))
 
 
 def gbuffer_ms(row):
     return sum(p["median_ms"] for p in row.get("passes", []) if p["pass"].startswith("gbuffer."))
 
 
+def thickness_run(row):
+    variant = {kv.split("=")[0] for kv in row.get("variant", "").split(",") if kv}
+    return row.get("settings", {}).get("thickness_mode", "constant"), "thickness" in variant
+
+
 def thickness_section(rows):
-    """Screen-space AO with constant thickness against depth peeling, time and error."""
+    """Screen-space AO with constant thickness against depth peeling and the deeper of both, time and
+    error."""
     table = defaultdict(dict)
-    for r in varying_only(rows, "thickness_mode"):
+    for r in varying_only(rows, "thickness_mode", "thickness"):
         if r["quantity"] != "ao":
             continue
         key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["preset"])
-        table[key][r.get("settings", {}).get("thickness_mode", "constant")] = r
+        table[key][thickness_run(r)] = r
     order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
     lines = []
     for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], order.get(kv[0][3], 9))):
-        if any(m not in runs for m in THICKNESS_MODES):
+        if any(run not in runs for run in THICKNESS_RUNS[:2]):
             continue
-        c, p = runs["constant"], runs["depth_peeling"]
-        ratio = p["rmse"] / c["rmse"] if c["rmse"] > 0 else float("nan")
-        lines.append(f"| {' | '.join(key)} | {fmt(own_ms(c))} | {fmt(own_ms(p))} | {fmt(gbuffer_ms(c))} | "
-                     f"{fmt(gbuffer_ms(p))} | {fmt(c['rmse'])} | {fmt(p['rmse'])} | {fmt(ratio, 3)} |")
+        c, p = runs[THICKNESS_RUNS[0]], runs[THICKNESS_RUNS[1]]
+        either = runs.get(THICKNESS_RUNS[2])
+        rmses = [fmt(runs[run]["rmse"]) if run in runs else "" for run in THICKNESS_RUNS]
+        lines.append(f"| {' | '.join(key)} | {fmt(own_ms(c))} | {fmt(own_ms(p))} | "
+                     f"{fmt(own_ms(either)) if either else ''} | {fmt(gbuffer_ms(c))} | {fmt(gbuffer_ms(p))} | "
+                     f"{' | '.join(rmses)} |")
     if not lines:
         return []
     return ["## Screen-space thickness", "",
             "`ao.raymarch` and `ao.points` with a constant thickness behind each depth sample (`thickness` 0: the "
             "radius, the presets' setting) against depth peeling (`thickness_mode=depth_peeling`: a sample is hidden "
             "only between the first and the second depth layer, which the G-buffer renders in a second geometry "
-            "pass), the same samples timed in turn (`scripts/report.sh`). `own ms` is the technique's passes, "
+            "pass) and the deeper of both (`thickness_mode=peeling_or_constant`: hidden within the thickness or in "
+            "front of the second layer), with the radius and with a tenth of it (`r/10`), the same samples timed "
+            "in turn (`scripts/report.sh`, one bench run per scene). `own ms` is the technique's passes, "
             "`G-buffer ms` the G-buffer's (one layer, or two). A constant thickness as large as the radius counts "
             "everything behind a surface as solid, so a ray that passes behind an object is blocked: the error of "
             "the ray march levels off or rises as rays and steps grow. Peeling lets such rays through, but only two layers "
             "are known: behind the second, everything counts as open, and a march's samples or the points step "
             "over anything thinner than their spacing. Where parts are thin next to the radius and stacked "
             "(2CylinderEngine, whose second layer lies a median 0.13 radius behind the first: benchmarks/layer_gaps.sh) "
-            "peeling misses occluders the reference finds.", "",
-            "| scene | size | technique | preset | constant own ms | peeling own ms | constant G-buffer ms | "
-            "peeling G-buffer ms | constant RMSE | peeling RMSE | RMSE ratio, peeling / constant |",
-            "|---|---|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+            "peeling misses occluders the reference finds. The thickness is measured along each pixel's normal, "
+            "so on a face seen at a grazing angle it reaches thickness / cos far along the view ray: with the "
+            "radius, the deeper of both is mostly the constant thickness; with a tenth of it, it keeps "
+            "peeling's depth on thick objects and a slab of a tenth of the radius (longer at grazing angles) where "
+            "the second layer is nearer.", "",
+            "| scene | size | technique | preset | constant own ms | peeling own ms | deeper-of-both own ms | "
+            "one-layer G-buffer ms | two-layer G-buffer ms | RMSE: constant | peeling | deeper of both | "
+            "constant r/10 | deeper of both r/10 |",
+            "|" + "---|" * 14] + lines + [""]

@@ -5,6 +5,16 @@ OBSCURA_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OBSCURA_BUILD_DIR=${OBSCURA_BUILD_DIR:-$OBSCURA_ROOT/build}
 OBSCURA_JOBS=$(nproc 2>/dev/null || echo 2)
 
+# obscura_default_radius SCENE SIZE: the AO presets' radius for a scene (a tenth of its
+# bounding box's diagonal, world units), as the obscura tool prints it.
+obscura_default_radius() {
+  local probe
+  probe=$(mktemp --suffix=.exr)
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$1" --size "$2" --technique gbuffer --output depth \
+    --out "$probe" --frames 1 | sed -n 's/.*default radius \([^,]*\),.*/\1/p'
+  rm -f "$probe"
+}
+
 obscura_setup() {
   "$OBSCURA_ROOT/scripts/setup-debian.sh"
 }

@@ -4,7 +4,7 @@
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
 # its traversals, the half-resolution trade-off at 512x512, the reduced-resolution presets
 # with and without geometry tiles, ray lanes, the screen-space marches (view, texture,
-# Hi-Z) and thickness (constant, depth peeling), each study's variants timed in turn in one process, then draws the plots.
+# Hi-Z) and thickness (constant, depth peeling, the deeper of both), each study's variants timed in turn in one process, then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -71,13 +71,21 @@ for steps in preset 128; do
     --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
   marches+=(--march-study "$dir/bench.json")
 done
-# Screen-space thickness: constant (the presets') against depth peeling, timed in turn, on
-# the Cornell box and the two models whose layers differ most (thick blocks, thin stacked parts).
-"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
-  --scene cornell --scene "$models/PLY/Wuson.ply" \
-  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-  --techniques 'ao.[rp]*' --presets low,medium,high,ultra --size 128x128 --frames 20 --spp 1024 \
-  --variant thickness_mode=depth_peeling --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/thickness"
+# Screen-space thickness: constant (the presets', the radius) against depth peeling and the
+# deeper of both, and both with a tenth of the radius, timed in turn, on the Cornell box and
+# the two models whose layers differ most (thick blocks, thin stacked parts). The thickness is
+# in world units, so each scene runs on its own.
+thickness=()
+for scene in cornell "$models/PLY/Wuson.ply" "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"; do
+  thin=$(awk -v r="$(obscura_default_radius "$scene" 128x128)" 'BEGIN { printf "%.6g", r / 10 }')
+  dir="$out/thickness/$(basename "${scene%.*}")"
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene "$scene" \
+    --techniques 'ao.[rp]*' --presets low,medium,high,ultra --size 128x128 --frames 20 --spp 1024 \
+    --variant thickness_mode=depth_peeling --variant thickness_mode=peeling_or_constant \
+    --variant "thickness=$thin" --variant "thickness_mode=peeling_or_constant,thickness=$thin" \
+    --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
+  thickness+=(--thickness-study "$dir/bench.json")
+done
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
 # the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()
@@ -90,4 +98,4 @@ for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do
 done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
-  --thickness-study "$out/thickness/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  "${thickness[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

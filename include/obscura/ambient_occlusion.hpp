@@ -70,11 +70,14 @@ struct AmbientOcclusionSettings {
     //! RayMarch, Points: how far behind a depth sample's tangent plane (along its normal), in
     //! world units, a point still counts as inside the object, [0, inf); 0 = the radius.
     //! Larger closes gaps behind thin objects, smaller lets rays pass behind them. With
-    //! DepthPeeling it applies only where the second layer is empty.
+    //! DepthPeeling it applies only where the second layer is empty; with PeelingOrConstant
+    //! everywhere, where the second layer is nearer.
     float thickness = 0.0f;
     //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
     //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2): objects are as
-    //! thick as they are, so rays pass behind them and are not cut off inside them.
+    //! thick as they are, so rays pass behind them and are not cut off inside them; or
+    //! PeelingOrConstant: the deeper of the two, which keeps the constant slab behind thin
+    //! parts (where other parts lie behind them, stacked; benchmarks/README.md).
     ScreenThickness thicknessMode = ScreenThickness::Constant;
     //! RayMarch: View (3D samples), Texture (2D samples, classified like View) or HiZ (the
     //! Texture samples, with runs skipped through a min/max depth pyramid: the same result

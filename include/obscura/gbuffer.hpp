@@ -73,7 +73,8 @@ struct GBufferSettings {
     bool directLighting = true;  //!< add the lights to directRadiance; off: emission only
     glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²), [0, 65504] per channel
     //! Depth layers, [1, 2]: 2 adds `backDepth` (a second, depth-only pass over the scene
-    //! that peels the first layer), for ScreenThickness::DepthPeeling.
+    //! that peels the first layer), for ScreenThickness::DepthPeeling and PeelingOrConstant
+    //! (depthLayersFor).
     int depthLayers = 1;
     //! With directLighting: each light that has maps here is multiplied by its shadow, looked
     //! up per fragment as ShadowMaps::mask does (ShadowMaps::render with this camera, whose

@@ -55,7 +55,7 @@ struct IndirectLightSettings {
     //! more depth than a fine grid's voxels, are still found). World units,
     //! [0, inf); 0 = the radius (Screen) or two voxel diagonals (Hybrid).
     float thickness = 0.0f;
-    //! Screen: Constant or DepthPeeling (as AmbientOcclusionSettings::thicknessMode).
+    //! Screen: Constant, DepthPeeling or PeelingOrConstant (as AmbientOcclusionSettings::thicknessMode).
     ScreenThickness thicknessMode = ScreenThickness::Constant;
     //! Screen: View, Texture or HiZ (as AmbientOcclusionSettings::march; pass "gi.hiz").
     ScreenMarch march = ScreenMarch::View;

@@ -6,7 +6,8 @@
 // centre, the G-buffer's geometric normal n, and a back: `thickness` world units behind the
 // tangent plane (along n, so independent of the depth one pixel's footprint spans at
 // grazing angles), or the second depth layer of GBufferSettings::depthLayers = 2 (DepthPeeling;
-// the constant thickness where that layer is empty). A point is hidden when it projects
+// the constant thickness where that layer is empty), or the deeper of the two
+// (PeelingOrConstant). A point is hidden when it projects
 // into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
 // plane never hits it again at any resolution; beyond the rounding of depth, positions and
 // normals: where o may lie on the plane a segment from -> to starts on (within the start
@@ -42,14 +43,21 @@ enum class ScreenMarch { View, Texture, HiZ };
 enum class ScreenThickness {
     Constant,     //!< `thickness` world units behind every depth pixel
     DepthPeeling, //!< down to GBufferView::backDepth (GBufferSettings::depthLayers = 2)
+    //! Hidden by either: within `thickness` or in front of backDepth. Thick closed objects
+    //! are as deep as peeling finds them, thin parts (whose back lies within `thickness`)
+    //! keep the constant slab that stands in for what is stacked behind them.
+    PeelingOrConstant,
 };
+
+//! GBufferSettings::depthLayers that a thickness mode reads: 2 where it needs backDepth.
+constexpr int depthLayersFor(ScreenThickness mode) { return mode == ScreenThickness::Constant ? 1 : 2; }
 
 struct ScreenTraceSettings {
     ScreenMarch march = ScreenMarch::View;
     int steps = 32;             //!< samples per segment, [1, 4096]
     float jitter = 0.5f;        //!< offset of the samples in units of the spacing, [0, 1)
     ScreenThickness thicknessMode = ScreenThickness::Constant;
-    float thickness = 1.0f;     //!< world units, (0, inf); with DepthPeeling where no back layer exists
+    float thickness = 1.0f;     //!< world units, (0, inf); with DepthPeeling only where no back layer exists
 };
 
 //! A segment in the G-buffer camera's view space (world units). NaN or Inf: a miss.
@@ -73,7 +81,7 @@ public:
 
     //! Traces view-space segments against the G-buffer's depth (passes "visibility.hiz" for
     //! the pyramid and "visibility.trace"). Throws Error{InvalidArgument} for settings out of
-    //! range (enumerators included), a G-buffer without depth or normals, or DepthPeeling without a back layer.
+    //! range (enumerators included), a G-buffer without depth or normals, or a mode that reads a back layer (depthLayersFor) without one.
     std::vector<ScreenHit> trace(const GBufferView& view, const std::vector<ScreenSegment>& segments,
                                  const ScreenTraceSettings& settings);
     //! Whether each view-space point is hidden (screenHidden, with the settings' thickness).

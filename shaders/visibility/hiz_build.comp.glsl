@@ -4,6 +4,7 @@
 // the max of x and the min of y over the (up to) 2 x 2 cells below.
 //! variant: LEVEL0
 //! variant: LEVEL0 SCREEN_PEELED
+//! variant: LEVEL0 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
 //! variant: REDUCE
 #include "screen_march.glsl"
 
@@ -54,12 +55,17 @@ vec2 pixelBounds(ivec2 pixel) {
     const vec3 o = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     const vec3 n = texelFetch(visNormal, pixel, 0).xyz;
     // Hidden means beyond the tangent plane along the view ray, and not beyond the plane
-    // `thickness` further back (or the back layer).
+    // `thickness` further back (or the back layer, or the deeper of both).
     const float nearest = max(o.z, footprintPlaneZ(pixel, o, n, true, kHuge));
     float farthest = footprintPlaneZ(pixel, o - n * thickness, n, false, -kHuge);
 #ifdef SCREEN_PEELED
     const float back = texelFetch(visBackDepth, pixel, 0).r;
-    farthest = isBackground(back) ? farthest : min(viewZFromDepth(back), o.z);
+    const float backZ = min(viewZFromDepth(back), o.z);
+#ifdef SCREEN_PEELED_OR_CONSTANT
+    farthest = isBackground(back) ? farthest : min(farthest, backZ); // either interval
+#else
+    farthest = isBackground(back) ? farthest : backZ;
+#endif
 #endif
     const float scale = length(o) + thickness;
     return vec2(nearest + kBoundSlack * (abs(nearest) + scale), farthest - kBoundSlack * (abs(farthest) + scale));

@@ -5,7 +5,8 @@
 // A depth pixel stands for a small piece of surface: its reconstructed point o with the
 // G-buffer's normal n_o, `thickness` deep behind its tangent plane (along n_o) or, with
 // SCREEN_PEELED, down to the second depth layer (the surface behind it; the constant
-// thickness where there is none). A point s is hidden when it is behind that piece's tangent plane
+// thickness where there is none), and with SCREEN_PEELED_OR_CONSTANT too down to the
+// deeper of the two. A point s is hidden when it is behind that piece's tangent plane
 // (dot(s - o, n_o) < 0, so a ray leaving a plane never hits the same plane, whatever the
 // pixel grid; by more than the rounding of depth, positions and normals) and not beyond the
 // piece's back. Points outside the image or in front of the
@@ -90,7 +91,12 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, ScreenRayStart from, float thickness) {
     bool inside = behind <= thickness;
 #ifdef SCREEN_PEELED
     const float back = texelFetch(visBackDepth, pixel, 0).r;
-    inside = isBackground(back) ? inside : s.z >= min(viewZFromDepth(back), o.z);
+    const bool beforeBack = !isBackground(back) && s.z >= min(viewZFromDepth(back), o.z);
+#ifdef SCREEN_PEELED_OR_CONSTANT
+    inside = inside || beforeBack;
+#else
+    inside = isBackground(back) ? inside : beforeBack;
+#endif
 #endif
     // The ray's start carries the error of its own pixel's depth, taken as o's: a ray leaving
     // a surface meets its own plane's pixels first.

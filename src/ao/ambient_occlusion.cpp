@@ -141,7 +141,8 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
     const bool marches = s.method == AoMethod::RayMarch || s.method == AoMethod::Points;
-    const bool peeled = marches && s.thicknessMode == ScreenThickness::DepthPeeling;
+    const ScreenThickness thickness = marches ? s.thicknessMode : ScreenThickness::Constant;
+    const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
@@ -155,14 +156,14 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
     const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;
-    if (march == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, peeled, "ao.hiz");
+    if (march == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, thickness, "ao.hiz");
     const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
     // The guide is only for the filters: a full-resolution result without blur needs none.
     const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide") : 0;
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
     std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
     if (marches) {
-        const auto screen = screenMarchDefines(march, peeled ? ScreenThickness::DepthPeeling : ScreenThickness::Constant);
+        const auto screen = screenMarchDefines(march, thickness);
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
     if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));

@@ -55,6 +55,21 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return v;
 }
 
+glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
+    // ':' as well as ',': bench --variant splits its settings on commas.
+    std::vector<std::string> parts(1);
+    for (const char c : value) {
+        if (c == ':' || c == ',') parts.emplace_back();
+        else parts.back() += c;
+    }
+    if (parts.size() == 1) return glm::vec3(static_cast<float>(parseNumber(key, value, lo, hi, unit)));
+    if (parts.size() != 3)
+        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one value (grey) or r:g:b");
+    glm::vec3 color(0.0f);
+    for (int c = 0; c < 3; ++c) color[c] = static_cast<float>(parseNumber(key, parts[std::size_t(c)], lo, hi, unit));
+    return color;
+}
+
 int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit) {
     const double v = parseNumber(key, value, lo, hi, unit);
     if (v != std::floor(v)) throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a whole number");
@@ -115,7 +130,8 @@ ScreenMarch parseScreenMarch(const std::string& key, const std::string& value) {
 
 ScreenThickness parseScreenThickness(const std::string& key, const std::string& value) {
     return parseChoice<ScreenThickness>(key, value, {{"constant", ScreenThickness::Constant},
-                                                     {"depth_peeling", ScreenThickness::DepthPeeling}});
+                                                     {"depth_peeling", ScreenThickness::DepthPeeling},
+                                                     {"peeling_or_constant", ScreenThickness::PeelingOrConstant}});
 }
 
 GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view) {

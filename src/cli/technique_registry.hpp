@@ -121,6 +121,9 @@ void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues)
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.
 double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
+//! A colour: one number (grey) or three separated by ':' (or ',' outside bench --variant),
+//! each in [lo, hi].
+glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
 //! parseNumber for counts: a value with a fraction is refused, not cut.
 int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit);
 //! One of the named values; throws Error{Parse} listing them.
@@ -133,7 +136,7 @@ E parseChoice(const std::string& key, const std::string& value, const std::map<s
     throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
 }
 //! The screen-space marching settings AO and GI share: "view|texture|hiz" and
-//! "constant|depth_peeling".
+//! "constant|depth_peeling|peeling_or_constant".
 ScreenMarch parseScreenMarch(const std::string& key, const std::string& value);
 ScreenThickness parseScreenThickness(const std::string& key, const std::string& value);
 //! The voxel-grid settings ao.voxel and gi.hybrid share ("voxel_resolution",

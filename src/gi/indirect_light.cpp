@@ -107,7 +107,8 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
                                                 "the G-buffer with GBuffer::render, or give HostGBuffer::albedo and "
                                                 "directRadiance to GBuffer::adopt");
     const bool hybrid = s.method == GiMethod::Hybrid;
-    const bool peeled = !hybrid && s.thicknessMode == ScreenThickness::DepthPeeling;
+    const ScreenThickness thickness = hybrid ? ScreenThickness::Constant : s.thicknessMode;
+    const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
     requireViewSized(ctx, g.albedo, view, "albedo");
     requireViewSized(ctx, g.directRadiance, view, "directRadiance");
@@ -119,7 +120,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     d.uploadParams(g, s, size, scale);
     d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError);
     bindScreenInputs(ctx, view, peeled);
-    if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, peeled, "gi.hiz");
+    if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, thickness, "gi.hiz");
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
     d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
     ctx.bindNoiseTexture();
@@ -129,7 +130,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
     if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
     else {
-        const auto screen = screenMarchDefines(s.march, s.thicknessMode);
+        const auto screen = screenMarchDefines(s.march, thickness);
         defines.insert(defines.end(), screen.begin(), screen.end());
     }
     addRayLaneDefine(defines, s.rayLanes);

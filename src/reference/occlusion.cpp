@@ -27,6 +27,12 @@ void requireRadius(double r, const char* what) {
                                                     std::to_string(r));
 }
 
+// Sample i of the pixel's set as a direction about `normal`, cosine-weighted or uniform.
+glm::dvec3 hemisphereDirection(PixelSampler& s, int i, bool cosineWeighted, const glm::dvec3& normal) {
+    const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
+    return toWorld(cosineWeighted ? cosineHemisphere(u) : uniformHemisphere(u), normal);
+}
+
 } // namespace
 
 Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quantity) {
@@ -37,8 +43,7 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
             const glm::vec3 origin = surfaceOrigin(scene, p);
             double visible = 0.0;
             for (int i = 0; i < n; ++i) {
-                const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
-                const glm::dvec3 w = toWorld(q.cosineWeighted ? cosineHemisphere(u) : uniformHemisphere(u), p.normal);
+                const glm::dvec3 w = hemisphereDirection(s, i, q.cosineWeighted, p.normal);
                 ++rays;
                 if (!scene.occluded(origin, w, q.radius)) visible += 1.0;
             }
@@ -53,8 +58,7 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
             const glm::vec3 origin = surfaceOrigin(scene, p);
             double sum = 0.0;
             for (int i = 0; i < n; ++i) {
-                const glm::dvec2 u = s.point(static_cast<std::uint32_t>(i));
-                const glm::dvec3 w = toWorld(q.cosineWeighted ? cosineHemisphere(u) : uniformHemisphere(u), p.normal);
+                const glm::dvec3 w = hemisphereDirection(s, i, q.cosineWeighted, p.normal);
                 ++rays;
                 const auto hit = scene.intersect(origin, w, q.maxDistance);
                 sum += hit ? obscuranceWeight(q.falloff, hit->distance, q.maxDistance) : 1.0;

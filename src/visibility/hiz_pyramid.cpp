@@ -5,6 +5,7 @@
 #include "core/pass_scope.hpp"
 #include "core/shader_library.hpp"
 #include "shaders/visibility/visibility_bindings.h"
+#include "visibility/screen_inputs.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -13,7 +14,7 @@ namespace obscura::detail {
 
 // The pyramid is padded to powers of two, so that level L's cell i covers the pixels
 // [i 2^L, (i + 1) 2^L) with GL's halving mip sizes.
-void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thickness, bool peeled, const char* pass) {
+void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thickness, ScreenThickness mode, const char* pass) {
     const glm::ivec2 size(std::bit_ceil(static_cast<unsigned>(view.width)), std::bit_ceil(static_cast<unsigned>(view.height)));
     const int levels = std::bit_width(static_cast<unsigned>(std::max(size.x, size.y)));
     if (!texture_ || size != size_) {
@@ -23,8 +24,9 @@ void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thicknes
     }
     PassScope scope(ctx, pass);
     auto& gl = ctx.gl;
-    GLuint program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"},
-                                          peeled ? Defines{"LEVEL0", "SCREEN_PEELED"} : Defines{"LEVEL0"});
+    Defines level0{"LEVEL0"};
+    for (std::string& d : screenThicknessDefines(mode)) level0.push_back(std::move(d));
+    GLuint program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, level0);
     gl.UseProgram(program);
     gl.ProgramUniform1f(program, VIS_LOC_THICKNESS, thickness);
     ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, texture_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);

@@ -4,6 +4,7 @@
 // by ScreenVisibility and the integrators that march with ScreenMarch::HiZ.
 #include "core/gl_objects.hpp"
 #include "obscura/gbuffer.hpp"
+#include "obscura/screen_visibility.hpp"
 
 #include <cstddef>
 
@@ -15,8 +16,8 @@ class HiZPyramid {
 public:
     //! Builds the pyramid of `view` (checked by checkScreenInputs, inputs bound by
     //! bindScreenInputs) in pass "<pass>": `thickness` world units behind each depth pixel
-    //! or, `peeled`, down to its back layer. Leaves it bound at VIS_HIZ_UNIT.
-    void build(ContextImpl& ctx, const GBufferView& view, float thickness, bool peeled, const char* pass);
+    //! or down to its back layer, as `mode` says. Leaves it bound at VIS_HIZ_UNIT.
+    void build(ContextImpl& ctx, const GBufferView& view, float thickness, ScreenThickness mode, const char* pass);
     std::size_t memoryBytes() const;
 
 private:

@@ -53,14 +53,21 @@ void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled) {
 
 void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner) {
     requireEnumerator(march, {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}, owner + "::march");
-    requireEnumerator(thickness, {ScreenThickness::Constant, ScreenThickness::DepthPeeling}, owner + "::thicknessMode");
+    requireEnumerator(thickness, {ScreenThickness::Constant, ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant},
+                      owner + "::thicknessMode");
 }
 
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness) {
     const int code = march == ScreenMarch::View ? VIS_MARCH_VIEW : march == ScreenMarch::Texture ? VIS_MARCH_TEXTURE : VIS_MARCH_HIZ;
     std::vector<std::string> defines{"SCREEN_MARCH=" + std::to_string(code)};
-    if (thickness == ScreenThickness::DepthPeeling) defines.push_back("SCREEN_PEELED");
+    for (std::string& d : screenThicknessDefines(thickness)) defines.push_back(std::move(d));
     return defines;
+}
+
+std::vector<std::string> screenThicknessDefines(ScreenThickness thickness) {
+    if (thickness == ScreenThickness::Constant) return {};
+    if (thickness == ScreenThickness::DepthPeeling) return {"SCREEN_PEELED"};
+    return {"SCREEN_PEELED", "SCREEN_PEELED_OR_CONSTANT"};
 }
 
 } // namespace obscura::detail

@@ -22,6 +22,8 @@ void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBuffe
 void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
 //! The defines that make screen_march.glsl march with `march` and `thickness`.
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness);
+//! The defines of screen_march.glsl's thickness mode alone (none for Constant).
+std::vector<std::string> screenThicknessDefines(ScreenThickness thickness);
 //! Throws Error{InvalidArgument} for a march or thickness mode outside their enumerators;
 //! `owner` names the settings struct.
 void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner);

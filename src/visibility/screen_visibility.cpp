@@ -48,7 +48,7 @@ struct ScreenVisibility::Impl {
 
     // Runs the batch shader over the segments; one uvec4 per segment.
     std::vector<glm::uvec4> run(const GBufferView& g, const std::vector<ScreenSegment>& queries, const ScreenTraceSettings& s) {
-        const bool peeled = s.thicknessMode == ScreenThickness::DepthPeeling;
+        const bool peeled = depthLayersFor(s.thicknessMode) == 2;
         const GBufferView view = checkScreenInputs(ctx, g, peeled, "ScreenTraceSettings");
         analyzeProjection(view.camera);
         StateScope scope(ctx);
@@ -56,7 +56,7 @@ struct ScreenVisibility::Impl {
         frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
         bindScreenInputs(ctx, view, peeled);
         batch.upload(ctx, queries); // first: it refuses oversized batches before any work
-        if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, peeled, "visibility.hiz");
+        if (s.march == ScreenMarch::HiZ) hiz.build(ctx, view, s.thickness, s.thicknessMode, "visibility.hiz");
         const GLuint program =
             ctx.shaders->program({"visibility/trace_screen.comp.glsl"}, screenMarchDefines(s.march, s.thicknessMode));
         gl.UseProgram(program);

@@ -109,6 +109,22 @@ endif()
 run("${OBSCURA}" render --scene cornell --size 16x12 --technique compose --set formula=thesis --set ambient=0.1
     --set indirect_scale=0.5 --set exposure=0.05 --set tone_mapper=drago --set drago_max_luminance=5 --set drago_bias=0.7
     --set drago_display_max=200 --set srgb=0 --set gamma=1.8 --out "${WORK_DIR}/compose.png")
+# ambient is a colour too (r:g:b, as bench --variant can pass it): a red ambient term adds to
+# the red channel of the combined radiance only.
+foreach(ambient 0 0.5:0:0)
+  run("${OBSCURA}" render --scene cornell --size 16x12 --technique compose --set formula=thesis --set gi=0
+      --set ambient=${ambient} --output radiance --out "${WORK_DIR}/ambient_${ambient}.exr")
+endforeach()
+run("${OIIOTOOL}" "${WORK_DIR}/ambient_0.5:0:0.exr" "${WORK_DIR}/ambient_0.exr" --sub -o "${WORK_DIR}/ambient_diff.exr")
+execute_process(COMMAND "${OIIOTOOL}" --stats "${WORK_DIR}/ambient_diff.exr" OUTPUT_VARIABLE info)
+if(NOT info MATCHES "Stats Min: 0.0+ 0.0+ 0.0+" OR NOT info MATCHES "Stats Avg: 0.0*[1-9][0-9.e+-]* 0.0+ 0.0+")
+  message(FATAL_ERROR "ambient=0.5:0:0 should raise the red channel alone: ${info}")
+endif()
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique compose --set ambient=0.1:0.2
+                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0 OR NOT err MATCHES "ambient=0.1:0.2.*r:g:b")
+  message(FATAL_ERROR "ambient with two values was not refused clearly: ${err}")
+endif()
 
 # A voxel grid's slices come 128 to a render target: other counts are refused by name.
 execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.voxel --set voxel_slices=200
@@ -393,9 +409,11 @@ string(STRIP "${b}" b)
 if(NOT a STREQUAL b)
   message(FATAL_ERROR "the geometry-tiles table's RMSEs differ (${a} and ${b}): ${tileRows}")
 endif()
-# The thickness study: each preset with depth peeling beside it, one table row per preset.
+# The thickness study: each preset with depth peeling, the deeper of both and a set thickness
+# beside it, one table row per preset with all five RMSEs.
 run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques ao.points --presets low,medium
-    --variant thickness_mode=depth_peeling --out "${WORK_DIR}/bench_thickness")
+    --variant thickness_mode=depth_peeling --variant thickness_mode=peeling_or_constant --variant thickness=10
+    --variant thickness_mode=peeling_or_constant,thickness=10 --out "${WORK_DIR}/bench_thickness")
 run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json"
     --thickness-study "${WORK_DIR}/bench_thickness/bench.json" --out "${WORK_DIR}/docs_thickness")
 file(READ "${WORK_DIR}/docs_thickness/results.md" report)
@@ -404,6 +422,12 @@ list(LENGTH thicknessRows thicknessRowCount)
 if(NOT report MATCHES "## Screen-space thickness" OR NOT thicknessRowCount EQUAL 2)
   message(FATAL_ERROR "results.md lacks the thickness table or its two ao.points rows: ${thicknessRows}")
 endif()
+foreach(thicknessRow IN LISTS thicknessRows)
+  # The last five cells: constant, peeling, deeper of both, and the two with thickness=10.
+  if(NOT thicknessRow MATCHES "\\| [0-9][0-9.e+-]* \\| [0-9][0-9.e+-]* \\| [0-9][0-9.e+-]* \\| [0-9][0-9.e+-]* \\| [0-9][0-9.e+-]* \\|$")
+    message(FATAL_ERROR "a thickness row lacks one of its five RMSEs: ${thicknessRow}")
+  endif()
+endforeach()
 execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques ao.points --presets medium
                         --variant ray_lanes=2 --variant ray_lanes=2 --out "${WORK_DIR}/bench_bad_variant"
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)

@@ -146,7 +146,7 @@ std::vector<ScreenMirror::Start> ScreenMirror::starts(glm::dvec3 from) const {
 }
 
 Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
-                               bool peeled) const {
+                               ScreenThickness mode) const {
     const double t = (j + jitter) / steps;
     const glm::dvec3 s = from + d * t;
     const MarchRounding r = marchRounding(camera, width, height, from, d, t);
@@ -169,7 +169,8 @@ Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, 
                                       ? std::abs(o.z) / std::abs(double(rec.zScale)) * glm::length(o) * step
                                       : std::abs(double(rec.zScale)) * step;
     const double oError = normalError * normals.at(px, row, 3);
-    const double back = peeled && !backDepth.pixels.empty() ? backDepth.at(px, row, 0) : rec.clearDepth;
+    const bool peeled = mode != ScreenThickness::Constant && !backDepth.pixels.empty();
+    const double back = peeled ? backDepth.at(px, row, 0) : rec.clearDepth;
     // The verdict for one start pixel's normal error and one choice of the slack.
     const auto verdict = [&](double fromError, double slack) {
         const double tolerance = kPositionRounding * std::max(glm::length(o), glm::length(s)) + 2.0 * reconstruction + slack;
@@ -184,15 +185,19 @@ Verdict ScreenMirror::classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, 
                               dotRounding + 24.0 * u * tolerance;
         const bool planeTie = std::abs(behind - tolerance) <= margin;
         if (!planeTie && behind <= tolerance) return Verdict::Visible;
-        bool inside = false, insideTie = false;
+        const bool slab = behind <= thickness, slabTie = std::abs(behind - thickness) <= margin + u * thickness;
+        bool inside = slab, insideTie = slabTie;
         if (back != rec.clearDepth) {
             // s.z against the back layer's view z (or o's): each within 10 ulp of its value.
             const double limit = std::min(viewPositionFromDepth(camera, ndc, back).z, o.z);
-            inside = s.z >= limit;
-            insideTie = std::abs(s.z - limit) <= r.point + 10.0 * u * std::abs(limit);
-        } else {
-            inside = behind <= thickness;
-            insideTie = std::abs(behind - thickness) <= margin + u * thickness;
+            const bool layer = s.z >= limit, layerTie = std::abs(s.z - limit) <= r.point + 10.0 * u * std::abs(limit);
+            if (mode == ScreenThickness::DepthPeeling) {
+                inside = layer;
+                insideTie = layerTie;
+            } else { // either: a certain yes of one decides, else a tie of either is a tie
+                inside = slab || layer;
+                insideTie = !((slab && !slabTie) || (layer && !layerTie)) && (slabTie || layerTie);
+            }
         }
         if (!insideTie && !inside) return Verdict::Visible;
         return planeTie || insideTie ? Verdict::Tie : Verdict::Hidden;

@@ -25,10 +25,10 @@ struct ScreenMirror {
     //! Reads the view's depth, normals and back layer.
     ScreenMirror(Context& ctx, const GBufferView& view);
 
-    //! Sample j of `steps` on from -> from + d, judged against `thickness` (world units) or,
-    //! with peeled, the back layer where there is one.
+    //! Sample j of `steps` on from -> from + d, judged against `thickness` (world units), the
+    //! back layer where there is one, or either, as `mode` says.
     Verdict classify(glm::dvec3 from, glm::dvec3 d, int j, int steps, double jitter, double thickness,
-                     bool peeled) const;
+                     ScreenThickness mode) const;
 
     //! A ray's start as the marches take it: its pixel's stored normal and normal error
     //! (trace_screen's rayStartOf; the integrators' rays start in their own pixel), none and

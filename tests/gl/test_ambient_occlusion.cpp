@@ -133,11 +133,14 @@ TEST_CASE("An open plane gives AO = 1 exactly for every method resolution fallof
         // allow for that (depthReconstructionError), not find the floor under itself.
         {"perspective, near 1e-4 far 1e6", Camera::perspective(look, glm::radians(50.0f), float(W) / H, 1e-4f, 1e6f)},
     };
-    // Every method, the depth-peeled screen methods and the other voxel traversals.
+    // Every method, the screen methods with depth peeling (alone and with the constant
+    // slab) and the other voxel traversals.
     std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));
     for (const AoVariant more : {AoVariant{AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling},
                                  AoVariant{AoMethod::RayMarch, ScreenMarch::HiZ, ScreenThickness::DepthPeeling},
                                  AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::DepthPeeling},
+                                 AoVariant{AoMethod::RayMarch, ScreenMarch::HiZ, ScreenThickness::PeelingOrConstant},
+                                 AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::PeelingOrConstant},
                                  AoVariant{AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::March},
                                  AoVariant{AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::Exact}})
         variants.push_back(more);
@@ -567,7 +570,9 @@ TEST_CASE("AO stays finite and within 0..1 for odd sizes and reversed-Z and orth
         std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants));
         for (const AoVariant peeled : {AoVariant{AoMethod::RayMarch, ScreenMarch::View, ScreenThickness::DepthPeeling},
                                        AoVariant{AoMethod::RayMarch, ScreenMarch::HiZ, ScreenThickness::DepthPeeling},
-                                       AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::DepthPeeling}})
+                                       AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::DepthPeeling},
+                                       AoVariant{AoMethod::RayMarch, ScreenMarch::Texture, ScreenThickness::PeelingOrConstant},
+                                       AoVariant{AoMethod::Points, ScreenMarch::View, ScreenThickness::PeelingOrConstant}})
             variants.push_back(peeled);
         for (const AoVariant variant : variants)
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Quarter}) {

@@ -339,7 +339,7 @@ struct ThicknessCase {
     ScreenThickness mode;
     double thickness; // world units; peeled: where the back layer is empty
 };
-constexpr std::size_t kThicknessCases = 3;
+constexpr std::size_t kThicknessCases = 4;
 
 // Per thickness case, how many of a pixel's sample points are hidden: `lo` those the GPU must
 // find hidden, `hi` also those whose verdict rounding could flip.
@@ -397,10 +397,15 @@ HiddenCounts countHidden(const DepthLayers& g, int x, int y, double radius, cons
         const bool peeled = back != g.clearDepth;
         const double limit = peeled ? std::min(viewPositionFromDepth(g.camera, test::pixelNdc(px, row, W, H), back).z, o.z) : 0.0;
         for (std::size_t c = 0; c < kThicknessCases; ++c) {
-            bool surelyInside = behind + rounding <= cases[c].thickness, maybeInside = behind - rounding <= cases[c].thickness;
+            const bool slabSure = behind + rounding <= cases[c].thickness, slabMaybe = behind - rounding <= cases[c].thickness;
+            const bool layerSure = peeled && s.z - rounding >= limit, layerMaybe = peeled && s.z + rounding >= limit;
+            bool surelyInside = slabSure, maybeInside = slabMaybe;
             if (cases[c].mode == ScreenThickness::DepthPeeling && peeled) {
-                surelyInside = s.z - rounding >= limit;
-                maybeInside = s.z + rounding >= limit;
+                surelyInside = layerSure;
+                maybeInside = layerMaybe;
+            } else if (cases[c].mode == ScreenThickness::PeelingOrConstant) {
+                surelyInside = slabSure || layerSure;
+                maybeInside = slabMaybe || layerMaybe;
             }
             counts.lo[c] += surelyBehind && surelyInside ? 1 : 0;
             counts.hi[c] += maybeBehind && maybeInside ? 1 : 0;
@@ -434,7 +439,8 @@ TEST_CASE("Points AO in a box room matches its own share of the depth layers wit
     constexpr int gpuRays = 256, samples = 4096;
     const ThicknessCases cases = {{{"constant, the radius", ScreenThickness::Constant, radius},
                                    {"constant 0.2", ScreenThickness::Constant, 0.2},
-                                   {"peeled, else 0.2", ScreenThickness::DepthPeeling, 0.2}}};
+                                   {"peeled, else 0.2", ScreenThickness::DepthPeeling, 0.2},
+                                   {"peeled or the radius", ScreenThickness::PeelingOrConstant, radius}}};
     const DepthLayers depthLayers(camera, f.positions, normals, backDepth);
     std::vector<HiddenCounts> expected(std::size_t(W) * H);
     for (int y = 0; y < H; ++y)

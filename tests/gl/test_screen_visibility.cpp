@@ -74,8 +74,7 @@ bool agreesWithMirror(const test::ScreenMirror& mirror, const ScreenSegment& seg
     const int first = hit.sample < 0 ? s.steps : hit.sample;
     bool agrees = true;
     for (int j = 0; j <= std::min(first, s.steps - 1); ++j) {
-        const test::Verdict v = mirror.classify(from, d, j, s.steps, s.jitter, s.thickness,
-                                                s.thicknessMode == ScreenThickness::DepthPeeling);
+        const test::Verdict v = mirror.classify(from, d, j, s.steps, s.jitter, s.thickness, s.thicknessMode);
         tied = tied || v == test::Verdict::Tie;
         agrees = agrees && (j < first ? v != test::Verdict::Hidden : v != test::Verdict::Visible);
     }
@@ -99,8 +98,7 @@ double tieShareOf(const ScreenFixture& f, const test::ScreenMirror& mirror, floa
         const glm::dvec3 from(segment.from), d = glm::normalize(glm::dvec3(segment.to) - from) * double(radius);
         const double jitter = unit(rng);
         for (int j = 0; j < steps; ++j, ++samples)
-            ties += mirror.classify(from, d, j, steps, jitter, radius, mode == ScreenThickness::DepthPeeling) ==
-                            test::Verdict::Tie ? 1 : 0;
+            ties += mirror.classify(from, d, j, steps, jitter, radius, mode) == test::Verdict::Tie ? 1 : 0;
     }
     return (double(ties) + 3.0 * std::sqrt(double(ties)) + 3.0) / double(samples);
 }
@@ -113,14 +111,21 @@ TEST_CASE("Texture-space and view-space marching classify every sample as exact 
     // screenHiddenAt finds, except where a sample lies within the marches' derived float
     // rounding of a decision (screen_mirror.cpp: a tie). So they can differ only on rays
     // with a tie; a systematic error (a wrong pixel or depth) would differ on tens of percent.
+    // Each thickness mode, with a thin slab (where the modes differ most) and a thick one.
+    const std::pair<ScreenThickness, float> modes[] = {{ScreenThickness::Constant, 0.05f},
+                                                       {ScreenThickness::Constant, 10.0f},
+                                                       {ScreenThickness::DepthPeeling, 0.05f},
+                                                       {ScreenThickness::PeelingOrConstant, 0.05f}};
     for (const char* sceneName : {"cornell", "box_room"}) {
-        ScreenFixture f(sceneName, 96, 72);
+        ScreenFixture f(sceneName, 96, 72, 2);
         const test::ScreenMirror mirror(f.ctx, f.view);
         const float reach = std::string(sceneName) == "cornell" ? 300.0f : 2.0f;
         const std::vector<ScreenSegment> segments = f.surfaceSegments(4000, reach, 7);
-        for (const float thickness : {0.05f * reach, 10.0f * reach}) {
+        for (const auto& [mode, share] : modes) {
+            const float thickness = share * reach;
             ScreenTraceSettings s;
             s.steps = 24;
+            s.thicknessMode = mode;
             s.thickness = thickness;
             s.march = ScreenMarch::View;
             const auto view = f.visibility.trace(f.view, segments, s);
@@ -134,7 +139,7 @@ TEST_CASE("Texture-space and view-space marching classify every sample as exact 
                 tiedRays += tied ? 1 : 0;
             }
             const std::size_t hits = hitCount(view), differing = differingSamples(view, texture);
-            INFO(sceneName << ", thickness " << thickness << ": " << hits << " of " << segments.size()
+            INFO(sceneName << ", mode " << int(mode) << ", thickness " << thickness << ": " << hits << " of " << segments.size()
                            << " rays hit; first hidden sample differs on " << differing << "; rays with a tie "
                            << tiedRays << "; off the mirror: view " << viewOff << ", texture " << textureOff);
             CHECK(hits > segments.size() / 10);
@@ -208,7 +213,8 @@ TEST_CASE("AO and GI march alike with view and texture samples and exactly alike
     // Few samples, so that the rounding bound below stays a small share of the pixels.
     constexpr float radius = 0.6f;
     constexpr int rays = 4, steps = 8;
-    for (const ScreenThickness mode : {ScreenThickness::Constant, ScreenThickness::DepthPeeling}) {
+    for (const ScreenThickness mode :
+         {ScreenThickness::Constant, ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant}) {
         std::vector<Image> aoImages, giImages;
         for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}) {
             AmbientOcclusionSettings a;
@@ -291,21 +297,39 @@ TEST_CASE("Depth peeling gives the back of a closed box and lets rays pass behin
     const std::vector<glm::vec3> points = {{0, 0, float(-0.5 * (front + back))},
                                            {0, 0, float(-0.5 * (back + wall))},
                                            {0, 0, float(-0.5 * front)}};
-    ScreenTraceSettings s;
-    s.thickness = 10.0f; // deeper than the whole room: constant thickness closes the gap
-    const std::vector<std::uint8_t> thick = f.visibility.hidden(f.view, points, s);
-    s.thicknessMode = ScreenThickness::DepthPeeling;
-    const std::vector<std::uint8_t> peeled = f.visibility.hidden(f.view, points, s);
-    CHECK(thick == std::vector<std::uint8_t>{1, 1, 0});
-    CHECK(peeled == std::vector<std::uint8_t>{1, 0, 0});
+    const auto hiddenWith = [&](ScreenThickness mode, float thickness) {
+        ScreenTraceSettings s;
+        s.thicknessMode = mode;
+        s.thickness = thickness;
+        return f.visibility.hidden(f.view, points, s);
+    };
+    using Flags = std::vector<std::uint8_t>;
+    // 10 m, deeper than the whole room: constant thickness closes the gap behind the box;
+    // peeling opens it; the deeper of both closes it again.
+    CHECK(hiddenWith(ScreenThickness::Constant, 10.0f) == Flags{1, 1, 0});
+    CHECK(hiddenWith(ScreenThickness::DepthPeeling, 10.0f) == Flags{1, 0, 0});
+    CHECK(hiddenWith(ScreenThickness::PeelingOrConstant, 10.0f) == Flags{1, 1, 0});
+    // 5 cm, far thinner than the box: the slab misses the box's middle; peeling and the
+    // deeper of both find it.
+    CHECK(hiddenWith(ScreenThickness::Constant, 0.05f) == Flags{0, 0, 0});
+    CHECK(hiddenWith(ScreenThickness::DepthPeeling, 0.05f) == Flags{1, 0, 0});
+    CHECK(hiddenWith(ScreenThickness::PeelingOrConstant, 0.05f) == Flags{1, 0, 0});
 
-    // Hi-Z over the peeled bounds agrees with the texture-space march too.
+    // Hi-Z over the peeled bounds, and over the deeper of both, agrees with the
+    // texture-space march too.
     const std::vector<ScreenSegment> segments = f.surfaceSegments(2000, 3.0f, 3);
-    s.steps = 128;
-    s.march = ScreenMarch::Texture;
-    const auto texture = f.visibility.trace(f.view, segments, s);
-    s.march = ScreenMarch::HiZ;
-    CHECK(differingSamples(texture, f.visibility.trace(f.view, segments, s)) == 0);
+    for (const ScreenThickness mode : {ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant})
+        for (const float thickness : {0.05f, 10.0f}) {
+            CAPTURE(int(mode), thickness);
+            ScreenTraceSettings s;
+            s.thicknessMode = mode;
+            s.thickness = thickness;
+            s.steps = 128;
+            s.march = ScreenMarch::Texture;
+            const auto texture = f.visibility.trace(f.view, segments, s);
+            s.march = ScreenMarch::HiZ;
+            CHECK(differingSamples(texture, f.visibility.trace(f.view, segments, s)) == 0);
+        }
 }
 
 TEST_CASE("Points off the image or behind the camera are visible and a surface hides only its thickness",
@@ -359,6 +383,10 @@ TEST_CASE("Screen visibility rejects bad settings and survives NaN segments", "[
     CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
     bad = s;
     bad.thicknessMode = ScreenThickness::DepthPeeling; // this G-buffer has one layer
+    CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
+    bad.thicknessMode = ScreenThickness::PeelingOrConstant; // so has the deeper of both
+    CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
+    bad.thicknessMode = static_cast<ScreenThickness>(3); // an integer outside the enumerators
     CHECK_THROWS_AS(f.visibility.trace(f.view, one, bad), Error);
     bad = s;
     bad.march = static_cast<ScreenMarch>(3); // an integer outside the enumerators

@@ -23,7 +23,8 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"cosine_weighted", "", "0|1", "cosine (AO_r) or uniform hemisphere weighting"},
     {"falloff", "", "none|linear|quadratic|smooth", "obscurance distance weighting (none: AO)"},
     {"thickness", "world units", "[0, inf)", "assumed thickness behind depth samples (0: the radius)"},
-    {"thickness_mode", "", "constant|depth_peeling", "raymarch, points: constant thickness or the second depth layer"},
+    {"thickness_mode", "", "constant|depth_peeling|peeling_or_constant",
+     "raymarch, points: constant thickness, the second depth layer, or the deeper of both"},
     {"march", "", "view|texture|hiz", "raymarch: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
     {"resolution", "", "full|half|quarter", "AO resolution relative to the G-buffer"},
     {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
@@ -75,7 +76,7 @@ public:
     void run(const FrameSetup& frame) override {
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         GBufferSettings g{frame.width, frame.height, false, {}};
-        g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
+        g.depthLayers = depthLayersFor(settings_.thicknessMode);
         view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
         if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
         result_ = ao_.run(view_, settings_);

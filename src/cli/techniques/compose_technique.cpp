@@ -15,7 +15,7 @@ namespace {
 
 const std::vector<SettingInfo> kSettings = joinSettings({
     {"formula", "", "thesis|physical", "see CombineFormula"},
-    {"ambient", "W/(sr m^2)", "[0, 65504]", "grey ambient radiance L_amb (physical formula: only with gi=0)"},
+    {"ambient", "W/(sr m^2)", "[0, 65504], or r:g:b", "ambient radiance L_amb, grey or a colour (physical formula: only with gi=0)"},
     {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
     {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
     {"tone_mapper", "", "none|drago|aces", "tone mapping operator"},
@@ -37,7 +37,7 @@ public:
         auto& s = settings_;
         if (key == "formula") s.formula = parseChoice<CombineFormula>(key, value, {{"thesis", CombineFormula::Thesis},
                                                                                    {"physical", CombineFormula::Physical}});
-        else if (key == "ambient") s.ambient = glm::vec3(static_cast<float>(parseNumber(key, value, 0, 65504, "W/(sr m^2)")));
+        else if (key == "ambient") s.ambient = parseColor(key, value, 0, 65504, "W/(sr m^2)");
         else if (key == "indirect_scale") s.indirectScale = static_cast<float>(parseNumber(key, value, 0, 1e6, ""));
         else if (key == "exposure") s.exposure = static_cast<float>(parseNumber(key, value, 1e-30, 1e6, ""));
         else if (key == "tone_mapper") s.toneMapper = parseChoice<ToneMapper>(key, value, {{"none", ToneMapper::None},

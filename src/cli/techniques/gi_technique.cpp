@@ -17,7 +17,8 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"rays", "", "[1, 1024]", "cosine-weighted directions per pixel"},
     {"steps", "", "[1, 256]", "depth samples per ray (gi.hybrid: march samples with voxel_traversal=march)"},
     {"thickness", "world units", "[0, inf)", "see IndirectLightSettings::thickness (0: the default)"},
-    {"thickness_mode", "", "constant|depth_peeling", "gi.screen: constant thickness or the second depth layer"},
+    {"thickness_mode", "", "constant|depth_peeling|peeling_or_constant",
+     "gi.screen: constant thickness, the second depth layer, or the deeper of both"},
     {"march", "", "view|texture|hiz", "gi.screen: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
     {"resolution", "", "full|half|quarter", "GI resolution relative to the G-buffer"},
     {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
@@ -55,7 +56,7 @@ public:
     void run(const FrameSetup& frame) override {
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         GBufferSettings g{frame.width, frame.height, true, {}};
-        g.depthLayers = settings_.thicknessMode == ScreenThickness::DepthPeeling ? 2 : 1;
+        g.depthLayers = depthLayersFor(settings_.thicknessMode);
         view_ = lit_.render(frame, g);
         if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
         result_ = gi_.run(view_, settings_);
