@@ -342,7 +342,8 @@ def main():
     parser.add_argument("--march-study", action="append", default=[],
                         help="bench.json of ao.raymarch with march=view, texture and hiz (--set, --variant; screen-space march table only)")
     parser.add_argument("--thickness-study", action="append", default=[],
-                        help="bench.json of screen-space AO with --variant thickness_mode=depth_peeling (thickness table only)")
+                        help="bench.json of screen-space AO with --variant thickness_mode=depth_peeling, peeling_or_constant "
+                             "and thickness (thickness table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],

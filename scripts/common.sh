@@ -8,11 +8,15 @@ OBSCURA_JOBS=$(nproc 2>/dev/null || echo 2)
 # obscura_default_radius SCENE SIZE: the AO presets' radius for a scene (a tenth of its
 # bounding box's diagonal, world units), as the obscura tool prints it.
 obscura_default_radius() {
-  local probe
+  local probe log radius
   probe=$(mktemp --suffix=.exr)
-  "$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$1" --size "$2" --technique gbuffer --output depth \
-    --out "$probe" --frames 1 | sed -n 's/.*default radius \([^,]*\),.*/\1/p'
+  # Not a pipe into sed: a failing render must stop the caller, not give an empty radius.
+  log=$("$OBSCURA_BUILD_DIR/src/cli/obscura" render --scene "$1" --size "$2" --technique gbuffer --output depth \
+    --out "$probe" --frames 1) || { rm -f "$probe"; echo "obscura render --scene $1 failed" >&2; return 1; }
   rm -f "$probe"
+  radius=$(sed -n 's/.*default radius \([^,]*\),.*/\1/p' <<< "$log")
+  [ -n "$radius" ] || { echo "obscura render --scene $1 printed no default radius" >&2; return 1; }
+  echo "$radius"
 }
 
 obscura_setup() {

@@ -77,7 +77,8 @@ done
 # in world units, so each scene runs on its own.
 thickness=()
 for scene in cornell "$models/PLY/Wuson.ply" "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"; do
-  thin=$(awk -v r="$(obscura_default_radius "$scene" 128x128)" 'BEGIN { printf "%.6g", r / 10 }')
+  radius=$(obscura_default_radius "$scene" 128x128)
+  thin=$(awk -v r="$radius" 'BEGIN { printf "%.6g", r / 10 }')
   dir="$out/thickness/$(basename "${scene%.*}")"
   "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene "$scene" \
     --techniques 'ao.[rp]*' --presets low,medium,high,ultra --size 128x128 --frames 20 --spp 1024 \

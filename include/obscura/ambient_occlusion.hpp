@@ -71,13 +71,16 @@ struct AmbientOcclusionSettings {
     //! world units, a point still counts as inside the object, [0, inf); 0 = the radius.
     //! Larger closes gaps behind thin objects, smaller lets rays pass behind them. With
     //! DepthPeeling it applies only where the second layer is empty; with PeelingOrConstant
-    //! everywhere, where the second layer is nearer.
+    //! it applies everywhere and matters where the second layer is nearer than it.
     float thickness = 0.0f;
     //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
     //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2): objects are as
     //! thick as they are, so rays pass behind them and are not cut off inside them; or
-    //! PeelingOrConstant: the deeper of the two, which keeps the constant slab behind thin
-    //! parts (where other parts lie behind them, stacked; benchmarks/README.md).
+    //! PeelingOrConstant: the deeper of the two, which keeps a constant slab behind thin
+    //! parts (where other parts lie behind them, stacked). With the default thickness (the
+    //! radius) that is nearly Constant: the slab runs along the normal, so on faces seen at
+    //! grazing angles it reaches far along the view ray; a thickness well below the radius
+    //! (a tenth in docs/results.md, "Screen-space thickness") keeps peeling's depth.
     ScreenThickness thicknessMode = ScreenThickness::Constant;
     //! RayMarch: View (3D samples), Texture (2D samples, classified like View) or HiZ (the
     //! Texture samples, with runs skipped through a min/max depth pyramid: the same result
@@ -138,7 +141,7 @@ public:
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
     //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
-    //! DepthPeeling), or the Voxel method without a grid. The view stays valid until the next run.
+    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     std::size_t memoryBytes() const;

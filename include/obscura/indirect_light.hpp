@@ -89,7 +89,7 @@ public:
     //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
     //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct
     //! radiance (adopted host buffers have them only where the host gave them), without
-    //! backDepth for DepthPeeling, or the hybrid method without a grid.
+    //! backDepth for DepthPeeling and PeelingOrConstant, or the hybrid method without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     std::size_t memoryBytes() const;

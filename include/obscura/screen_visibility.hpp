@@ -57,7 +57,9 @@ struct ScreenTraceSettings {
     int steps = 32;             //!< samples per segment, [1, 4096]
     float jitter = 0.5f;        //!< offset of the samples in units of the spacing, [0, 1)
     ScreenThickness thicknessMode = ScreenThickness::Constant;
-    float thickness = 1.0f;     //!< world units, (0, inf); with DepthPeeling only where no back layer exists
+    //! world units, (0, inf); with DepthPeeling only where no back layer exists, with
+    //! PeelingOrConstant everywhere (the deeper of it and the back layer)
+    float thickness = 1.0f;
 };
 
 //! A segment in the G-buffer camera's view space (world units). NaN or Inf: a miss.

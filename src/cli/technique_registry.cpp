@@ -66,7 +66,17 @@ glm::vec3 parseColor(const std::string& key, const std::string& value, double lo
     if (parts.size() != 3)
         throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one value (grey) or r:g:b");
     glm::vec3 color(0.0f);
-    for (int c = 0; c < 3; ++c) color[c] = static_cast<float>(parseNumber(key, parts[std::size_t(c)], lo, hi, unit));
+    for (int c = 0; c < 3; ++c) {
+        try {
+            color[c] = static_cast<float>(parseNumber(key, parts[std::size_t(c)], lo, hi, unit));
+        } catch (const Error& e) {
+            // parseNumber's reason, after its "--set key=part: ", for the value as given.
+            const std::string reason = e.what(), said = "--set " + key + "=" + parts[std::size_t(c)] + ": ";
+            const std::size_t at = reason.find(said);
+            throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": " + "rgb"[c] + " " +
+                                              (at == std::string::npos ? reason : reason.substr(at + said.size())));
+        }
+    }
     return color;
 }
 

@@ -440,7 +440,7 @@ TEST_CASE("Points AO in a box room matches its own share of the depth layers wit
     const ThicknessCases cases = {{{"constant, the radius", ScreenThickness::Constant, radius},
                                    {"constant 0.2", ScreenThickness::Constant, 0.2},
                                    {"peeled, else 0.2", ScreenThickness::DepthPeeling, 0.2},
-                                   {"peeled or the radius", ScreenThickness::PeelingOrConstant, radius}}};
+                                   {"peeled or 0.2", ScreenThickness::PeelingOrConstant, 0.2}}};
     const DepthLayers depthLayers(camera, f.positions, normals, backDepth);
     std::vector<HiddenCounts> expected(std::size_t(W) * H);
     for (int y = 0; y < H; ++y)
