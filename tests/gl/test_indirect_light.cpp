@@ -590,17 +590,24 @@ TEST_CASE("A lit open plane gives exactly no indirect light for every method mar
     struct Variant {
         GiMethod method;
         ScreenMarch march;
+        ScreenThickness thickness = ScreenThickness::Constant;
     };
     for (const auto& [name, camera] : projections) {
-        const GBufferView view = gbuffer.render(scene, camera, {W, H, true, {}});
+        GBufferSettings layers{W, H, true, {}};
+        layers.depthLayers = 2; // for the peeling modes (the plane has no second layer)
+        const GBufferView view = gbuffer.render(scene, camera, layers);
         const Image direct = readTexture(ctx, view.directRadiance);
         for (const Variant variant : {Variant{GiMethod::Screen, ScreenMarch::View}, Variant{GiMethod::Screen, ScreenMarch::Texture},
-                                      Variant{GiMethod::Screen, ScreenMarch::HiZ}, Variant{GiMethod::Hybrid, ScreenMarch::View}})
+                                      Variant{GiMethod::Screen, ScreenMarch::HiZ}, Variant{GiMethod::Hybrid, ScreenMarch::View},
+                                      Variant{GiMethod::Screen, ScreenMarch::HiZ, ScreenThickness::DepthPeeling},
+                                      Variant{GiMethod::Screen, ScreenMarch::View, ScreenThickness::PeelingOrConstant}})
             for (AoResolution resolution : {AoResolution::Full, AoResolution::Half, AoResolution::Quarter}) {
-                CAPTURE(name, static_cast<int>(variant.method), static_cast<int>(variant.march), static_cast<int>(resolution));
+                CAPTURE(name, static_cast<int>(variant.method), static_cast<int>(variant.march),
+                        static_cast<int>(variant.thickness), static_cast<int>(resolution));
                 IndirectLightSettings s;
                 s.method = variant.method;
                 s.march = variant.march;
+                s.thicknessMode = variant.thickness;
                 s.radius = 2.0f;
                 s.rays = 24;
                 s.resolution = resolution;
@@ -669,7 +676,9 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
         const float aspect = float(width) / float(height);
         const Camera camera = orthographic ? Camera::orthographic(look, 400.0f, aspect, 10.0f, far, mode)
                                            : Camera::perspective(look, glm::radians(40.0f), aspect, 10.0f, far, mode);
-        const GBufferView view = gbuffer.render(cornell.scene, camera, {width, height, true, {}});
+        GBufferSettings layers{width, height, true, {}};
+        layers.depthLayers = 2; // for the peeling modes
+        const GBufferView view = gbuffer.render(cornell.scene, camera, layers);
         if (far < 2000.0f) // the tall block and the back wall are cut off
             CHECK(readTexture(ctx, gbuffer.positions(view)).at(width / 2, height / 2, 3) == 0.0f);
         if (!orthographic && width * height > 100 && far > 2000.0f) {
@@ -682,11 +691,17 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
                     headOn += normals.at(x, y, 0) == 0.0f && normals.at(x, y, 1) == 0.0f && normals.at(x, y, 2) == 1.0f;
             CHECK(headOn > 0);
         }
-        for (const auto& [method, resolution] : {std::pair{GiMethod::Screen, AoResolution::Full}, std::pair{GiMethod::Screen, AoResolution::Half},
-                                                 std::pair{GiMethod::Hybrid, AoResolution::Full}, std::pair{GiMethod::Hybrid, AoResolution::Half}}) {
-            CAPTURE(method == GiMethod::Hybrid, static_cast<int>(resolution));
+        for (const auto& [method, resolution, thickness] :
+             {std::tuple{GiMethod::Screen, AoResolution::Full, ScreenThickness::Constant},
+              std::tuple{GiMethod::Screen, AoResolution::Half, ScreenThickness::Constant},
+              std::tuple{GiMethod::Hybrid, AoResolution::Full, ScreenThickness::Constant},
+              std::tuple{GiMethod::Hybrid, AoResolution::Half, ScreenThickness::Constant},
+              std::tuple{GiMethod::Screen, AoResolution::Full, ScreenThickness::DepthPeeling},
+              std::tuple{GiMethod::Screen, AoResolution::Half, ScreenThickness::PeelingOrConstant}}) {
+            CAPTURE(method == GiMethod::Hybrid, static_cast<int>(resolution), static_cast<int>(thickness));
             IndirectLightSettings s;
             s.method = method;
+            s.thicknessMode = thickness;
             s.radius = 150.0f;
             s.rays = 8;
             s.resolution = resolution;
