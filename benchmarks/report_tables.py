@@ -76,10 +76,15 @@ def default_runs(rows):
     return [r for r in rows if not r.get("variant") and ray_lanes(r) == 1 and geometry_tiles(r)]
 
 
+def variant_keys(row):
+    """The settings a row's --variant sets (none for a preset's own run)."""
+    return {kv.split("=")[0] for kv in row.get("variant", "").split(",") if kv}
+
+
 def varying_only(rows, *keys):
     """The rows whose --variant (if any) sets only `keys`: a study of them compares those, and not a
     variant that also changes something else."""
-    return [r for r in rows if {kv.split("=")[0] for kv in r.get("variant", "").split(",") if kv} <= set(keys)]
+    return [r for r in rows if variant_keys(r) <= set(keys)]
 
 
 def lanes_lines(rows):
@@ -238,8 +243,7 @@ def gbuffer_ms(row):
 
 
 def thickness_run(row):
-    variant = {kv.split("=")[0] for kv in row.get("variant", "").split(",") if kv}
-    return row.get("settings", {}).get("thickness_mode", "constant"), "thickness" in variant
+    return row.get("settings", {}).get("thickness_mode", "constant"), "thickness" in variant_keys(row)
 
 
 def thickness_section(rows):
