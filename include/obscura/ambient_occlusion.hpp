@@ -74,7 +74,8 @@ struct AmbientOcclusionSettings {
     //! it applies everywhere and matters where the second layer is nearer than it.
     float thickness = 0.0f;
     //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
-    //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2): objects are as
+    //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2, or
+    //! HostGBuffer::backDepth): objects are as
     //! thick as they are, so rays pass behind them and are not cut off inside them; or
     //! PeelingOrConstant: the deeper of the two, which keeps a constant slab behind thin
     //! parts (where other parts lie behind them, stacked). With the default thickness (the

@@ -11,9 +11,10 @@
 //                   for a host's normals, more for normals reconstructed from depth
 //   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours; or the
 //                   host's, HostGBuffer::albedo)
-//   backDepth       second depth layer (depthLayers = 2, ours only): per pixel the nearest
-//                   surface strictly behind `depth` (depth peeling), 32F, clear depth where
-//                   none; the back of closed objects, for screen-space thickness
+//   backDepth       second depth layer (depthLayers = 2, or HostGBuffer::backDepth): per
+//                   pixel the nearest surface strictly behind `depth` (depth peeling), 32F
+//                   when ours, clear depth where none; the back of closed objects, for
+//                   screen-space thickness
 //   directRadiance  GL_RGBA16F, W/(sr·m²): emission + Lambert from the scene's lights with
 //                   the interpolated shading normal, each light shadowed when
 //                   GBufferSettings::shadows has maps for it. Saturates at 65504, the
@@ -52,7 +53,7 @@ struct GBufferView {
     TextureView normal;
     TextureView albedo;         //!< adopted host buffers: the host's, if it gave one
     TextureView directRadiance; //!< adopted host buffers: the host's, if it gave one
-    TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2
+    TextureView backDepth;      //!< empty unless GBufferSettings::depthLayers == 2 or the host gave one
     //! Unitless, [0, kMaxNormalError]: a bound on the distance between a stored normal and the unit
     //! normal it stands for, times each pixel's normal alpha. Screen-space tests allow a point
     //! at distance d from a pixel, in that pixel's plane, up to d * normalError * alpha off
@@ -137,6 +138,14 @@ struct HostGBuffer {
     //! tone mapping), in a float RGB/RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F,
     //! GL_RGB32F, GL_RGBA32F). IndirectLight gathers it; Composer needs it and albedo.
     TextureView directRadiance;
+    //! Optional, same size, used in place: a second depth layer, for the screen-space thickness
+    //! modes that read one (ScreenThickness::DepthPeeling, PeelingOrConstant). The same
+    //! formats and rules as `depth`, written with the same camera and depth convention: per
+    //! pixel the nearest surface strictly behind `depth` (a peeling pass that discards
+    //! fragments at or in front of the first layer's depth), clear depth where there is none.
+    //! Screen-space tests count a point as solid between the two layers, so another second
+    //! layer (a pass of back faces, say) is used as given.
+    TextureView backDepth;
 };
 
 class OBSCURA_API GBuffer {
@@ -151,8 +160,8 @@ public:
     //! index out of range, non-finite mesh positions or an unusable host buffer.
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
-    //! Wraps the host's depth (and normal, albedo, radiance) textures. Depth, albedo and
-    //! radiance are used in place; normals are converted to the view-space contract above,
+    //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,
+    //! albedo, radiance and back depth are used in place; normals are converted to the view-space contract above,
     //! or reconstructed from depth when absent (pass "gbuffer.normals"). Throws
     //! Error{InvalidArgument} for a wrong target, format, sample count or size.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);

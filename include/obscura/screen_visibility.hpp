@@ -42,14 +42,15 @@ class Context;
 enum class ScreenMarch { View, Texture, HiZ };
 enum class ScreenThickness {
     Constant,     //!< `thickness` world units behind every depth pixel
-    DepthPeeling, //!< down to GBufferView::backDepth (GBufferSettings::depthLayers = 2)
+    DepthPeeling, //!< down to GBufferView::backDepth (GBufferSettings::depthLayers = 2, or HostGBuffer::backDepth)
     //! Hidden by either: within `thickness` or in front of backDepth. Thick closed objects
     //! are as deep as peeling finds them, thin parts (whose back lies within `thickness`)
     //! keep the constant slab that stands in for what is stacked behind them.
     PeelingOrConstant,
 };
 
-//! GBufferSettings::depthLayers that a thickness mode reads: 2 where it needs backDepth.
+//! GBufferSettings::depthLayers that a thickness mode reads: 2 where it needs backDepth (in
+//! post-process mode: HostGBuffer::backDepth).
 constexpr int depthLayersFor(ScreenThickness mode) { return mode == ScreenThickness::Constant ? 1 : 2; }
 
 struct ScreenTraceSettings {

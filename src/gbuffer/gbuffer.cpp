@@ -68,6 +68,29 @@ TextureInfo hostTextureBeside(ContextImpl& ctx, GLuint name, const std::string& 
     return t;
 }
 
+// A host texture the passes sample as depth: a depth format, and depth (not stencil) when
+// it has both.
+void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, const std::string& who) {
+    if (!t.depth)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " must have a depth format (GL_DEPTH_COMPONENT16/24/32/32F, GL_DEPTH24_STENCIL8, "
+                          "GL_DEPTH32F_STENCIL8), got " + formatName(t.internalFormat));
+    if (!t.stencil) return;
+    GLint mode = 0;
+    ctx.gl.GetTextureParameteriv(name, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+    if (mode != GL_DEPTH_COMPONENT)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
+}
+
+// The host's second depth layer, read in place beside the first. Empty stays empty.
+TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, const TextureInfo& depth) {
+    if (!texture) return {};
+    const TextureInfo t = hostTextureBeside(ctx, texture.name, "HostGBuffer::backDepth", depth);
+    requireSampledDepth(ctx, texture.name, t, "HostGBuffer::backDepth");
+    return {texture.name, t.internalFormat, t.width, t.height};
+}
+
 // The host's albedo (normalized or float) or radiance (float only: it is not bounded by 1),
 // RGB or RGBA, read in place by the passes that use them; described as GL reports it (the
 // host's TextureView need only name it). Empty stays empty.
@@ -351,17 +374,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     auto& ctx = impl_->ctx;
     analyzeProjection(camera);
     const TextureInfo depth = queryTexture2D(ctx, host.depth.name, "HostGBuffer::depth");
-    if (!depth.depth)
-        throw Error(ErrorCode::InvalidArgument,
-                    "HostGBuffer::depth must have a depth format (GL_DEPTH_COMPONENT16/24/32/32F, GL_DEPTH24_STENCIL8, "
-                    "GL_DEPTH32F_STENCIL8), got " + formatName(depth.internalFormat));
-    if (depth.stencil) {
-        GLint mode = 0;
-        ctx.gl.GetTextureParameteriv(host.depth.name, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
-        if (mode != GL_DEPTH_COMPONENT)
-            throw Error(ErrorCode::InvalidArgument, "HostGBuffer::depth samples stencil: set its "
-                                                    "GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
-    }
+    requireSampledDepth(ctx, host.depth.name, depth, "HostGBuffer::depth");
     requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
     requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
     Defines defines;
@@ -401,6 +414,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     }
     const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
     const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
+    const TextureView backDepth = hostBackDepth(ctx, host.backDepth, depth);
 
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.normals");
@@ -424,6 +438,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     v.normalError = normalError;
     v.albedo = albedo;
     v.directRadiance = directRadiance;
+    v.backDepth = backDepth;
     v.camera = camera;
     v.width = w;
     v.height = h;

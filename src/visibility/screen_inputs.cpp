@@ -37,7 +37,7 @@ GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool ne
     if (needsBack) {
         if (!view.backDepth)
             throw Error(ErrorCode::InvalidArgument, owner + ": depth peeling needs GBufferView::backDepth, the second "
-                                                            "depth layer of GBufferSettings::depthLayers = 2");
+                                                            "depth layer of GBufferSettings::depthLayers = 2 or HostGBuffer::backDepth");
         const TextureInfo back = queryTexture2D(ctx, view.backDepth.name, "GBufferView::backDepth");
         if (!back.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::backDepth is not a depth texture");
         requireViewSized(ctx, view.backDepth, checked, "backDepth");

@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
+#include <vector>
 
 using namespace obscura;
 using test::AoFixture;
@@ -236,35 +239,53 @@ TEST_CASE("Post-process mode: on a host's 8-, 10- and 16-bit normals an open pla
     CHECK(test::drainGlErrors().empty());
 }
 
-TEST_CASE("Post-process mode: on a host's 32-bit float depth and normals of an occluded scene every method gives "
-          "the G-buffer path's AO bit for bit", "[ao][host]") {
+TEST_CASE("Post-process mode: on a host's 32-bit float depth layers and normals of an occluded scene every method "
+          "and thickness mode gives the G-buffer path's AO bit for bit", "[ao][host]") {
     // The open plane above shows nothing is lost to a coarser host format; here the inputs are
-    // the same values (the host's depth pass writes 32-bit float depth exactly, its normals
+    // the same values (the host's depth passes write 32-bit float depth exactly, its normals
     // are the G-buffer's texture), in a scene where most pixels are occluded: adoption must
-    // give every method, resolution and output the same numbers, so that post-process mode
-    // computes what the bench measures.
+    // give every method, thickness mode, resolution and output the same numbers, so that
+    // post-process mode computes what the bench measures. The host's second depth layer
+    // (HostGBuffer::backDepth) must also change what the peeling modes find, or it was not read.
     AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
     const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
                                               float(W) / float(H), 10.0f, 5000.0f);
-    f.render(cornell.scene, camera, W, H);
+    f.render(cornell.scene, camera, W, H, 2);
     const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
+    const GLuint back = test::copyDepthAsHost(f.view.backDepth.name, W, H, GL_DEPTH_COMPONENT32F);
     HostGBuffer host;
     host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
     host.normal = f.view.normal;
+    host.backDepth = {back, 0, 0, 0}; // format and size as GL reports them
     GBuffer adopter(f.ctx);
     GBufferView adopted = adopter.adopt(host, camera);
+    CHECK(adopted.backDepth.name == back);
+    CHECK(adopted.backDepth.internalFormat == GL_DEPTH_COMPONENT32F);
+    CHECK((adopted.backDepth.width == W && adopted.backDepth.height == H));
     // adopt() must assume a host's 16-bit float normals were rounded before its own store
     // (adoptedNormalError: 2^-9); these are the G-buffer's, rounded once.
     CHECK(adopted.normalError == adoptedNormalError(NormalEncoding::Signed, 16));
     adopted.normalError = f.view.normalError;
-    for (const AoVariant variant : kAllVariants)
+    std::vector<AoVariant> variants(std::begin(kAllVariants), std::end(kAllVariants)); // Constant first
+    for (const ScreenThickness peeled : {ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant}) {
+        for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ})
+            variants.push_back({AoMethod::RayMarch, march, peeled});
+        variants.push_back({AoMethod::Points, ScreenMarch::View, peeled});
+    }
+    std::map<std::tuple<AoMethod, ScreenMarch, AoResolution>, std::vector<float>> constantAo;
+    for (const AoVariant variant : variants)
         for (const AoResolution resolution : {AoResolution::Full, AoResolution::Half}) {
-            CAPTURE(nameOf(variant.method), static_cast<int>(variant.march), static_cast<int>(resolution));
+            CAPTURE(nameOf(variant.method), static_cast<int>(variant.march), static_cast<int>(variant.thickness),
+                    static_cast<int>(resolution));
             AmbientOcclusionSettings s;
             s.method = variant.method;
             s.march = variant.march;
+            s.thicknessMode = variant.thickness;
+            // The peeling-or-constant case with a slab below the blocks' size, so that it
+            // differs from the constant too.
+            if (variant.thickness == ScreenThickness::PeelingOrConstant) s.thickness = 15.0f;
             s.radius = 150.0f;
             s.rays = 16;
             s.resolution = resolution;
@@ -278,11 +299,21 @@ TEST_CASE("Post-process mode: on a host's 32-bit float depth and normals of an o
             const Image postAo = readTexture(f.ctx, post.ao);
             int occluded = 0;
             for (float v : ownAo.pixels) occluded += v < 0.9f;
-            CHECK(occluded > W * H / 4); // an open scene would only repeat the plane test
+            // An open scene would only repeat the plane test (no pixel below 1). An eighth: the
+            // points with peeling or a 15-unit slab find the fewest, about a fifth.
+            CHECK(occluded > W * H / 8);
             CHECK(postAo.pixels == ownAo.pixels);
             if (s.bentNormals) CHECK(readTexture(f.ctx, post.bentNormal).pixels == ownBent.pixels);
+            const auto key = std::tuple{variant.method, variant.march, resolution};
+            if (variant.thickness == ScreenThickness::Constant) {
+                constantAo[key] = ownAo.pixels;
+            } else {
+                REQUIRE(constantAo.count(key) == 1);
+                CHECK(postAo.pixels != constantAo[key]);
+            }
         }
     glDeleteTextures(1, &depth);
+    glDeleteTextures(1, &back);
     CHECK(test::drainGlErrors().empty());
 }
 

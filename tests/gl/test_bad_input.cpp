@@ -235,6 +235,17 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     const GLuint small = hostTexture(GL_RGBA16F, 8, 8);
     expectError([&] { adoptLit(rgba8, small); }, ErrorCode::InvalidArgument, "HostGBuffer::directRadiance is 8x8");
     expectError([&] { adoptLit(4242, 0); }, ErrorCode::InvalidArgument, "not a GL texture");
+    const auto adoptBack = [&](GLuint back) {
+        HostGBuffer h;
+        h.depth = {depth, 0, 0, 0};
+        h.backDepth = {back, 0, 0, 0};
+        gbuffer.adopt(h, camera);
+    };
+    expectError([&] { adoptBack(rgba8); }, ErrorCode::InvalidArgument, "HostGBuffer::backDepth must have a depth format");
+    expectError([&] { adoptBack(depthOdd); }, ErrorCode::InvalidArgument, "HostGBuffer::backDepth is 8x8");
+    expectError([&] { adoptBack(stencilled); }, ErrorCode::InvalidArgument, "HostGBuffer::backDepth samples stencil");
+    expectError([&] { adoptBack(multisample); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
+    expectError([&] { adoptBack(4242); }, ErrorCode::InvalidArgument, "not a GL texture");
     for (GLuint t : {rgba8ui, small}) glDeleteTextures(1, &t);
     expectError([&] { readTexture(ctx, {multisample, 0, 16, 16}); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
     GLuint mipmapped = 0;

@@ -728,6 +728,64 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
     }
 }
 
+TEST_CASE("Post-process mode: screen-space indirect light on a host's depth layers gives the G-buffer path's light bit "
+          "for bit in every thickness mode", "[gi][host]") {
+    // As the AO host test: the host's buffers hold the G-buffer's values exactly (32-bit
+    // float depth passes, the G-buffer's normals, albedo and lit image), so adoption must not
+    // change a number; and the host's second layer must change what the peeling modes find.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    IndirectLight gi(ctx);
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    constexpr int W = 40, H = 32;
+    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                                              float(W) / float(H), 10.0f, 5000.0f);
+    GBufferSettings layers{W, H, true, {}};
+    layers.depthLayers = 2;
+    const GBufferView view = gbuffer.render(cornell.scene, camera, layers);
+    const GLuint depth = test::copyDepthAsHost(view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
+    const GLuint back = test::copyDepthAsHost(view.backDepth.name, W, H, GL_DEPTH_COMPONENT32F);
+    HostGBuffer host;
+    host.depth = {depth, 0, 0, 0};
+    host.backDepth = {back, 0, 0, 0};
+    host.normal = view.normal;
+    host.albedo = view.albedo;
+    host.directRadiance = view.directRadiance;
+    GBuffer adopter(ctx);
+    GBufferView adopted = adopter.adopt(host, camera);
+    REQUIRE(adopted.backDepth.name == back);
+    adopted.normalError = view.normalError; // the G-buffer's normals, rounded once (see the AO test)
+    for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ})
+        for (const AoResolution resolution : {AoResolution::Full, AoResolution::Half}) {
+            std::vector<float> constant;
+            for (const ScreenThickness mode :
+                 {ScreenThickness::Constant, ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant}) {
+                CAPTURE(static_cast<int>(march), static_cast<int>(resolution), static_cast<int>(mode));
+                IndirectLightSettings s;
+                s.march = march;
+                s.thicknessMode = mode;
+                // A slab below the blocks' size, so that the union differs from the constant.
+                if (mode == ScreenThickness::PeelingOrConstant) s.thickness = 15.0f;
+                s.radius = 150.0f;
+                s.rays = 16;
+                s.resolution = resolution;
+                s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
+                const Image own = readTexture(ctx, gi.run(view, s).radiance);
+                const Image post = readTexture(ctx, gi.run(adopted, s).radiance);
+                int lit = 0;
+                for (float v : own.pixels) lit += v > 0.0f;
+                CHECK(lit > W * H); // of W * H * 4 channels: indirect light on most pixels
+                CHECK(post.pixels == own.pixels);
+                if (mode == ScreenThickness::Constant) constant = own.pixels;
+                else CHECK(post.pixels != constant);
+            }
+        }
+    glDeleteTextures(1, &depth);
+    glDeleteTextures(1, &back);
+    CHECK(test::drainGlErrors().empty());
+}
+
 TEST_CASE("Indirect light refuses bad settings and buffers without radiance", "[gi][bad-input]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
