@@ -20,8 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_tables import (RESOLUTION_HEADER, default_runs, fmt, lanes_section, march_section,  # noqa: E402
-                           own_ms, resolution_rows, resolution_section, thickness_section, tiles_section)
+from report_tables import (RESOLUTION_HEADER, default_runs, falloff_section, fmt, lanes_section,  # noqa: E402
+                           march_section, own_ms, resolution_rows, resolution_section, thickness_section,
+                           tiles_section)
 
 
 def measures_own_error(row):
@@ -59,7 +60,7 @@ def pareto(points):
 
 def plot(scene, quantity, rows, path):
     fig, ax = plt.subplots(figsize=(5.5, 3.8), dpi=110)
-    points = [(own_ms(r), max(r["rmse"], 1e-12)) for r in rows]
+    points = [(max(own_ms(r), 1e-6), max(r["rmse"], 1e-12)) for r in rows]
     for r, (t, e) in zip(rows, points):
         ax.scatter([t], [e], s=30)
         ax.annotate(f'{r["technique"]} {r["preset"]}', (t, e), fontsize=7, xytext=(4, 3), textcoords="offset points")
@@ -71,6 +72,9 @@ def plot(scene, quantity, rows, path):
     if noise > 0:
         ax.axhline(noise, color="gray", lw=0.8, ls=":")
         ax.text(ax.get_xlim()[0], noise, " reference noise", fontsize=7, color="gray", va="bottom")
+    # Log time too: the presets' times span two orders of magnitude, and a linear axis piles
+    # the cheap ones into one corner.
+    ax.set_xscale("log")
     ax.set_yscale("log")
     clock = rows[0]["clock"]
     ax.set_xlabel(f"time of the technique's own passes, ms ({clock})")
@@ -263,7 +267,7 @@ def shown(path):
 
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
-                 lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=()):
+                 lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -326,6 +330,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
     lines += thickness_section(list(thickness_rows))
+    lines += falloff_section(list(falloff_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
@@ -344,6 +349,9 @@ def main():
     parser.add_argument("--thickness-study", action="append", default=[],
                         help="bench.json of screen-space AO with --variant thickness_mode=depth_peeling, peeling_or_constant "
                              "and thickness (thickness table only)")
+    parser.add_argument("--falloff-study", action="append", default=[],
+                        help="bench.json of the obscurance techniques with --variant falloff=none, quadratic and smooth "
+                             "(falloff table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
@@ -364,6 +372,8 @@ def main():
     sources += [f"{shown(p)} (march study)" for p in args.march_study]
     thickness_rows = load(args.thickness_study)[0] if args.thickness_study else []
     sources += [f"{shown(p)} (thickness study)" for p in args.thickness_study]
+    falloff_rows = load(args.falloff_study)[0] if args.falloff_study else []
+    sources += [f"{shown(p)} (falloff study)" for p in args.falloff_study]
     lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
     sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
     tiles_rows = load(args.tiles_study)[0] if args.tiles_study else []
@@ -379,7 +389,7 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows, thickness_rows)
+                 gpu_study_rows, thickness_rows, falloff_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

@@ -1,5 +1,5 @@
 """The report's tables of timed studies (half resolution, geometry tiles, ray lanes, the
-screen-space marches and thickness) and the number formatting and timing rules they share
+screen-space marches, thickness and obscurance's falloffs) and the number formatting and timing rules they share
 with plot_report.py, which turns `obscura bench` output into docs/results.md.
 """
 import math
@@ -290,3 +290,35 @@ def thickness_section(rows):
             "one-layer G-buffer ms | two-layer G-buffer ms | RMSE: constant | peeling | deeper of both | "
             "constant r/10 | deeper of both r/10 |",
             "|" + "---|" * 14] + lines + [""]
+
+
+FALLOFFS = ("none", "linear", "quadratic", "smooth")  # rho; the obscurance techniques' default is linear
+
+
+def falloff_section(rows):
+    """Obscurance with each falloff rho, each against the reference with the same rho: time and error."""
+    table = defaultdict(dict)
+    for r in varying_only(rows, "falloff"):
+        # With falloff=none the quantity is AO_r, and the bench measures it as "ao".
+        if not r["technique"].startswith("obscurance.") or r["quantity"] not in ("obscurance", "ao"):
+            continue
+        key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["preset"])
+        table[key][r.get("settings", {}).get("falloff", "linear")] = r
+    order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
+    lines = []
+    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], order.get(kv[0][3], 9))):
+        if any(f not in runs for f in FALLOFFS):
+            continue
+        lines.append(f"| {' | '.join(key)} | " + " | ".join(fmt(own_ms(runs[f])) for f in FALLOFFS) + " | " +
+                     " | ".join(fmt(runs[f]["rmse"]) for f in FALLOFFS) + " |")
+    if not lines:
+        return []
+    return ["## Obscurance falloffs", "",
+            "The obscurance techniques with each distance weighting rho(d / d_max) (`falloff`, d_max = the radius): "
+            "`none` (rho = 1 for any hit: AO_r), `linear` (d / d_max, the techniques' default, as in the scene tables "
+            "above), `quadratic` ((d / d_max)^2) and `smooth` (smoothstep), each measured against the reference with "
+            "the same rho, the same samples timed in turn (`scripts/report.sh`, `--variant falloff=...`). The "
+            "falloff changes only how much a hit counts, not which rays are traced.", "",
+            "| scene | size | technique | preset | own ms: none | linear | quadratic | smooth | "
+            "RMSE: none | linear | quadratic | smooth |",
+            "|" + "---|" * 12] + lines + [""]

@@ -4,7 +4,8 @@
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
 # its traversals, the half-resolution trade-off at 512x512, the reduced-resolution presets
 # with and without geometry tiles, ray lanes, the screen-space marches (view, texture,
-# Hi-Z) and thickness (constant, depth peeling, the deeper of both), each study's variants timed in turn in one process, then draws the plots.
+# Hi-Z), thickness (constant, depth peeling, the deeper of both) and obscurance's falloffs, each
+# study's variants timed in turn in one process, then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -87,6 +88,15 @@ for scene in cornell "$models/PLY/Wuson.ply" "$models/glTF2/2CylinderEngine-glTF
     --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir"
   thickness+=(--thickness-study "$dir/bench.json")
 done
+# Obscurance's falloffs: the techniques' default (linear) against none, quadratic and smooth,
+# each against the reference with the same falloff, timed in turn.
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell --scene "$models/PLY/Wuson.ply" \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --techniques 'obscurance.*' --presets medium,high --size 128x128 --frames 20 --spp 1024 \
+  --variant falloff=none --variant falloff=quadratic --variant falloff=smooth \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/falloffs"
+falloffs=(--falloff-study "$out/falloffs/bench.json")
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
 # the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()
@@ -99,4 +109,4 @@ for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do
 done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
-  "${thickness[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  "${thickness[@]}" "${falloffs[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

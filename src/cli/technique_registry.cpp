@@ -40,19 +40,26 @@ bool parseBool(const std::string& key, const std::string& value) {
     throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected 1/0, true/false or on/off");
 }
 
-double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
+namespace {
+// `value` as a number in [lo, hi]; an Error{Parse} saying "<said>: <why not>" otherwise.
+double numberIn(const std::string& value, double lo, double hi, const std::string& unit, const std::string& said) {
     double v = 0;
     try {
         std::size_t used = 0;
         v = std::stod(value, &used);
         if (used != value.size()) throw std::invalid_argument(value);
     } catch (const std::exception&) {
-        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": not a number");
+        throw Error(ErrorCode::Parse, said + ": not a number");
     }
     if (!(v >= lo && v <= hi))
-        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be in [" + std::to_string(lo) + ", " +
-                                          std::to_string(hi) + "] " + unit);
+        throw Error(ErrorCode::Parse,
+                    said + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] " + unit);
     return v;
+}
+} // namespace
+
+double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
+    return numberIn(value, lo, hi, unit, "--set " + key + "=" + value);
 }
 
 glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
@@ -66,17 +73,9 @@ glm::vec3 parseColor(const std::string& key, const std::string& value, double lo
     if (parts.size() != 3)
         throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one value (grey) or r:g:b");
     glm::vec3 color(0.0f);
-    for (int c = 0; c < 3; ++c) {
-        try {
-            color[c] = static_cast<float>(parseNumber(key, parts[std::size_t(c)], lo, hi, unit));
-        } catch (const Error& e) {
-            // parseNumber's reason, after its "--set key=part: ", for the value as given.
-            const std::string reason = e.what(), said = "--set " + key + "=" + parts[std::size_t(c)] + ": ";
-            const std::size_t at = reason.find(said);
-            throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": " + "rgb"[c] + " " +
-                                              (at == std::string::npos ? reason : reason.substr(at + said.size())));
-        }
-    }
+    for (int c = 0; c < 3; ++c)
+        color[c] = static_cast<float>(
+            numberIn(parts[std::size_t(c)], lo, hi, unit, "--set " + key + "=" + value + ": " + "rgb"[c]));
     return color;
 }
 

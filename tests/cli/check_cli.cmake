@@ -105,7 +105,69 @@ if(rc EQUAL 0 OR NOT err MATCHES "depth_layers=2")
   message(FATAL_ERROR "layer_gap without the second layer was not refused clearly: ${err}")
 endif()
 
-# Every ComposeSettings field is a key (compose.hpp: the field names in snake case).
+# Every field of a settings struct is a `--set` key of its technique, as `obscura info` lists
+# them: the field names (read from the header) in snake case, but for those in `skip` (the
+# method, which the technique's name picks; the voxel grid, which the CLI builds from the
+# voxel_* keys).
+execute_process(COMMAND "${OBSCURA}" info OUTPUT_VARIABLE info RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "obscura info failed")
+endif()
+# As a CMake list: no ';', and no unbalanced '[' (it would join the lines that follow).
+string(REGEX REPLACE "[];[]" "," info "${info}")
+string(REPLACE "\n" ";" info_lines "${info}")
+cmake_policy(SET CMP0057 NEW) # if(IN_LIST) in script mode
+function(check_settings_keys header struct technique skip)
+  file(READ "${SOURCE_DIR}/include/obscura/${header}" text)
+  string(REGEX REPLACE "[];[]" "," text "${text}")
+  string(FIND "${text}" "struct ${struct} {" begin)
+  if(begin EQUAL -1)
+    message(FATAL_ERROR "${header} has no struct ${struct}")
+  endif()
+  string(SUBSTRING "${text}" ${begin} -1 text)
+  string(FIND "${text}" "\n}," end) # the struct's closing "};", its ';' replaced
+  string(SUBSTRING "${text}" 0 ${end} body)
+  set(field_regex "\n    (const )?[A-Za-z0-9_:<>]+\\*? +([a-z][A-Za-z0-9]*) *[=,{]")
+  string(REGEX MATCHALL "${field_regex}" fields "${body}")
+  set(listed "")
+  set(current "")
+  foreach(line IN LISTS info_lines)
+    if(line MATCHES "^  ([^ ]+) ")
+      set(current "${CMAKE_MATCH_1}")
+    elseif(current STREQUAL technique AND line MATCHES "--set ([a-z_]+) ")
+      list(APPEND listed "${CMAKE_MATCH_1}")
+    endif()
+  endforeach()
+  list(LENGTH fields count)
+  if(count LESS 5 OR NOT listed)
+    message(FATAL_ERROR "${struct}: read ${count} fields, ${technique} lists keys '${listed}'")
+  endif()
+  foreach(field IN LISTS fields)
+    string(REGEX REPLACE "${field_regex}" "\\2" name "${field}")
+    if(name IN_LIST skip)
+      continue()
+    endif()
+    string(REGEX REPLACE "([A-Z])" "_\\1" key "${name}")
+    string(TOLOWER "${key}" key)
+    if(NOT key IN_LIST listed)
+      message(FATAL_ERROR "${struct}::${name} has no key ${key} in ${technique} (keys: ${listed})")
+    endif()
+  endforeach()
+endfunction()
+check_settings_keys(ambient_occlusion.hpp AmbientOcclusionSettings ao.raymarch "method;voxels")
+check_settings_keys(indirect_light.hpp IndirectLightSettings gi.screen "method;voxels")
+check_settings_keys(compose.hpp ComposeSettings compose "")
+# And each key is taken: every one set at once (values inside their ranges).
+run("${OBSCURA}" render --scene cornell --size 16x12 --technique ao.raymarch --set radius=100 --set rays=4 --set steps=4
+    --set cosine_weighted=0 --set falloff=linear --set thickness=20 --set thickness_mode=constant --set march=texture
+    --set resolution=half --set blur_radius=1 --set blur_depth_sigma=0.1 --set blur_normal_power=8
+    --set refine_threshold=0.5 --set ray_lanes=2 --set geometry_tiles=0 --set bent_normals=0
+    --set voxel_traversal=exact --out "${WORK_DIR}/ao_keys.exr")
+run("${OBSCURA}" render --scene cornell --size 16x12 --technique gi.screen --set radius=100 --set rays=4 --set steps=4
+    --set thickness=20 --set thickness_mode=constant --set march=texture --set resolution=half --set blur_radius=1
+    --set blur_depth_sigma=0.1 --set blur_normal_power=8 --set refine_threshold=0.5 --set ray_lanes=2
+    --set geometry_tiles=0 --set voxel_traversal=exact --out "${WORK_DIR}/gi_keys.exr")
+# Compose's keys, each set.
 run("${OBSCURA}" render --scene cornell --size 16x12 --technique compose --set formula=thesis --set ambient=0.1
     --set indirect_scale=0.5 --set exposure=0.05 --set tone_mapper=drago --set drago_max_luminance=5 --set drago_bias=0.7
     --set drago_display_max=200 --set srgb=0 --set gamma=1.8 --out "${WORK_DIR}/compose.png")
@@ -125,6 +187,18 @@ execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --techniq
 if(rc EQUAL 0 OR NOT err MATCHES "ambient=0.1:0.2.*r:g:b")
   message(FATAL_ERROR "ambient with two values was not refused clearly: ${err}")
 endif()
+# A bad component is named, with the value as given.
+foreach(bad "0.1:x:0.2|g: not a number" "0.1:0.2:-1|b: must be in")
+  string(REPLACE "|" ";" bad "${bad}")
+  list(GET bad 0 value)
+  list(GET bad 1 reason)
+  execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique compose --set ambient=${value}
+                          --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  string(FIND "${err}" "--set ambient=${value}: ${reason}" at)
+  if(rc EQUAL 0 OR at EQUAL -1)
+    message(FATAL_ERROR "ambient=${value} was not refused as '${reason}': ${err}")
+  endif()
+endforeach()
 
 # A voxel grid's slices come 128 to a render target: other counts are refused by name.
 execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.voxel --set voxel_slices=200
@@ -428,6 +502,25 @@ foreach(thicknessRow IN LISTS thicknessRows)
     message(FATAL_ERROR "a thickness row lacks one of its five RMSEs: ${thicknessRow}")
   endif()
 endforeach()
+# The falloff study: each obscurance preset with the four falloffs, one row each with four
+# times and four RMSEs, each against the reference with its own falloff (so they differ).
+run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques obscurance.points --presets low
+    --variant falloff=none --variant falloff=quadratic --variant falloff=smooth --out "${WORK_DIR}/bench_falloff")
+run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json"
+    --falloff-study "${WORK_DIR}/bench_falloff/bench.json" --out "${WORK_DIR}/docs_falloff")
+file(READ "${WORK_DIR}/docs_falloff/results.md" report)
+string(REPEAT "\\| [0-9][0-9.e+-]* " 8 eightNumbers) # CMake's regex has no {8}
+string(REGEX MATCH "\\| cornell \\| 16x16 \\| obscurance.points \\| low \\|[^\n]*" falloffRow "${report}")
+if(NOT report MATCHES "## Obscurance falloffs" OR NOT falloffRow MATCHES "low ${eightNumbers}\\|$")
+  message(FATAL_ERROR "results.md lacks the falloff table's row with four times and four RMSEs: '${falloffRow}'")
+endif()
+string(REPLACE "|" ";" cells "${falloffRow}")
+list(SUBLIST cells 9 4 rmses) # cells: "", scene, size, technique, preset, four times, four RMSEs
+list(REMOVE_DUPLICATES rmses)
+list(LENGTH rmses distinct)
+if(distinct LESS 3)
+  message(FATAL_ERROR "the falloffs' RMSEs should differ: ${falloffRow}")
+endif()
 execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques ao.points --presets medium
                         --variant ray_lanes=2 --variant ray_lanes=2 --out "${WORK_DIR}/bench_bad_variant"
                 RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
