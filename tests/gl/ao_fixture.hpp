@@ -75,19 +75,24 @@ inline Scene wallScene() {
 }
 inline Camera wallCamera(int width, int height) { return lookAt({0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, width, height); }
 
-//! A 128^3 grid over a fixed box (a test's region of interest, not the scene's bounds).
-inline VoxelizerSettings boxVoxels(glm::vec3 boxMin, glm::vec3 boxMax) {
+//! A `resolution`^3 grid (a multiple of 128) over a fixed box (a test's region of interest,
+//! not the scene's bounds).
+inline VoxelizerSettings boxVoxels(glm::vec3 boxMin, glm::vec3 boxMax, int resolution = 128) {
     VoxelizerSettings voxels;
-    voxels.resolution = 128;
+    voxels.resolution = resolution;
+    voxels.targets = resolution / 128;
     voxels.fitBox = false;
     voxels.boxMin = boxMin;
     voxels.boxMax = boxMax;
     return voxels;
 }
 
-//! A grid that covers the wall scene's floor points within 1 m of the wall finely.
+//! A grid that covers the wall scene's floor points within 1 m of the wall finely: cubic
+//! voxels of side 4 / resolution (kWallVoxelSide at the default 128).
 constexpr double kWallVoxelSide = 4.0 / 128.0; // m
-inline VoxelizerSettings wallVoxels() { return boxVoxels({-2.0f, -0.5f, -1.5f}, {2.0f, 3.5f, 2.5f}); }
+inline VoxelizerSettings wallVoxels(int resolution = 128) {
+    return boxVoxels({-2.0f, -0.5f, -1.5f}, {2.0f, 3.5f, 2.5f}, resolution);
+}
 
 //! Whether pixel (x, y) of the wall scene, as rendered into `f` at W x H, shows a floor point
 //! whose rays (radius up to 1) stay inside wallVoxels() and on screen (a margin from the

@@ -1,5 +1,6 @@
 // Ambient occlusion in a closed box room against the Embree reference at the G-buffer's own
 // samples: the screen-space march with depth peeling, and voxel AO between two references.
+#include "ao_fixture.hpp"
 #include "gl_fixture.hpp"
 
 #include "obscura/assets.hpp"
@@ -223,12 +224,7 @@ TEST_CASE("Voxel AO in a box room lies between the reference's AO of the room an
     Voxelizer voxelizer(f.ctx);
     for (const int resolution : {128, 512}) {
         // Cubic voxels of side 6.4 / resolution; the walls' planes fall on voxel faces.
-        VoxelizerSettings grid;
-        grid.resolution = resolution;
-        grid.targets = resolution / 128;
-        grid.fitBox = false;
-        grid.boxMin = glm::vec3(-3.2f, -0.2f, -3.2f);
-        grid.boxMax = glm::vec3(3.2f, 6.2f, 3.2f);
+        const VoxelizerSettings grid = test::boxVoxels({-3.2f, -0.2f, -3.2f}, {3.2f, 6.2f, 3.2f}, resolution);
         const double side = 6.4 / resolution, lift = std::sqrt(3.0) * side;
         reference::ShadingPoints lifted = points;
         for (reference::ShadingPoint& p : lifted.points)

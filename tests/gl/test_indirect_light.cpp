@@ -1,5 +1,6 @@
 // One-bounce indirect light: a closed form (a floor lit by an emissive wall), zero where
 // nothing is lit, stability, and the inputs it refuses.
+#include "ao_fixture.hpp"
 #include "gl_fixture.hpp"
 #include "scene_builders.hpp"
 
@@ -12,9 +13,11 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <vector>
 
 using namespace obscura;
+using test::wallCamera;
 
 namespace {
 
@@ -84,9 +87,45 @@ double floorPixelsReach(const Camera& camera, const Image& positions, const glm:
     return reach;
 }
 
-Camera wallCamera(int width, int height) {
-    return Camera::perspective({{0, 2.5f, 3.5f}, {0, 0.3f, -0.6f}, {0, 1, 0}}, glm::radians(50.0f),
-                               float(width) / float(height), 0.05f, 200.0f);
+constexpr glm::vec3 kWallEmission(2.0f, 1.0f, 0.5f);
+
+// test::wallScene: a grey floor, and the wall z = -1 emitting kWallEmission toward the floor
+// (its own albedo plays no part: one bounce).
+Scene emissiveWallScene() {
+    Scene scene = test::wallScene();
+    Material wall;
+    wall.albedo = glm::vec3(0.0f);
+    wall.emission = kWallEmission;
+    scene.materials.push_back(wall);
+    scene.meshes[1].material = 1;
+    return scene;
+}
+
+
+// The share of a floor pixel's cosine-weighted directions that gather the wall's light, as a
+// window [lo, hi] per method (L1 = rho Le share): as for AO, marching misses hits beyond its
+// last sample, voxels bring the wall up to a side closer, and a voxel hit at the wall's foot
+// may fall in a pixel that shows the floor (below footReach, floorPixelsReach), and be lost.
+std::pair<double, double> wallLightWindow(GiMethod method, double distance, double radius, int steps,
+                                          double voxelSide, double footReach) {
+    if (method == GiMethod::Screen) return {wallShare(distance, radius * (1.0 - 1.0 / steps)), wallShare(distance, radius)};
+    return {wallShare(distance, radius) - footShare(distance, footReach),
+            wallShare(std::max(distance - voxelSide, 0.0), radius)};
+}
+
+// Checks pixel (x, y)'s light against rho Le times the share window [lo, hi] of `rays`
+// directions: 5 sigma of the share (binomial), and the 16-bit float output (2^-11 relative).
+void checkWallLight(const Image& radiance, const Image& albedo, int x, int y, double lo, double hi, int rays) {
+    const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
+    for (int c = 0; c < 3; ++c) {
+        const double scale = albedo.at(x, y, c) * kWallEmission[c];
+        const double tolerance = scale * 5.0 * sigma + std::ldexp(scale, -11);
+        const double value = radiance.at(x, y, c);
+        CAPTURE(x, y, c, value, scale * lo, scale * hi);
+        CHECK(value >= scale * lo - tolerance);
+        CHECK(value <= scale * hi + tolerance);
+    }
+    CHECK(radiance.at(x, y, 3) == 1.0f);
 }
 
 } // namespace
@@ -98,16 +137,7 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
     GBuffer gbuffer(ctx);
     Voxelizer voxelizer(ctx);
     IndirectLight gi(ctx);
-    // Grey floor, and the wall z = -1 emitting Le toward the floor (its own albedo plays no
-    // part: one bounce).
-    Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
-                                   {{glm::dvec3(-20, 0, -1), {20, 0, -1}, {20, 20, -1}, {-20, 20, -1}}}});
-    const glm::vec3 emission(2.0f, 1.0f, 0.5f);
-    Material wall;
-    wall.albedo = glm::vec3(0.0f);
-    wall.emission = emission;
-    scene.materials.push_back(wall);
-    scene.meshes[1].material = 1;
+    const Scene scene = emissiveWallScene();
     constexpr int W = 96, H = 72;
     constexpr double radius = 1.0;
     constexpr int rays = 1024, steps = 32;
@@ -149,19 +179,13 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
         const Image positions = readTexture(ctx, gbuffer.positions(view));
         const Image albedo = readTexture(ctx, view.albedo);
         const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.camera.view));
-        VoxelizerSettings voxels;
-        voxels.resolution = run.resolution;
-        voxels.targets = run.resolution / 128;
-        voxels.fitBox = false;
-        voxels.boxMin = glm::vec3(-2.0f, -0.5f, -1.5f);
-        voxels.boxMax = glm::vec3(2.0f, 3.5f, 2.5f);
         const double voxelSide = 4.0 / std::max(run.resolution, 1);
         IndirectLightSettings s;
         s.method = method;
         s.radius = static_cast<float>(radius);
         s.rays = rays;
         s.steps = steps;
-        if (method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(scene, voxels);
+        if (method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(scene, test::wallVoxels(run.resolution));
         const Image radiance = readTexture(ctx, gi.run(view, s).radiance);
         const double footReach = method == GiMethod::Hybrid ? floorPixelsReach(view.camera, positions, toWorld, W, H, voxelSide) : 0.0;
         INFO("hits below " << footReach << " on the wall may fall in the floor's pixels");
@@ -173,32 +197,94 @@ TEST_CASE("A floor lit by an emissive wall matches the closed form within the sa
                 if (std::abs(p.y) > 1e-3 || std::abs(p.x) > 0.8 || p.z > 1.2) continue;
                 const double distance = p.z + 1.0;
                 if (!wallInView(view.camera, p, radius)) continue; // hits off screen read nothing
-                // L1 = rho Le (share of directions reaching the wall within r): as for AO,
-                // marching misses hits beyond its last sample, voxels bring the wall closer.
-                double lo = wallShare(distance, radius), hi = lo;
-                if (method == GiMethod::Screen) {
-                    lo = wallShare(distance, radius * (1.0 - 1.0 / steps));
-                } else {
-                    hi = wallShare(std::max(distance - voxelSide, 0.0), radius);
-                    // A voxel hit lies up to a side in front of the wall: at the wall's foot it
-                    // may fall in a pixel that shows the floor, and be lost.
-                    lo -= footShare(distance, footReach);
-                }
-                const double sigma = std::sqrt(std::max({lo * (1.0 - lo), hi * (1.0 - hi), 1.0 / rays}) / rays);
-                for (int c = 0; c < 3; ++c) {
-                    const double scale = albedo.at(x, y, c) * emission[c];
-                    // 5 sigma of the share, and the 16-bit float output (2^-11 relative).
-                    const double tolerance = scale * 5.0 * sigma + std::ldexp(scale, -11);
-                    const double value = radiance.at(x, y, c);
-                    CAPTURE(x, y, c, distance, value, scale * lo, scale * hi);
-                    CHECK(value >= scale * lo - tolerance);
-                    CHECK(value <= scale * hi + tolerance);
-                }
-                CHECK(radiance.at(x, y, 3) == 1.0f);
+                const auto [lo, hi] = wallLightWindow(method, distance, radius, steps, voxelSide, footReach);
+                CAPTURE(distance);
+                checkWallLight(radiance, albedo, x, y, lo, hi, rays);
                 ++checked;
             }
         CHECK(checked > 200);
     }
+}
+
+TEST_CASE("Screen-space and hybrid indirect light agree where nothing is hidden and differ where an occluder "
+          "the camera does not see stands between the floor and the light", "[gi]") {
+    // emissiveWallScene with a fin, the plane x = -0.5 from the floor up to 3 and from the wall
+    // out to z = 1, seen exactly edge-on (the camera is in its plane), so that no pixel holds
+    // it. Screen-space rays pass it; hybrid rays meet its voxels.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    Voxelizer voxelizer(ctx);
+    IndirectLight gi(ctx);
+    constexpr double finX = -0.5, radius = 1.0;
+    Scene scene = emissiveWallScene();
+    const Scene fin = test::quadScene({{{glm::dvec3(finX, 0, -1), {finX, 3, -1}, {finX, 3, 1}, {finX, 0, 1}}}});
+    scene.meshes.push_back(fin.meshes[0]);
+    constexpr int W = 128, H = 96, rays = 1024, steps = 32, resolution = 512;
+    const Camera camera = Camera::perspective({{float(finX), 2.5f, 3.5f}, {float(finX), 0.3f, -0.6f}, {0, 1, 0}},
+                                              glm::radians(50.0f), float(W) / float(H), 0.05f, 200.0f);
+    const GBufferView view = gbuffer.render(scene, camera, {W, H, false, {}});
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const Image albedo = readTexture(ctx, view.albedo);
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.camera.view));
+    IndirectLightSettings s;
+    s.radius = static_cast<float>(radius);
+    s.rays = rays;
+    s.steps = steps;
+    const Image screen = readTexture(ctx, gi.run(view, s).radiance);
+    s.method = GiMethod::Hybrid;
+    s.voxels = &voxelizer.voxelize(scene, test::wallVoxels(resolution));
+    const Image hybrid = readTexture(ctx, gi.run(view, s).radiance);
+    const double side = 4.0 / resolution;
+    // The hybrid method's default thickness, two voxel diagonals: a voxel hit reads the wall's
+    // light only within it of the wall's plane.
+    const double reach = 2.0 * std::sqrt(3.0) * side;
+    const double footReach = floorPixelsReach(view.camera, positions, toWorld, W, H, side);
+    int finPixels = 0, open = 0, behindFin = 0;
+    double meanGap = 0.0, meanGapBound = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (positions.at(x, y, 3) == 0.0f) continue;
+            const glm::dvec3 p = worldAt(positions, toWorld, x, y);
+            finPixels += std::abs(p.x - finX) < 1e-3 && p.y > 1e-3 && p.z > -1.0 + 1e-3;
+            const double distance = p.z + 1.0, beside = p.x - finX;
+            if (std::abs(p.y) > 1e-3 || distance < 0.1 || distance > 0.7 || !wallInView(view.camera, p, radius)) continue;
+            CAPTURE(x, y, p.x, distance);
+            if (beside > radius + side) {
+                // Out of the fin's reach: both methods gather the whole wall, as in the test above.
+                ++open;
+                for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
+                    const auto [lo, hi] = wallLightWindow(method, distance, radius, steps, side, footReach);
+                    checkWallLight(method == GiMethod::Screen ? screen : hybrid, albedo, x, y, lo, hi, rays);
+                }
+            } else if (beside > 0.0 && beside < 0.1) {
+                // Beside the fin. The screen still sees the whole wall. A hybrid ray gathers light
+                // only if it reaches the plane z = -1 + reach (distance - reach away) at x >= finX
+                // (else the fin's voxels stop it farther than `reach` from the wall): within the
+                // radius, half the directions that reach that plane, plus those whose hit lies
+                // between finX and the pixel's own x, a wedge of cosine-weighted share
+                // atan(beside / d) / pi. Rays above the fin's top (3) are beyond the radius.
+                ++behindFin;
+                const double d = distance - reach;
+                const auto [screenLo, screenHi] = wallLightWindow(GiMethod::Screen, distance, radius, steps, side, 0.0);
+                const double hybridHi = 0.5 * wallShare(d, radius) + std::atan(beside / d) / kPi;
+                checkWallLight(screen, albedo, x, y, screenLo, screenHi, rays);
+                checkWallLight(hybrid, albedo, x, y, 0.0, hybridHi, rays);
+                meanGap += (screen.at(x, y, 0) - hybrid.at(x, y, 0)) / (albedo.at(x, y, 0) * kWallEmission[0]);
+                meanGapBound += screenLo - hybridHi;
+            }
+        }
+    INFO(open << " open floor pixels, " << behindFin << " beside the fin");
+    CHECK(finPixels == 0);
+    CHECK(open > 50);
+    REQUIRE(behindFin > 10);
+    // The screen finds more light beside the fin: on average at least the windows' gap, less
+    // 5 sigma of the mean of both methods' independent pixels.
+    meanGap /= behindFin;
+    meanGapBound /= behindFin;
+    INFO("mean gap " << meanGap << ", bound " << meanGapBound);
+    CHECK(meanGapBound > 0.05);
+    CHECK(meanGap >= meanGapBound - 5.0 * std::sqrt(2.0 * 0.25 / (double(rays) * behindFin)));
 }
 
 namespace {
