@@ -2,7 +2,8 @@
 // G-buffer: the per-pixel inputs every screen-space module reads.
 //
 // Either Obscura rasterizes the scene (render), or the host hands over its own depth buffer
-// and optionally its normals, albedo and lit image (adopt, post-process mode). Both give a
+// and optionally its normals, albedo, lit image and second depth layer (adopt, post-process
+// mode). Both give a
 // GBufferView with the same contract:
 //   depth           hardware depth of `camera` (32F when ours); background = clear depth
 //   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
@@ -107,7 +108,8 @@ OBSCURA_API float adoptedNormalError(NormalEncoding encoding, int bits);
 struct HostGBuffer {
     //! Required. GL_TEXTURE_2D, single-sampled, GL_DEPTH_COMPONENT16/24/32/32F or
     //! GL_DEPTH24_STENCIL8/GL_DEPTH32F_STENCIL8 (then GL_DEPTH_STENCIL_TEXTURE_MODE must be
-    //! GL_DEPTH_COMPONENT). name, width and height are required; internalFormat is checked.
+    //! GL_DEPTH_COMPONENT). Only `name` is read (here and in the other host textures): the
+    //! format and size are GL's, and the view gets them from there.
     TextureView depth;
     //! Optional, same size. Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
@@ -144,7 +146,9 @@ struct HostGBuffer {
     //! pixel the nearest surface strictly behind `depth` (a peeling pass that discards
     //! fragments at or in front of the first layer's depth), clear depth where there is none.
     //! Screen-space tests count a point as solid between the two layers, so another second
-    //! layer (a pass of back faces, say) is used as given.
+    //! layer (a pass of back faces, say) is used as given. Not `depth` itself (nothing would
+    //! be solid); the same format as `depth` is best: a coarser one may round the back in
+    //! front of the first layer, and such a pixel has no depth behind it.
     TextureView backDepth;
 };
 
@@ -161,8 +165,9 @@ public:
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
     //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,
-    //! albedo, radiance and back depth are used in place; normals are converted to the view-space contract above,
-    //! or reconstructed from depth when absent (pass "gbuffer.normals"). Throws
+    //! albedo, radiance and back depth are used in place; normals are converted to the
+    //! view-space contract above, or reconstructed from depth when absent (pass
+    //! "gbuffer.normals"). Throws
     //! Error{InvalidArgument} for a wrong target, format, sample count or size.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 

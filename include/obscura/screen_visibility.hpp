@@ -5,8 +5,9 @@
 // A depth pixel stands for a piece of surface: the point o reconstructed at the pixel
 // centre, the G-buffer's geometric normal n, and a back: `thickness` world units behind the
 // tangent plane (along n, so independent of the depth one pixel's footprint spans at
-// grazing angles), or the second depth layer of GBufferSettings::depthLayers = 2 (DepthPeeling;
-// the constant thickness where that layer is empty), or the deeper of the two
+// grazing angles), or the second depth layer of GBufferSettings::depthLayers = 2 or of
+// HostGBuffer::backDepth (DepthPeeling; the constant thickness where that layer is empty),
+// or the deeper of the two
 // (PeelingOrConstant). A point is hidden when it projects
 // into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
 // plane never hits it again at any resolution; beyond the rounding of depth, positions and
