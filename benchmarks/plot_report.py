@@ -20,9 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_tables import (RESOLUTION_HEADER, default_runs, falloff_section, fmt, lanes_section,  # noqa: E402
-                           march_section, own_ms, resolution_rows, resolution_section, thickness_section,
-                           tiles_section)
+from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt,  # noqa: E402
+                           lanes_section, march_section, own_ms, resolution_rows, resolution_section,
+                           thickness_section, tiles_section)
 
 
 def measures_own_error(row):
@@ -202,8 +202,7 @@ def shadow_section(rows):
              "(k = 1..8), against the unmoved fit; 0 means the snapped cascades do not shimmer.", "",
              "| scene | technique | preset | time ms | RMSE | false shadow | false light | umbra leak | memory MiB | shimmer |",
              "|---|---|---|---|---|---|---|---|---|---|"]
-    order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
-    for r in sorted(srows, key=lambda r: (r["scene"], r["technique"], order.get(r["preset"], 9))):
+    for r in sorted(srows, key=lambda r: (r["scene"], r["technique"], PRESET_ORDER.get(r["preset"], 9))):
         fs, fl, leak = r.get("false_shadow", ""), r.get("false_light", ""), r.get("umbra_leak", "")
         memory, shimmer = r.get("memory_bytes", ""), r.get("shimmer", "")
         lines.append(f'| {r["scene"]} | {r["technique"]} | {r["preset"]} | {fmt(r["gpu_ms"])} | {fmt(r["rmse"])} | '

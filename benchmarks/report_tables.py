@@ -1,6 +1,7 @@
 """The report's tables of timed studies (half resolution, geometry tiles, ray lanes, the
-screen-space marches, thickness and obscurance's falloffs) and the number formatting and timing rules they share
-with plot_report.py, which turns `obscura bench` output into docs/results.md.
+screen-space marches, thickness and obscurance's falloffs) and the number formatting and
+timing rules they share with plot_report.py, which turns `obscura bench` output into
+docs/results.md.
 """
 import math
 import os
@@ -37,6 +38,7 @@ def own_ms(row):
     return sum(p["median_ms"] for p in row.get("passes", []) if not shared_input(row["technique"], p["pass"]))
 
 
+PRESET_ORDER = {"low": 0, "medium": 1, "high": 2, "ultra": 3}  # the integrators' presets, cheapest first
 HALF_PAIRS = ("medium", "high")  # presets X and X_half: the same rays and steps, full and half resolution
 REDUCED_RESOLUTION_PASSES = (".tiles", ".blur", ".upsample", ".refine")  # what X_half runs besides its integrator
 
@@ -255,9 +257,8 @@ def thickness_section(rows):
             continue
         key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["preset"])
         table[key][thickness_run(r)] = r
-    order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
     lines = []
-    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], order.get(kv[0][3], 9))):
+    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], PRESET_ORDER.get(kv[0][3], 9))):
         if any(run not in runs for run in THICKNESS_RUNS[:2]):
             continue
         c, p = runs[THICKNESS_RUNS[0]], runs[THICKNESS_RUNS[1]]
@@ -304,9 +305,8 @@ def falloff_section(rows):
             continue
         key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["technique"], r["preset"])
         table[key][r.get("settings", {}).get("falloff", "linear")] = r
-    order = {"low": 0, "medium": 1, "high": 2, "ultra": 3}
     lines = []
-    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], order.get(kv[0][3], 9))):
+    for key, runs in sorted(table.items(), key=lambda kv: (kv[0][0], kv[0][1], kv[0][2], PRESET_ORDER.get(kv[0][3], 9))):
         if any(f not in runs for f in FALLOFFS):
             continue
         lines.append(f"| {' | '.join(key)} | " + " | ".join(fmt(own_ms(runs[f])) for f in FALLOFFS) + " | " +

@@ -75,8 +75,8 @@ struct AmbientOcclusionSettings {
     float thickness = 0.0f;
     //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
     //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2, or
-    //! HostGBuffer::backDepth): objects are as
-    //! thick as they are, so rays pass behind them and are not cut off inside them; or
+    //! HostGBuffer::backDepth): objects are as thick as they are, so rays pass behind them
+    //! and are not cut off inside them; or
     //! PeelingOrConstant: the deeper of the two, which keeps a constant slab behind thin
     //! parts (where other parts lie behind them, stacked). With the default thickness (the
     //! radius) that is nearly Constant: the slab runs along the normal, so on faces seen at
@@ -142,7 +142,8 @@ public:
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
     //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
-    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view stays valid until the next run.
+    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view
+    //! stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     std::size_t memoryBytes() const;

@@ -3,8 +3,7 @@
 //
 // Either Obscura rasterizes the scene (render), or the host hands over its own depth buffer
 // and optionally its normals, albedo, lit image and second depth layer (adopt, post-process
-// mode). Both give a
-// GBufferView with the same contract:
+// mode). Both give a GBufferView with the same contract:
 //   depth           hardware depth of `camera` (32F when ours); background = clear depth
 //   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
 //                   toward the camera; alpha = 0 on background, and on geometry the
@@ -167,8 +166,8 @@ public:
     //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,
     //! albedo, radiance and back depth are used in place; normals are converted to the
     //! view-space contract above, or reconstructed from depth when absent (pass
-    //! "gbuffer.normals"). Throws
-    //! Error{InvalidArgument} for a wrong target, format, sample count or size.
+    //! "gbuffer.normals"). Throws Error{InvalidArgument} for a wrong target, format, sample
+    //! count or size.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world

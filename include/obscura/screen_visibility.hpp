@@ -7,9 +7,8 @@
 // tangent plane (along n, so independent of the depth one pixel's footprint spans at
 // grazing angles), or the second depth layer of GBufferSettings::depthLayers = 2 or of
 // HostGBuffer::backDepth (DepthPeeling; the constant thickness where that layer is empty),
-// or the deeper of the two
-// (PeelingOrConstant). A point is hidden when it projects
-// into a pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
+// or the deeper of the two (PeelingOrConstant). A point is hidden when it projects into a
+// pixel, lies behind that pixel's tangent plane (dot(s - o, n) < 0, so a ray leaving a
 // plane never hits it again at any resolution; beyond the rounding of depth, positions and
 // normals: where o may lie on the plane a segment from -> to starts on (within the start
 // pixel's normal error of its tangent plane), e_o |from - o| + (e_from + e_o) |s - from| for

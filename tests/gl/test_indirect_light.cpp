@@ -101,7 +101,6 @@ Scene emissiveWallScene() {
     return scene;
 }
 
-
 // The share of a floor pixel's cosine-weighted directions that gather the wall's light, as a
 // window [lo, hi] per method (L1 = rho Le share): as for AO, marching misses hits beyond its
 // last sample, voxels bring the wall up to a side closer, and a voxel hit at the wall's foot
