@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt,  # noqa: E402
-                           lanes_section, march_section, own_ms, resolution_rows, resolution_section,
+                           lanes_section, march_section, own_ms, quarter_section, resolution_rows, resolution_section,
                            thickness_section, tiles_section)
 
 
@@ -155,6 +155,7 @@ def gpu_section(gpu_rows, cpu_rows, provenance=(), study_rows=()):
                   "threads, at any resolution: only 1920x1080 (256 spp references) shows what half resolution saves, "
                   "and only where the full-resolution pass fills the GPU.", ""]
         lines += RESOLUTION_HEADER + study + [""]
+    lines += quarter_section(list(gpu_rows), "###")
     # The studies' runs (run.sh lanes, tiles) in tables of their own: their rows repeat the
     # resolution runs' keys, timed in other processes.
     lines += lanes_section(list(study_rows), "###")
@@ -326,6 +327,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
         lines.append("")
 
     lines += resolution_section(list(rows) + list(study_rows))
+    lines += quarter_section(list(study_rows))
     lines += tiles_section(list(tiles_rows))
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))

@@ -1,4 +1,4 @@
-"""The report's tables of timed studies (half resolution, geometry tiles, ray lanes, the
+"""The report's tables of timed studies (half and quarter resolution, geometry tiles, ray lanes, the
 screen-space marches, thickness and obscurance's falloffs) and the number formatting and
 timing rules they share with plot_report.py, which turns `obscura bench` output into
 docs/results.md.
@@ -194,6 +194,63 @@ def resolution_section(rows):
             "nothing, a row can meet the goal only where `full ms` is more than twice that. On llvmpipe each of "
             "these passes has a fixed cost however little it does, which weighs most at small sizes "
             "(benchmarks/README.md).", ""] + RESOLUTION_HEADER + lines + [""]
+
+
+def resolution_of(row):
+    """The row's resolution setting: its --variant's, else its preset's (full unless set)."""
+    return row.get("settings", {}).get("resolution", "full")
+
+
+def quarter_lines(rows):
+    """Table lines: per scene, size, preset pair, technique and quantity, X at full resolution, X_half at
+    half and at quarter resolution (--variant resolution=quarter: X_half's blur, in quarter-resolution
+    pixels), and X at quarter resolution without a blur, all timed in turn."""
+    runs = defaultdict(dict)
+    for r in varying_only(rows, "resolution"):
+        if ray_lanes(r) != 1 or not geometry_tiles(r):
+            continue
+        half = r["preset"].endswith("_half")
+        base = r["preset"][:-len("_half")] if half else r["preset"]
+        if base in HALF_PAIRS:
+            runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', base, r["technique"],
+                  r["quantity"])][(half, resolution_of(r))] = r
+    lines = []
+    wanted = ((False, "full"), (True, "half"), (True, "quarter"), (False, "quarter"))
+    for key, by_run in sorted(runs.items(), key=lambda kv: (kv[0][0], kv[0][1], PRESET_ORDER.get(kv[0][2], 9), kv[0][3:])):
+        if any(w not in by_run for w in wanted):
+            continue
+        full, half, quarter, bare = (by_run[w] for w in wanted)
+        ms = [own_ms(full), own_ms(half), own_ms(quarter)]
+        besides_ms = sum(q["median_ms"] for q in quarter["passes"] if q["pass"].endswith(REDUCED_RESOLUTION_PASSES))
+        speedups = [fmt(ms[0] / t, 3) if t > 0 else "n/a" for t in ms[1:]]
+        ratio = quarter["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
+        lines.append(f"| {' | '.join(key)} | " + " | ".join(fmt(t) for t in ms) + f" | {fmt(besides_ms)} | "
+                     + " | ".join(speedups) + " | " + " | ".join(fmt(r["rmse"]) for r in (full, half, quarter))
+                     + f" | {fmt(ratio, 3)} | {fmt(bare['rmse'])} |")
+    return lines
+
+
+QUARTER_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | quarter ms | "
+                  "of which tiles, filters, refinement ms (quarter) | half speed-up | quarter speed-up | full RMSE | "
+                  "half RMSE | quarter RMSE | quarter RMSE ratio | quarter RMSE, no blur |",
+                  "|" + "---|" * 16]
+
+
+def quarter_section(rows, heading="##"):
+    lines = quarter_lines(rows)
+    if not lines:
+        return []
+    return [f"{heading} Quarter resolution", "",
+            "The half-resolution study's presets once more at quarter resolution (`--variant resolution=quarter` in "
+            "`scripts/report.sh` and `benchmarks/gpu/run.sh`), in the same process and timed in turn with them: X_half's rays, steps and blur at "
+            "a quarter of the width and height (the blur's taps are reduced pixels, so it reaches twice as far in "
+            "the image as at half resolution), and X's, which has no blur. Joint bilateral upsampling and the "
+            "refinement of pixels without a similar reduced neighbour are the same as at half resolution. The "
+            "speed-ups are X's time over X_half's and over the quarter-resolution run's; the RMSE ratio is the "
+            "quarter-resolution run's over X's. The issue's goal (2x faster at less than 2x the error) is set for "
+            "half resolution only. The last column, quarter resolution without the blur, shows what the blur "
+            "buys. More of the pixels are edge pixels at quarter resolution, so the refinement, at full resolution, "
+            "weighs more.", ""] + QUARTER_HEADER + lines + [""]
 
 
 MARCHES = ("view", "texture", "hiz")

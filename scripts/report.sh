@@ -2,10 +2,11 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, the half-resolution trade-off at 512x512, the reduced-resolution presets
-# with and without geometry tiles, ray lanes, the screen-space marches (view, texture,
-# Hi-Z), thickness (constant, depth peeling, the deeper of both) and obscurance's falloffs, each
-# study's variants timed in turn in one process, then draws the plots.
+# its traversals, the half- and quarter-resolution trade-off at 512x512, the
+# reduced-resolution presets with and without geometry tiles, ray lanes, the screen-space
+# marches (view, texture, Hi-Z), thickness (constant, depth peeling, the deeper of both) and
+# obscurance's falloffs, each study's variants timed in turn in one process, then draws the
+# plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -28,13 +29,20 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene cornell_sphere --scene cornell_rect --techniques 'shadow.*' --size 128x128 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/soft_shadows"
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
-# pass, dominates: presets medium and high, each at full and half resolution, on the Cornell
-# box and the finest model.
+# pass, dominates: presets medium and high, each at full and half resolution, and both at
+# quarter resolution (--variant: timed in turn with them), on the Cornell box and the finest
+# model; the integrators ([!s]*.*: not shadow.*, which has no resolution setting), then the
+# shadow techniques at the same size, which the GPU section compares with llvmpipe.
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-  --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
-  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+  --techniques '[!s]*.*' --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
+  --variant resolution=quarter --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --techniques 'shadow.*' --presets medium,high --size 512x512 --frames 20 --spp 1024 \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution/shadows"
 # The half-resolution presets with geometry tiles and over every tile (geometryTiles off),
 # their frames timed in turn (--variant): what skipping the background's tiles saves, and that
 # the RMSEs agree exactly.
@@ -108,5 +116,6 @@ for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do
   esac
 done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
-  --resolution-study "$out/resolution/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
+  --resolution-study "$out/resolution/bench.json" \
+  --resolution-study "$out/resolution/shadows/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
   "${thickness[@]}" "${falloffs[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

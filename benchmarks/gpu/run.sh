@@ -22,15 +22,18 @@ tests) # the GL test suite (no image files are read there), with the models wher
   mkdir -p "$OUT/tests" && (cd /tmp && "$dir/obscura_gl_tests" -r compact) 2>&1 | tee "$OUT/tests/gl_tests.log" | tail -40 ;;
 main) # the report's main run, less the models with textures (no image reader here)
   bench --spp 1024 --scene cornell --scene "$dir/models/Wuson.ply" --scene "$engine" --size 128x128 --out "$OUT/main" ;;
-resolution) # the report's half-resolution study
-  bench --spp 1024 --scene cornell --scene "$engine" --presets medium,medium_half,high,high_half --size 512x512 \
-    --out "$OUT/resolution" ;;
+resolution) # the report's half- and quarter-resolution study, then its shadow techniques
+  bench --spp 1024 --scene cornell --scene "$engine" --techniques '[!s]*.*' --presets medium,medium_half,high,high_half \
+    --size 512x512 --variant resolution=quarter --out "$OUT/resolution"
+  bench --spp 1024 --scene cornell --scene "$engine" --techniques 'shadow.*' --presets medium,high --size 512x512 \
+    --out "$OUT/resolution_shadows" ;;
 resolution_1080) # the same at a size that fills the GPU (512x512 is one wave of threads on an H100,
   # so a pass's time is one thread's latency there, whatever the resolution); 256 spp, so that
   # the references fit in a call
   for family in ao obscurance gi; do
     bench --spp 256 --scene cornell --scene "$engine" --techniques "$family.*" \
-      --presets medium,medium_half,high,high_half --size 1920x1080 --out "$OUT/resolution_1080_$family"
+      --presets medium,medium_half,high,high_half --size 1920x1080 --variant resolution=quarter \
+      --out "$OUT/resolution_1080_$family"
   done ;;
 lanes) # ray lanes (rayLanes: invocations per pixel's rays) 1, 4 and 16, timed in turn, on the
   # half-resolution study's rows at 1920x1080, where a pass over few pixels lasts as long as its

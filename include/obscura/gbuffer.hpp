@@ -146,8 +146,9 @@ struct HostGBuffer {
     //! fragments at or in front of the first layer's depth), clear depth where there is none.
     //! Screen-space tests count a point as solid between the two layers, so another second
     //! layer (a pass of back faces, say) is used as given. Not `depth` itself (nothing would
-    //! be solid); the same format as `depth` is best: a coarser one may round the back in
-    //! front of the first layer, and such a pixel has no depth behind it.
+    //! be solid; adopt() refuses it with InvalidArgument). The same format as `depth` is
+    //! best: a coarser one may round the back in front of the first layer, and such a pixel
+    //! has no depth behind it.
     TextureView backDepth;
 };
 

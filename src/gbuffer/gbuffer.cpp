@@ -83,9 +83,14 @@ void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, co
                     who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
 }
 
-// The host's second depth layer, read in place beside the first. Empty stays empty.
-TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, const TextureInfo& depth) {
+// The host's second depth layer, read in place beside the first. Empty stays empty. The
+// first layer itself would make every peeled interval empty: a silent no-op, so refused.
+TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint depthName, const TextureInfo& depth) {
     if (!texture) return {};
+    if (texture.name == depthName)
+        throw Error(ErrorCode::InvalidArgument,
+                    "HostGBuffer::backDepth is HostGBuffer::depth (texture " + std::to_string(depthName) +
+                        "): it must be a second layer, the nearest surfaces behind the first");
     const TextureInfo t = hostTextureBeside(ctx, texture.name, "HostGBuffer::backDepth", depth);
     requireSampledDepth(ctx, texture.name, t, "HostGBuffer::backDepth");
     return {texture.name, t.internalFormat, t.width, t.height};
@@ -414,7 +419,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     }
     const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
     const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
-    const TextureView backDepth = hostBackDepth(ctx, host.backDepth, depth);
+    const TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
 
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.normals");

@@ -246,6 +246,7 @@ TEST_CASE_METHOD(BadInputFixture, "Wrong texture formats names and sizes are ref
     expectError([&] { adoptBack(stencilled); }, ErrorCode::InvalidArgument, "HostGBuffer::backDepth samples stencil");
     expectError([&] { adoptBack(multisample); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
     expectError([&] { adoptBack(4242); }, ErrorCode::InvalidArgument, "not a GL texture");
+    expectError([&] { adoptBack(depth); }, ErrorCode::InvalidArgument, "HostGBuffer::backDepth is HostGBuffer::depth");
     for (GLuint t : {rgba8ui, small}) glDeleteTextures(1, &t);
     expectError([&] { readTexture(ctx, {multisample, 0, 16, 16}); }, ErrorCode::InvalidArgument, "GL_TEXTURE_2D");
     GLuint mipmapped = 0;
