@@ -132,7 +132,8 @@ def row_key(r):
 
 
 def gpu_section(gpu_rows, cpu_rows, provenance=(), study_rows=()):
-    """The same bench on a GPU: its half-resolution study, and its rows beside llvmpipe's (time and error)."""
+    """The same bench on a GPU: its half- and quarter-resolution studies, and its rows beside llvmpipe's (time and
+    error)."""
     if not gpu_rows and not study_rows:
         return []
     renderers = sorted({r["renderer"] for r in list(gpu_rows) + list(study_rows)})
@@ -345,7 +346,9 @@ def main():
     parser.add_argument("inputs", nargs="+", help="bench.json files")
     parser.add_argument("--out", default="docs", help="directory for results.md and results/*.png")
     parser.add_argument("--resolution-study", action="append", default=[],
-                        help="bench.json of presets medium, medium_half, high and high_half at another size (half-resolution table only)")
+                        help="bench.json of presets medium, medium_half, high and high_half at another size, and of their "
+                             "--variant resolution=quarter runs (the half- and quarter-resolution tables, and "
+                             "llvmpipe's side of the GPU comparison)")
     parser.add_argument("--march-study", action="append", default=[],
                         help="bench.json of ao.raymarch with march=view, texture and hiz (--set, --variant; screen-space march table only)")
     parser.add_argument("--thickness-study", action="append", default=[],

@@ -52,7 +52,7 @@ def resolution_rows(rows):
             size = f'{r["width"]}x{r["height"]}'
             pairs[(r["scene"], size, base, r["technique"], r["quantity"])][r["preset"]] = r
     lines = []
-    for key, p in sorted(pairs.items()):
+    for key, p in sorted(pairs.items(), key=by_size_and_preset):
         if len(p) != 2:
             continue
         full, half = p[key[2]], p[key[2] + "_half"]
@@ -196,27 +196,40 @@ def resolution_section(rows):
             "(benchmarks/README.md).", ""] + RESOLUTION_HEADER + lines + [""]
 
 
+RESOLUTIONS = ("full", "half", "quarter")  # the integrators' `resolution` (shadow techniques' is a map size)
+
+
 def resolution_of(row):
-    """The row's resolution setting: its --variant's, else its preset's (full unless set)."""
-    return row.get("settings", {}).get("resolution", "full")
+    """The row's integrator resolution: its --variant's, else its preset's (full unless set); None for a
+    `resolution` that is not one (a shadow map's size in texels)."""
+    value = row.get("settings", {}).get("resolution", "full")
+    return value if value in RESOLUTIONS else None
+
+
+def by_size_and_preset(item):
+    """Sort key of a table's (scene, size, preset, ...) keyed item: the presets cheapest first."""
+    key = item[0]
+    return key[0], key[1], PRESET_ORDER.get(key[2], 9), key[3:]
 
 
 def quarter_lines(rows):
     """Table lines: per scene, size, preset pair, technique and quantity, X at full resolution, X_half at
     half and at quarter resolution (--variant resolution=quarter: X_half's blur, in quarter-resolution
-    pixels), and X at quarter resolution without a blur, all timed in turn."""
+    pixels), and X at quarter resolution without a blur, all timed in turn by one process (rows of
+    another renderer are another group)."""
     runs = defaultdict(dict)
     for r in varying_only(rows, "resolution"):
-        if ray_lanes(r) != 1 or not geometry_tiles(r):
+        if ray_lanes(r) != 1 or not geometry_tiles(r) or resolution_of(r) is None:
             continue
         half = r["preset"].endswith("_half")
         base = r["preset"][:-len("_half")] if half else r["preset"]
         if base in HALF_PAIRS:
-            runs[(os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', base, r["technique"],
-                  r["quantity"])][(half, resolution_of(r))] = r
+            key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', base, r["technique"], r["quantity"],
+                   r.get("renderer", ""))
+            runs[key][(half, resolution_of(r))] = r
     lines = []
     wanted = ((False, "full"), (True, "half"), (True, "quarter"), (False, "quarter"))
-    for key, by_run in sorted(runs.items(), key=lambda kv: (kv[0][0], kv[0][1], PRESET_ORDER.get(kv[0][2], 9), kv[0][3:])):
+    for key, by_run in sorted(runs.items(), key=by_size_and_preset):
         if any(w not in by_run for w in wanted):
             continue
         full, half, quarter, bare = (by_run[w] for w in wanted)
@@ -224,16 +237,16 @@ def quarter_lines(rows):
         besides_ms = sum(q["median_ms"] for q in quarter["passes"] if q["pass"].endswith(REDUCED_RESOLUTION_PASSES))
         speedups = [fmt(ms[0] / t, 3) if t > 0 else "n/a" for t in ms[1:]]
         ratio = quarter["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
-        lines.append(f"| {' | '.join(key)} | " + " | ".join(fmt(t) for t in ms) + f" | {fmt(besides_ms)} | "
+        lines.append(f"| {' | '.join(key[:5])} | " + " | ".join(fmt(t) for t in ms) + f" | {fmt(besides_ms)} | "
                      + " | ".join(speedups) + " | " + " | ".join(fmt(r["rmse"]) for r in (full, half, quarter))
-                     + f" | {fmt(ratio, 3)} | {fmt(bare['rmse'])} |")
+                     + f" | {fmt(ratio, 3)} | {fmt(own_ms(bare))} | {fmt(bare['rmse'])} |")
     return lines
 
 
 QUARTER_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | quarter ms | "
                   "of which tiles, filters, refinement ms (quarter) | half speed-up | quarter speed-up | full RMSE | "
-                  "half RMSE | quarter RMSE | quarter RMSE ratio | quarter RMSE, no blur |",
-                  "|" + "---|" * 16]
+                  "half RMSE | quarter RMSE | quarter RMSE ratio | no blur: quarter ms | quarter RMSE |",
+                  "|" + "---|" * 17]
 
 
 def quarter_section(rows, heading="##"):
@@ -241,16 +254,16 @@ def quarter_section(rows, heading="##"):
     if not lines:
         return []
     return [f"{heading} Quarter resolution", "",
-            "The half-resolution study's presets once more at quarter resolution (`--variant resolution=quarter` in "
-            "`scripts/report.sh` and `benchmarks/gpu/run.sh`), in the same process and timed in turn with them: X_half's rays, steps and blur at "
-            "a quarter of the width and height (the blur's taps are reduced pixels, so it reaches twice as far in "
-            "the image as at half resolution), and X's, which has no blur. Joint bilateral upsampling and the "
-            "refinement of pixels without a similar reduced neighbour are the same as at half resolution. The "
-            "speed-ups are X's time over X_half's and over the quarter-resolution run's; the RMSE ratio is the "
-            "quarter-resolution run's over X's. The issue's goal (2x faster at less than 2x the error) is set for "
-            "half resolution only. The last column, quarter resolution without the blur, shows what the blur "
-            "buys. More of the pixels are edge pixels at quarter resolution, so the refinement, at full resolution, "
-            "weighs more.", ""] + QUARTER_HEADER + lines + [""]
+            "The half-resolution study's presets once more at quarter resolution (`--variant resolution=quarter` "
+            "in `scripts/report.sh` and `benchmarks/gpu/run.sh`), in the same process and timed in turn with "
+            "them: X_half's rays, steps and blur at a quarter of the width and height (the blur's taps are "
+            "reduced pixels, so it reaches twice as far in the image as at half resolution), and X's, which has "
+            "no blur. The joint bilateral upsampling and the refinement of the pixels it finds no similar reduced "
+            "neighbour for work as at half resolution. The speed-ups are X's time over X_half's and over the "
+            "quarter-resolution run's; the RMSE ratio is the quarter-resolution run's over X's. The issue sets "
+            "its goal (2x faster at less than 2x the error) for half resolution only. The last two columns, "
+            "quarter resolution without the blur, show what the blur costs and buys.",
+            ""] + QUARTER_HEADER + lines + [""]
 
 
 MARCHES = ("view", "texture", "hiz")

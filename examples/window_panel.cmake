@@ -1,10 +1,10 @@
 # The ImGui panel in window mode (GLFW on Xvfb): the frame as the window shows it
 # (--screenshot) must differ from the headless picture over the panel's title bar and equal
 # it right of and below the panel (its place and size are fixed: position (8, 8), ImGui's
-# built-in font, at most 300 x 290 pixels with the widgets of both examples).
+# built-in font, at most 300 x 370 pixels with the widgets of both examples).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-set(size --size 480x320 --rays 8)
+set(size --size 480x400 --rays 8)
 execute_process(COMMAND "${EXAMPLE}" ${size} --out "${WORK_DIR}/headless.png" RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "headless run failed:\n${err}")
@@ -16,7 +16,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "window run failed:\n${out}${err}")
 endif()
 # region name, oiiotool geometry WxH+X+Y, whether the two pictures must be equal there
-foreach(region "title;280x14+12+10;differ" "right;150x320+330+0;equal" "below;480x20+0+300;equal")
+foreach(region "title;280x14+12+10;differ" "right;150x400+330+0;equal" "below;480x20+0+380;equal")
   list(GET region 0 name)
   list(GET region 1 geometry)
   list(GET region 2 expect)

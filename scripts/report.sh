@@ -31,8 +31,8 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
 # pass, dominates: presets medium and high, each at full and half resolution, and both at
 # quarter resolution (--variant: timed in turn with them), on the Cornell box and the finest
-# model; the integrators ([!s]*.*: not shadow.*, which has no resolution setting), then the
-# shadow techniques at the same size, which the GPU section compares with llvmpipe.
+# model; the integrators ([!s]*.*: not shadow.*, whose `resolution` is its map's size), then
+# the shadow techniques at the same size, which the GPU section compares with llvmpipe.
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \

@@ -23,8 +23,8 @@ tests) # the GL test suite (no image files are read there), with the models wher
 main) # the report's main run, less the models with textures (no image reader here)
   bench --spp 1024 --scene cornell --scene "$dir/models/Wuson.ply" --scene "$engine" --size 128x128 --out "$OUT/main" ;;
 resolution) # the report's half- and quarter-resolution study, then its shadow techniques
-  bench --spp 1024 --scene cornell --scene "$engine" --techniques '[!s]*.*' --presets medium,medium_half,high,high_half \
-    --size 512x512 --variant resolution=quarter --out "$OUT/resolution"
+  bench --spp 1024 --scene cornell --scene "$engine" --techniques '[!s]*.*' \
+    --presets medium,medium_half,high,high_half --size 512x512 --variant resolution=quarter --out "$OUT/resolution"
   bench --spp 1024 --scene cornell --scene "$engine" --techniques 'shadow.*' --presets medium,high --size 512x512 \
     --out "$OUT/resolution_shadows" ;;
 resolution_1080) # the same at a size that fills the GPU (512x512 is one wave of threads on an H100,

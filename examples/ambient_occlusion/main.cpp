@@ -13,7 +13,6 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 using namespace obscura;
@@ -27,10 +26,7 @@ int main(int argc, char** argv) {
     controls.addOptions(parser);
     const char* const views[] = {"ao", "bent", "lit"};
     const char* const falloffs[] = {"none", "linear", "quadratic", "smooth"}; // ObscuranceFalloff's order
-    // ScreenThickness's order.
-    const char* const thicknessModes[] = {"constant", "depth_peeling", "peeling_or_constant"};
-    std::string viewName = "ao", falloffName = "none", thicknessName = "constant";
-    float thickness = 0.0f;
+    std::string viewName = "ao", falloffName = "none";
     parser.add_option("--view", viewName, "ao (the AO or obscurance term), bent (bent normals) or lit (AO in the combined image)")
         ->check(CLI::IsMember({"ao", "bent", "lit"}))
         ->capture_default_str();
@@ -38,24 +34,13 @@ int main(int argc, char** argv) {
                                                "(all but the horizon method)")
         ->check(CLI::IsMember({"none", "linear", "quadratic", "smooth"}))
         ->capture_default_str();
-    parser.add_option("--thickness-mode", thicknessName, "raymarch, points: constant (--thickness behind each depth "
-                                                         "sample), depth_peeling (down to the second depth layer) or "
-                                                         "peeling_or_constant (the deeper of both)")
-        ->check(CLI::IsMember({"constant", "depth_peeling", "peeling_or_constant"}))
-        ->capture_default_str();
-    parser.add_option("--thickness", thickness, "World units behind each depth sample, >= 0 (0: the radius)")
-        ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
         controls.check();
         int output = int(std::find(std::begin(views), std::end(views), viewName) - std::begin(views));
         int falloff = int(std::find(std::begin(falloffs), std::end(falloffs), falloffName) - std::begin(falloffs));
-        int thicknessMode = int(std::find(std::begin(thicknessModes), std::end(thicknessModes), thicknessName) -
-                                std::begin(thicknessModes));
         if (falloff != 0 && controls.methods[std::size_t(controls.method)] == "horizon")
             throw Error(ErrorCode::Parse, "--falloff: the horizon method computes AO only (falloff none)");
-        if (!(thickness >= 0.0f) || std::isinf(thickness))
-            throw Error(ErrorCode::Parse, "--thickness: world units, finite and >= 0 (0: the radius)");
         examples::App app(options);
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const assets::LoadedScene& scene = example.loaded;
@@ -67,8 +52,6 @@ int main(int argc, char** argv) {
             ImGui::Begin("ambient occlusion");
             controls.changed |= ImGui::Combo("view", &output, views, 3);
             controls.changed |= ImGui::Combo("falloff", &falloff, falloffs, 4);
-            controls.changed |= ImGui::Combo("thickness", &thicknessMode, thicknessModes, 3);
-            controls.changed |= ImGui::DragFloat("slab", &thickness, std::max(thickness, 1.0f) * 0.01f, 0.0f, 1e6f);
             ImGui::End();
         });
         TextureImage shown;
@@ -94,8 +77,8 @@ int main(int argc, char** argv) {
                 // The panel may pick a falloff with the horizon method, which has none.
                 s.falloff = s.method == AoMethod::Horizon ? ObscuranceFalloff::None : static_cast<ObscuranceFalloff>(falloff);
                 s.bentNormals = output == 1;
-                s.thicknessMode = static_cast<ScreenThickness>(thicknessMode);
-                s.thickness = thickness;
+                s.thicknessMode = controls.screenThickness();
+                s.thickness = controls.thickness;
                 if (s.method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(scene.scene, {});
                 const AmbientOcclusionView result = ao.run(view, s);
                 if (output == 1) {

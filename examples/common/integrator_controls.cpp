@@ -5,11 +5,14 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 
 namespace obscura::examples {
 namespace {
 
 const char* const kResolutions[] = {"full", "half", "quarter"};
+const char* const kThicknessModes[] = {"constant", "depth_peeling", "peeling_or_constant"}; // ScreenThickness's order
 
 int indexOf(const std::vector<std::string>& names, const std::string& name) {
     const auto it = std::find(names.begin(), names.end(), name);
@@ -29,15 +32,25 @@ void IntegratorControls::addOptions(CLI::App& cli) {
     cli.add_option("--steps", steps, "Samples per ray [1, 256]")->capture_default_str();
     cli.add_option("--radius", radius, "World units (0: a tenth of the scene's diagonal)")->capture_default_str();
     cli.add_option_function<std::string>("--resolution", [this](const std::string& v) {
-        resolution = indexOf({"full", "half", "quarter"}, v);
+        resolution = indexOf({std::begin(kResolutions), std::end(kResolutions)}, v);
         if (resolution < 0) throw CLI::ValidationError("--resolution", v + ": expected full, half or quarter");
     }, "full|half|quarter (default full)");
     cli.add_option("--blur", blur, "Geometry-aware blur taps each side [0, 16]")->capture_default_str();
+    cli.add_option_function<std::string>("--thickness-mode", [this](const std::string& v) {
+        thicknessMode = indexOf({std::begin(kThicknessModes), std::end(kThicknessModes)}, v);
+        if (thicknessMode < 0)
+            throw CLI::ValidationError("--thickness-mode",
+                                       v + ": expected constant, depth_peeling or peeling_or_constant");
+    }, "Screen-space methods: constant (--thickness behind each depth sample), depth_peeling (down to the second "
+       "depth layer) or peeling_or_constant (the deeper of both) (default constant)");
+    cli.add_option("--thickness", thickness, thicknessHelp)->capture_default_str();
 }
 
 void IntegratorControls::check() const {
     if (rays < 1 || rays > 1024 || steps < 1 || steps > 256 || blur < 0 || blur > 16 || !(radius >= 0.0f))
         throw Error(ErrorCode::Parse, "--rays [1, 1024], --steps [1, 256], --blur [0, 16], --radius >= 0");
+    if (!(thickness >= 0.0f) || std::isinf(thickness))
+        throw Error(ErrorCode::Parse, "--thickness: world units, finite and >= 0");
 }
 
 AoResolution IntegratorControls::aoResolution() const {
@@ -57,6 +70,10 @@ void IntegratorControls::drawPanel(const char* title) {
     changed |= ImGui::DragFloat("radius", &radius, std::max(radius, 1.0f) * 0.01f, 0.0f, 1e6f);
     changed |= ImGui::Combo("resolution", &resolution, kResolutions, 3);
     changed |= ImGui::SliderInt("blur", &blur, 0, 16);
+    changed |= ImGui::Combo("thickness", &thicknessMode, kThicknessModes, 3);
+    // Clamped also when typed (Ctrl+click): a negative thickness is refused by the integrators.
+    changed |= ImGui::DragFloat("slab", &thickness, std::max(thickness, 1.0f) * 0.01f, 0.0f, 1e6f, "%.3f",
+                                ImGuiSliderFlags_AlwaysClamp);
     ImGui::End();
 }
 

@@ -6,6 +6,7 @@
 //   obscura_example_global_illumination --scene cornell --method hybrid --view composed --out gi.png
 //   obscura_example_global_illumination --formula thesis --ambient 0.05 --out gi_ambient.png
 //   obscura_example_global_illumination --window --frames 0
+//   --thickness-mode depth_peeling: what lies behind a depth sample (the screen-space method)
 #include "app.hpp"
 #include "integrator_controls.hpp"
 #include "obscura/obscura.hpp"
@@ -22,6 +23,9 @@ int main(int argc, char** argv) {
     examples::addAppOptions(parser, options);
     examples::IntegratorControls controls;
     controls.methods = {"screen", "hybrid"};
+    controls.thicknessHelp = "World units, >= 0: screen, how far behind each depth sample a point counts as inside "
+                             "(0: the radius); hybrid, how far a voxel hit may lie from the pixel's tangent plane "
+                             "(0: two voxel diagonals)";
     controls.addOptions(parser);
     std::string viewName = "composed";
     float exposure = 0.0f;
@@ -74,7 +78,10 @@ int main(int argc, char** argv) {
             IndirectLight gi(ctx);
             AmbientOcclusion ao(ctx);
             Composer composer(ctx);
-            const GBufferView view = gbuffer.render(scene.scene, camera, {app.width(), app.height(), true, {}});
+            // Two depth layers, so that the panel can switch to depth peeling.
+            GBufferSettings layers{app.width(), app.height(), true, {}};
+            layers.depthLayers = 2;
+            const GBufferView view = gbuffer.render(scene.scene, camera, layers);
             shown = app.presentUntilDone(controls.changed, [&] {
                 TextureImage picture;
                 IndirectLightSettings s;
@@ -84,6 +91,8 @@ int main(int argc, char** argv) {
                 s.radius = std::max(controls.radius, 1e-6f * diagonal);
                 s.resolution = controls.aoResolution();
                 s.blurRadius = controls.blur;
+                s.thicknessMode = controls.screenThickness();
+                s.thickness = controls.thickness;
                 if (s.method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(scene.scene, {});
                 const IndirectLightView result = gi.run(view, s);
                 ComposeSettings c;
@@ -99,6 +108,11 @@ int main(int argc, char** argv) {
                         a.radius = s.radius;
                         a.resolution = s.resolution;
                         a.blurRadius = s.blurRadius;
+                        // The hybrid's thickness bounds voxel hits, not depth samples.
+                        if (s.method == GiMethod::Screen) {
+                            a.thicknessMode = s.thicknessMode;
+                            a.thickness = s.thickness;
+                        }
                         inputs.ao = ao.run(view, a).ao;
                     }
                     picture = assets::encodeDisplay(readTexture(ctx, composer.compose(inputs, c)), assets::PngEncoding::Linear);

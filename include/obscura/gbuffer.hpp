@@ -168,7 +168,7 @@ public:
     //! albedo, radiance and back depth are used in place; normals are converted to the
     //! view-space contract above, or reconstructed from depth when absent (pass
     //! "gbuffer.normals"). Throws Error{InvalidArgument} for a wrong target, format, sample
-    //! count or size.
+    //! count or size, and for a backDepth that names the depth texture.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world
