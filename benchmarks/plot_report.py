@@ -21,8 +21,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt,  # noqa: E402
-                           lanes_section, march_section, own_ms, quarter_section, resolution_rows, resolution_section,
-                           thickness_section, tiles_section)
+                           lanes_section, march_section, own_ms, quarter_section, refine_section, resolution_rows,
+                           resolution_section, thickness_section, tiles_section)
 
 
 def measures_own_error(row):
@@ -269,7 +269,8 @@ def shown(path):
 
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
-                 lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=()):
+                 lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=(),
+                 refine_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -329,6 +330,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
 
     lines += resolution_section(list(rows) + list(study_rows))
     lines += quarter_section(list(study_rows))
+    lines += refine_section(list(refine_rows))
     lines += tiles_section(list(tiles_rows))
     lines += lanes_section(list(lanes_rows))
     lines += march_section(list(march_rows))
@@ -357,6 +359,9 @@ def main():
     parser.add_argument("--falloff-study", action="append", default=[],
                         help="bench.json of the obscurance techniques with --variant falloff=none, quadratic and smooth "
                              "(falloff table only)")
+    parser.add_argument("--refine-study", action="append", default=[],
+                        help="bench.json of presets medium, medium_half, high and high_half with --variant "
+                             "refine_threshold=0 (refinement table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
@@ -379,6 +384,8 @@ def main():
     sources += [f"{shown(p)} (thickness study)" for p in args.thickness_study]
     falloff_rows = load(args.falloff_study)[0] if args.falloff_study else []
     sources += [f"{shown(p)} (falloff study)" for p in args.falloff_study]
+    refine_rows = load(args.refine_study)[0] if args.refine_study else []
+    sources += [f"{shown(p)} (refinement study)" for p in args.refine_study]
     lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
     sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
     tiles_rows = load(args.tiles_study)[0] if args.tiles_study else []
@@ -394,7 +401,7 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows, thickness_rows, falloff_rows)
+                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

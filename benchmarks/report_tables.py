@@ -1,4 +1,4 @@
-"""The report's tables of timed studies (half and quarter resolution, geometry tiles, ray lanes, the
+"""The report's tables of timed studies (half and quarter resolution, refinement, geometry tiles, ray lanes, the
 screen-space marches, thickness and obscurance's falloffs) and the number formatting and
 timing rules they share with plot_report.py, which turns `obscura bench` output into
 docs/results.md.
@@ -212,24 +212,37 @@ def by_size_and_preset(item):
     return key[0], key[1], PRESET_ORDER.get(key[2], 9), key[3:]
 
 
-def quarter_lines(rows):
-    """Table lines: per scene, size, preset pair, technique and quantity, X at full resolution, X_half at
-    half and at quarter resolution (--variant resolution=quarter: X_half's blur, in quarter-resolution
-    pixels), and X at quarter resolution without a blur, all timed in turn by one process (rows of
-    another renderer are another group)."""
+def preset_pair_runs(rows, varying, run_of):
+    """The runs of each preset pair X / X_half whose --variant sets only `varying`, per (scene, size, X,
+    technique, quantity, renderer: another renderer's runs are another group), each under
+    run_of(row, is_half) (None: left out); sorted with the presets cheapest first."""
     runs = defaultdict(dict)
-    for r in varying_only(rows, "resolution"):
-        if ray_lanes(r) != 1 or not geometry_tiles(r) or resolution_of(r) is None:
+    for r in varying_only(rows, varying):
+        if ray_lanes(r) != 1 or not geometry_tiles(r):
             continue
         half = r["preset"].endswith("_half")
         base = r["preset"][:-len("_half")] if half else r["preset"]
-        if base in HALF_PAIRS:
+        run = run_of(r, half)
+        if base in HALF_PAIRS and run is not None:
             key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', base, r["technique"], r["quantity"],
                    r.get("renderer", ""))
-            runs[key][(half, resolution_of(r))] = r
+            runs[key][run] = r
+    return sorted(runs.items(), key=by_size_and_preset)
+
+
+def goal_met(full, reduced):
+    """The half-resolution goal: at least 2x faster at less than 2x the RMSE."""
+    return own_ms(reduced) > 0 and own_ms(full) / own_ms(reduced) >= 2.0 and reduced["rmse"] < 2.0 * full["rmse"]
+
+
+def quarter_lines(rows):
+    """Table lines: per scene, size, preset pair, technique and quantity, X at full resolution, X_half at
+    half and at quarter resolution (--variant resolution=quarter: X_half's blur, in quarter-resolution
+    pixels), and X at quarter resolution without a blur, all timed in turn by one process."""
     lines = []
     wanted = ((False, "full"), (True, "half"), (True, "quarter"), (False, "quarter"))
-    for key, by_run in sorted(runs.items(), key=by_size_and_preset):
+    for key, by_run in preset_pair_runs(rows, "resolution",
+                                        lambda r, half: None if resolution_of(r) is None else (half, resolution_of(r))):
         if any(w not in by_run for w in wanted):
             continue
         full, half, quarter, bare = (by_run[w] for w in wanted)
@@ -241,6 +254,42 @@ def quarter_lines(rows):
                      + " | ".join(speedups) + " | " + " | ".join(fmt(r["rmse"]) for r in (full, half, quarter))
                      + f" | {fmt(ratio, 3)} | {fmt(own_ms(bare))} | {fmt(bare['rmse'])} |")
     return lines
+
+
+def refine_lines(rows):
+    """Table lines: X at full resolution, X_half with its refinement (refine_threshold's default) and
+    without (--variant refine_threshold=0), timed in turn: what the refinement costs and buys."""
+    lines = []
+    wanted = ((False, False), (True, False), (True, True))
+    for key, by_run in preset_pair_runs(rows, "refine_threshold",
+                                        lambda r, half: (half, "refine_threshold" in variant_keys(r))):
+        if any(w not in by_run for w in wanted):
+            continue
+        full, half, bare = (by_run[w] for w in wanted)
+        refine_ms = sum(q["median_ms"] for q in half["passes"] if q["pass"].endswith(".refine"))
+        speedups = [fmt(own_ms(full) / own_ms(r), 3) if own_ms(r) > 0 else "n/a" for r in (half, bare)]
+        lines.append(f"| {' | '.join(key[:5])} | {fmt(own_ms(full))} | {fmt(own_ms(half))} | {fmt(refine_ms)} | "
+                     f"{fmt(own_ms(bare))} | " + " | ".join(speedups) + " | "
+                     + " | ".join(fmt(r["rmse"]) for r in (full, half, bare)) + " | "
+                     + " | ".join("yes" if goal_met(full, r) else "**no**" for r in (half, bare)) + " |")
+    return lines
+
+
+def refine_section(rows, heading="##"):
+    lines = refine_lines(rows)
+    if not lines:
+        return []
+    return [f"{heading} Refinement at half resolution", "",
+            "Presets X (full resolution) and X_half with the refinement (`refine_threshold` 0.25, the default: "
+            "pass `<module>.refine` computes at full resolution the pixels the upsampling finds no similar "
+            "reduced neighbour for) and without it (`--variant refine_threshold=0`: the neighbour nearest in "
+            "depth fills in), timed in turn (`scripts/report.sh`), at the size of the scene tables, where "
+            "the half-resolution section's misses are, on the scenes with the most edge pixels. Times are the "
+            "technique's own passes; the goal is the half-resolution section's.", "",
+            "| scene | size | preset | technique | quantity | full ms | half ms | of which refinement ms | "
+            "half ms, no refinement | speed-up | speed-up, no refinement | full RMSE | half RMSE | "
+            "half RMSE, no refinement | goal met | goal met, no refinement |",
+            "|" + "---|" * 16] + lines + [""]
 
 
 QUARTER_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | quarter ms | "

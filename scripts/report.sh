@@ -2,11 +2,11 @@
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
 # reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
-# its traversals, the half- and quarter-resolution trade-off at 512x512, the
-# reduced-resolution presets with and without geometry tiles, ray lanes, the screen-space
-# marches (view, texture, Hi-Z), thickness (constant, depth peeling, the deeper of both) and
-# obscurance's falloffs, each study's variants timed in turn in one process, then draws the
-# plots.
+# its traversals, the half- and quarter-resolution trade-off at 512x512, half resolution
+# with and without its refinement, the reduced-resolution presets with and without geometry
+# tiles, ray lanes, the screen-space marches (view, texture, Hi-Z), thickness (constant,
+# depth peeling, the deeper of both) and obscurance's falloffs, each study's variants timed in
+# turn in one process, then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -43,6 +43,14 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --techniques 'shadow.*' --presets medium,high --size 512x512 --frames 20 --spp 1024 \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution/shadows"
+# The refinement at half resolution: X_half with and without it (refine_threshold=0), timed in
+# turn with X, at the scene tables' size, where the half-resolution misses are, on the two
+# scenes with the most edge pixels (thin legs, stacked thin parts).
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene "$models/OBJ/spider.obj" \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --techniques '[!s]*.*' --presets medium,medium_half,high,high_half --size 128x128 --frames 20 --spp 1024 \
+  --variant refine_threshold=0 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/refine"
 # The half-resolution presets with geometry tiles and over every tile (geometryTiles off),
 # their frames timed in turn (--variant): what skipping the background's tiles saves, and that
 # the RMSEs agree exactly.
@@ -118,4 +126,4 @@ done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" \
   --resolution-study "$out/resolution/shadows/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
-  "${thickness[@]}" "${falloffs[@]}" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  "${thickness[@]}" "${falloffs[@]}" --refine-study "$out/refine/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

@@ -1,8 +1,9 @@
-"""The quarter- and half-resolution tables of benchmarks/report_tables.py on made-up bench rows
-with distinct times and errors, so that each cell can only come from one run: X full, X_half
-half, X_half quarter, X quarter (no blur). Decoys that must stay out: another lane count, a
-shadow technique's `resolution` (a map size), and another renderer's runs of the same key.
-Run with the benchmarks directory on sys.path (tests/CMakeLists.txt)."""
+"""The half- and quarter-resolution and refinement tables of benchmarks/report_tables.py on
+made-up bench rows with distinct times and errors, so that each cell can only come from one
+run (X full; X_half half, quarter, without refinement; X quarter, no blur). Decoys that must
+stay out: another lane count, a shadow technique's `resolution` (a map size), and another
+renderer's runs of the same key. Run with the benchmarks directory on sys.path
+(tests/CMakeLists.txt)."""
 import sys
 
 import report_tables as rt
@@ -59,6 +60,24 @@ expect("half presets", [line.split("|")[3].strip() for line in half], ["medium",
 if half:
     cells = [c.strip() for c in half[0].strip("|").split("|")]
     expect("half cells", cells[5:12], ["8", "3", "1", "2.67", "0.1", "0.125", "1.25"])
+# The refinement study: X, X_half, and both with refine_threshold=0 (X's is the same full-resolution
+# computation and stays out). Without the refinement X_half is 3.2x faster but at 3x the RMSE.
+REFINE_OFF = "refine_threshold=0"
+refine_rows = [
+    row("medium", "", {}, [("ao.points", 8.0)], 0.1),
+    row("medium_half", "", {"resolution": "half"},
+        [("ao.points", 2.0), ("ao.refine", 1.5), ("ao.upsample", 0.5)], 0.11),
+    row("medium", REFINE_OFF, {"refine_threshold": "0"}, [("ao.points", 8.5)], 0.1),
+    row("medium_half", REFINE_OFF, {"resolution": "half", "refine_threshold": "0"},
+        [("ao.points", 2.0), ("ao.upsample", 0.5)], 0.3),
+    row("medium_half", "ray_lanes=4", {"resolution": "half", "ray_lanes": "4"}, [("ao.points", 1000.0)], 0.9),
+]
+refine = rt.refine_lines(refine_rows)
+expect("refine rows", len(refine), 1)
+if refine:
+    cells = [c.strip() for c in refine[0].strip("|").split("|")]
+    # full, half, its refinement, half without; speed-ups 8/4 and 8/2.5; RMSEs; goal met or not.
+    expect("refine cells", cells[5:], ["8", "4", "1.5", "2.5", "2", "3.2", "0.1", "0.11", "0.3", "yes", "**no**"])
 for failure in failures:
     print(failure, file=sys.stderr)
 sys.exit(1 if failures else 0)
