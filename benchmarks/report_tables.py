@@ -60,10 +60,9 @@ def resolution_rows(rows):
         besides_ms = sum(q["median_ms"] for q in half["passes"] if q["pass"].endswith(REDUCED_RESOLUTION_PASSES))
         speedup = full_ms / half_ms if half_ms > 0 else float("nan")
         ratio = half["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
-        ok = speedup >= 2.0 and ratio < 2.0
         lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(full_ms)} | {fmt(half_ms)} | '
                      f'{fmt(besides_ms)} | {fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
-                     f'{"yes" if ok else "**no**"} |')
+                     f'{"yes" if goal_met(full, half) else "**no**"} |')
     return lines
 
 
