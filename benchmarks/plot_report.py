@@ -376,24 +376,22 @@ def main():
     rows, perf, voxel = load(args.inputs)
     if not rows:
         sys.exit("plot_report.py: no rows in " + ", ".join(args.inputs))
-    study_rows = load(args.resolution_study)[0] if args.resolution_study else []
-    sources = [shown(p) for p in args.inputs] + [f"{shown(p)} (resolution study)" for p in args.resolution_study]
-    march_rows = load(args.march_study)[0] if args.march_study else []
-    sources += [f"{shown(p)} (march study)" for p in args.march_study]
-    thickness_rows = load(args.thickness_study)[0] if args.thickness_study else []
-    sources += [f"{shown(p)} (thickness study)" for p in args.thickness_study]
-    falloff_rows = load(args.falloff_study)[0] if args.falloff_study else []
-    sources += [f"{shown(p)} (falloff study)" for p in args.falloff_study]
-    refine_rows = load(args.refine_study)[0] if args.refine_study else []
-    sources += [f"{shown(p)} (refinement study)" for p in args.refine_study]
-    lanes_rows = load(args.lanes_study)[0] if args.lanes_study else []
-    sources += [f"{shown(p)} (lanes study)" for p in args.lanes_study]
-    tiles_rows = load(args.tiles_study)[0] if args.tiles_study else []
-    sources += [f"{shown(p)} (tiles study)" for p in args.tiles_study]
-    gpu_rows = load(args.gpu)[0] if args.gpu else []
-    sources += [f"{shown(p)} (GPU)" for p in args.gpu]
-    gpu_study_rows = load(args.gpu_study)[0] if args.gpu_study else []
-    sources += [f"{shown(p)} (GPU study)" for p in args.gpu_study]
+    sources = [shown(p) for p in args.inputs]
+
+    def study(paths, label):
+        """The rows of a study's bench.json files, each file listed among the sources with its label."""
+        sources.extend(f"{shown(p)} ({label})" for p in paths)
+        return load(paths)[0] if paths else []
+
+    study_rows = study(args.resolution_study, "resolution study")
+    march_rows = study(args.march_study, "march study")
+    thickness_rows = study(args.thickness_study, "thickness study")
+    falloff_rows = study(args.falloff_study, "falloff study")
+    refine_rows = study(args.refine_study, "refinement study")
+    lanes_rows = study(args.lanes_study, "lanes study")
+    tiles_rows = study(args.tiles_study, "tiles study")
+    gpu_rows = study(args.gpu, "GPU")
+    gpu_study_rows = study(args.gpu_study, "GPU study")
     provenance = []
     for directory in sorted({os.path.dirname(os.path.abspath(p)) for p in args.gpu + args.gpu_study}):
         path = os.path.join(directory, "provenance.md")

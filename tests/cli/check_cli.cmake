@@ -507,6 +507,17 @@ foreach(thicknessRow IN LISTS thicknessRows)
     message(FATAL_ERROR "a thickness row lacks one of its five RMSEs: ${thicknessRow}")
   endif()
 endforeach()
+# A results.md table row's cells, without the row's outer bars, so that no list element is
+# empty (which CMP0007, unset in script mode, would drop); fails unless there are `count`.
+function(row_cells row count outVar)
+  string(REGEX REPLACE "^\\| (.*) \\|$" "\\1" inner "${row}")
+  string(REPLACE " | " ";" cells "${inner}")
+  list(LENGTH cells cellCount)
+  if(NOT cellCount EQUAL count)
+    message(FATAL_ERROR "a table row should have ${count} cells, has ${cellCount}: ${row}")
+  endif()
+  set(${outVar} "${cells}" PARENT_SCOPE)
+endfunction()
 # The falloff study: each obscurance preset with the four falloffs, one row each with four
 # times and four RMSEs, each against the reference with its own falloff (so they differ).
 run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques obscurance.points --presets low
@@ -519,14 +530,8 @@ string(REGEX MATCH "\\| cornell \\| 16x16 \\| obscurance.points \\| low \\|[^\n]
 if(NOT report MATCHES "## Obscurance falloffs" OR NOT falloffRow MATCHES "low ${eightNumbers}\\|$")
   message(FATAL_ERROR "results.md lacks the falloff table's row with four times and four RMSEs: '${falloffRow}'")
 endif()
-# The cells without the row's outer bars, so that no list element is empty (which CMP0007,
-# unset in script mode, would drop): scene, size, technique, preset, four times, four RMSEs.
-string(REGEX REPLACE "^\\| (.*) \\|$" "\\1" inner "${falloffRow}")
-string(REPLACE " | " ";" cells "${inner}")
-list(LENGTH cells cellCount)
-if(NOT cellCount EQUAL 12)
-  message(FATAL_ERROR "a falloff row should have 12 cells: ${falloffRow}")
-endif()
+# Scene, size, technique, preset, four times, four RMSEs.
+row_cells("${falloffRow}" 12 cells)
 list(SUBLIST cells 8 4 rmses)
 list(REMOVE_DUPLICATES rmses)
 list(LENGTH rmses distinct)
@@ -548,12 +553,7 @@ list(LENGTH quarterRows quarterRowCount)
 if(NOT quarterRowCount EQUAL 1)
   message(FATAL_ERROR "the quarter-resolution table should have one ao.points row: '${quarterRows}'")
 endif()
-string(REGEX REPLACE "^\\| (.*) \\|$" "\\1" inner "${quarterRows}")
-string(REPLACE " | " ";" cells "${inner}")
-list(LENGTH cells cellCount)
-if(NOT cellCount EQUAL 17)
-  message(FATAL_ERROR "a quarter-resolution row should have 17 cells: ${quarterRows}")
-endif()
+row_cells("${quarterRows}" 17 cells)
 foreach(i RANGE 5 16)
   list(GET cells ${i} cell)
   if(NOT cell MATCHES "^[0-9][0-9.e+-]*$")
