@@ -255,6 +255,17 @@ def quarter_lines(rows):
     return lines
 
 
+def refined_cell(r):
+    """The pixels a run refined, of its geometry pixels (bench.json's refined_pixels, refine_asked and
+    geometry_pixels; n/a in bench files from before they were written)."""
+    if "refined_pixels" not in r or not r.get("geometry_pixels"):
+        return "n/a"
+    refined, asked, geometry = r["refined_pixels"], r["refine_asked"], r["geometry_pixels"]
+    if refined != asked:
+        return f"none: {asked} asked, over the list"
+    return f"{refined} of {geometry} ({100.0 * refined / geometry:.0f}%)"
+
+
 def refine_lines(rows):
     """Table lines: X at full resolution, X_half with its refinement (refine_threshold's default) and
     without (--variant refine_threshold=0), timed in turn: what the refinement costs and buys."""
@@ -268,7 +279,7 @@ def refine_lines(rows):
         refine_ms = sum(q["median_ms"] for q in half["passes"] if q["pass"].endswith(".refine"))
         speedups = [fmt(own_ms(full) / own_ms(r), 3) if own_ms(r) > 0 else "n/a" for r in (half, bare)]
         lines.append(f"| {' | '.join(key[:5])} | {fmt(own_ms(full))} | {fmt(own_ms(half))} | {fmt(refine_ms)} | "
-                     f"{fmt(own_ms(bare))} | " + " | ".join(speedups) + " | "
+                     f"{refined_cell(half)} | {fmt(own_ms(bare))} | " + " | ".join(speedups) + " | "
                      + " | ".join(fmt(r["rmse"]) for r in (full, half, bare)) + " | "
                      + " | ".join("yes" if goal_met(full, r) else "**no**" for r in (half, bare)) + " |")
     return lines
@@ -284,11 +295,14 @@ def refine_section(rows, heading="##"):
             "reduced neighbour for) and without it (`--variant refine_threshold=0`: the neighbour nearest in "
             "depth fills in), timed in turn (`scripts/report.sh`), at the size of the scene tables, where "
             "the half-resolution section's misses are, on the scenes with the most edge pixels. Times are the "
-            "technique's own passes; the goal is the half-resolution section's.", "",
+            "technique's own passes; the goal is the half-resolution section's. `refined pixels` is how many "
+            "G-buffer pixels the refinement computed (`lastRefinement()`), of the pixels with geometry: on a "
+            "small or thin object most pixels are edges, and the refinement then recomputes a large share of "
+            "the full-resolution work.", "",
             "| scene | size | preset | technique | quantity | full ms | half ms | of which refinement ms | "
-            "half ms, no refinement | speed-up | speed-up, no refinement | full RMSE | half RMSE | "
+            "refined pixels | half ms, no refinement | speed-up | speed-up, no refinement | full RMSE | half RMSE | "
             "half RMSE, no refinement | goal met | goal met, no refinement |",
-            "|" + "---|" * 16] + lines + [""]
+            "|" + "---|" * 17] + lines + [""]
 
 
 QUARTER_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | quarter ms | "

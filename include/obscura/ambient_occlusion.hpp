@@ -132,6 +132,17 @@ struct AmbientOcclusionView {
     int width = 0, height = 0;
 };
 
+//! What the refinement of a run at a reduced resolution did (`refineThreshold`, pass
+//! "<module>.refine"). The share of edge pixels is what decides whether a reduced resolution
+//! pays: a small or thin object at a low resolution is mostly edges.
+struct RefinementCount {
+    //! G-buffer pixels the upsampling found too little similar reduced-resolution weight for
+    std::size_t asked = 0;
+    //! Of them, computed at full resolution: all, or none when more asked than the list holds
+    //! (a quarter of the G-buffer's pixels; they keep the upsampled value)
+    std::size_t refined = 0;
+};
+
 class OBSCURA_API AmbientOcclusion {
 public:
     explicit AmbientOcclusion(Context& context);
@@ -145,6 +156,11 @@ public:
     //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view
     //! stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
+
+    //! The last run's refinement; zeros when it ran at full resolution or without one.
+    //! Reads a count back from the GPU, so it waits for the run to finish: for diagnostics
+    //! and benchmarks, not for every frame.
+    RefinementCount lastRefinement() const;
 
     std::size_t memoryBytes() const;
 

@@ -92,6 +92,10 @@ public:
     //! backDepth for DepthPeeling and PeelingOrConstant, or the hybrid method without a grid.
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
+    //! The last run's refinement (RefinementCount, ambient_occlusion.hpp); zeros when it ran
+    //! at full resolution or without one. Waits for the run to finish: not for every frame.
+    RefinementCount lastRefinement() const;
+
     std::size_t memoryBytes() const;
 
 private:

@@ -109,6 +109,7 @@ struct AmbientOcclusion::Impl {
     SizedTexture ao, bent, guide, fullAo, fullBent;
     GuidedFilters filters;
     RayBatches batches;
+    bool refinedLastRun = false; //!< lastRefinement reads the list
 
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
         shader::AoParams p{};
@@ -147,6 +148,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
 
+    d.refinedLastRun = false;
     StateScope scope(ctx);
     const shader::AoParams p = d.makeParams(view, s, size, scale);
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
@@ -212,12 +214,17 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
             d.bindWrite(AO_OUT_IMAGE, fullAo, GL_R16F);
             if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, fullBent, GL_RGBA16F);
             d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
+            d.refinedLastRun = true;
         }
         out.ao = {fullAo, GL_R16F, view.width, view.height};
         if (bent) out.bentNormal = {fullBent, GL_RGBA16F, view.width, view.height};
     }
     barrierForReaders(ctx);
     return out;
+}
+
+RefinementCount AmbientOcclusion::lastRefinement() const {
+    return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
 }
 
 std::size_t AmbientOcclusion::memoryBytes() const {

@@ -420,6 +420,8 @@ private:
         const double gpu = timing.gpuMs;
         const GBufferSamples samples = run.samples();
         const Image samplesMask = gbufferMask(samples);
+        const auto geometryPixels = std::count(samplesMask.pixels.begin(), samplesMask.pixels.end(), 1.0f);
+        const auto counts = run.counts();
         const reference::ShadingPoints gbufferPoints =
             reference::fromGBuffer(rays, r.camera, samples.viewPositions, samples.viewNormals);
         for (const Measurement& m : run.measurements()) {
@@ -456,6 +458,9 @@ private:
                           {"false_shadow", ""},      {"false_light", ""},      {"umbra_leak", ""},     {"shimmer", ""},
                           {"variant", presetRun.variant}};
             if (m.shimmer) row.fields["shimmer"] = *m.shimmer;
+            // JSON only (the CSV's columns are fixed): what explains a row's time.
+            row.fields["geometry_pixels"] = geometryPixels;
+            for (const auto& [name, n] : counts) row.fields[name] = n;
             std::size_t memoryBytes = 0;
             nlohmann::ordered_json memory = nlohmann::ordered_json::object();
             for (const auto& [module, bytes] : run.memory()) {

@@ -147,6 +147,10 @@ GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& vi
     return {readTexture(ctx, gbuffer.positions(view)), readTexture(ctx, view.normal)};
 }
 
+std::vector<std::pair<std::string, std::size_t>> refinementCounts(const RefinementCount& count) {
+    return {{"refine_asked", count.asked}, {"refined_pixels", count.refined}};
+}
+
 // X_half: X's rays and steps at half resolution, blurred and upsampled. The blur trades noise
 // for bias: 3 taps each side at 16 rays, and at 64 rays (half the noise) half as wide,
 // rounded down to 1 (2CylinderEngine 512x512, ao.horizon high_half RMSE 0.083 with 3 taps,

@@ -1,6 +1,7 @@
 #pragma once
 // Techniques the CLI (render, and later bench) can run, registered by the technique's own
 // source file, so a new technique appears in every tool without editing them.
+#include "obscura/ambient_occlusion.hpp"
 #include "obscura/assets.hpp"
 #include "obscura/context.hpp"
 #include "obscura/error.hpp"
@@ -68,6 +69,9 @@ struct GBufferSamples {
 //! The samples of a G-buffer view that `gbuffer` rendered, read back.
 GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view);
 
+//! An integrator's refinement as TechniqueRun::counts: "refine_asked" and "refined_pixels".
+std::vector<std::pair<std::string, std::size_t>> refinementCounts(const RefinementCount& count);
+
 //! A technique instance bound to a Context. run() renders one frame; outputs() reads back.
 class TechniqueRun {
 public:
@@ -83,6 +87,9 @@ public:
     //! After run(): the GPU memory each module (or, where a module says, each pass) holds,
     //! bytes (e.g. {"gbuffer", ...}, {"shadow.maps", ...}).
     virtual std::vector<std::pair<std::string, std::size_t>> memory() const = 0;
+    //! After run(): counts the bench reports beside the time, e.g. {"refined_pixels", ...}.
+    //! May wait for the GPU.
+    virtual std::vector<std::pair<std::string, std::size_t>> counts() const { return {}; }
 };
 
 //! A named set of `--set` values ("low", "medium", "high", "ultra", or "default").

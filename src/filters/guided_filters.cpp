@@ -193,6 +193,15 @@ void GuidedFilters::dispatchRefinement(ContextImpl& ctx) {
     ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+RefinementCount GuidedFilters::refinementCount(ContextImpl& ctx) const {
+    if (!refineList_) return {};
+    ctx.gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the upsampling's atomic adds, before the read
+    GLuint asked = 0;
+    ctx.gl.GetNamedBufferSubData(refineList_.get(), (FILTER_REFINE_HEADER_UINTS - 1) * sizeof(GLuint), sizeof asked, &asked);
+    const std::size_t capacity = refineListBytes_ / sizeof(GLuint) - FILTER_REFINE_HEADER_UINTS;
+    return {asked, asked <= capacity ? std::size_t{asked} : 0};
+}
+
 // The refinement list holds up to a quarter of the G-buffer's pixels: typically a few
 // percent need it (2-3 % on 2CylinderEngine at 512x512, its thin parts' edges), and past
 // the capacity the upsampling blends as without refinement.

@@ -3,6 +3,7 @@
 // (shaders/filters/): a separable blur guided by (view normal, view z), and joint bilateral
 // upsampling to the G-buffer's resolution. Internal: modules own one each.
 #include "core/gl_objects.hpp"
+#include "obscura/ambient_occlusion.hpp"
 
 #include <glm/glm.hpp>
 
@@ -75,8 +76,10 @@ public:
     void blur(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, const char* passName);
     //! Writes the full-resolution images from the low-resolution ones; the caller has bound
     //! the frame block and the G-buffer's depth and normal (VIS_DEPTH_UNIT, VIS_NORMAL_UNIT).
-    //! With a refinement threshold, the pixels it lists are left unwritten (refine_list.glsl),
-    //! at most a quarter of the G-buffer's pixels; the rest are blended as without it. With
+    //! With a refinement threshold, it also lists the pixels with too little similar weight
+    //! (refine_list.glsl), at most a quarter of the G-buffer's pixels, for dispatchRefinement to
+    //! overwrite; every pixel is blended as without it, so that an overflowed list leaves
+    //! blended values. With
     //! geometry tiles, the images are cleared to the background values first.
     void upsample(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, GLuint fullValue,
                   GLuint fullDirection, glm::ivec2 fullSize, const char* passName);
@@ -84,6 +87,9 @@ public:
     //! REFINE variant, FILTER_REFINE_GROUP invocations a group) once per listed pixel, with the
     //! list bound at FILTER_REFINE_SSBO. The caller binds the program's inputs and outputs.
     void dispatchRefinement(ContextImpl& ctx);
+    //! After an upsample with a refinement threshold: the pixels it asked to refine and how
+    //! many the list held (all, or none past its capacity). Waits for the GPU.
+    RefinementCount refinementCount(ContextImpl& ctx) const;
     //! The most pixels an upsample to fullSize lists for refinement.
     static std::size_t refineCapacity(glm::ivec2 fullSize);
     std::size_t memoryBytes() const;

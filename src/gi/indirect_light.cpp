@@ -59,6 +59,7 @@ struct IndirectLight::Impl {
     SizedTexture radiance, guide, full;
     GuidedFilters filters;
     RayBatches batches;
+    bool refinedLastRun = false; //!< lastRefinement reads the list
 
     void bindRead(int unit, GLuint texture) {
         ctx.state.bindTexture(ctx, unit, texture);
@@ -116,6 +117,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const glm::ivec2 fullSize(view.width, view.height);
     const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);
 
+    d.refinedLastRun = false;
     StateScope scope(ctx);
     d.uploadParams(g, s, size, scale);
     d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError);
@@ -171,11 +173,16 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
             ctx.gl.UseProgram(program);
             d.bindWrite(GI_OUT_IMAGE, full, GL_RGBA16F);
             d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
+            d.refinedLastRun = true;
         }
         out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
     }
     barrierForReaders(ctx);
     return out;
+}
+
+RefinementCount IndirectLight::lastRefinement() const {
+    return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
 }
 
 std::size_t IndirectLight::memoryBytes() const {

@@ -574,18 +574,21 @@ if(NOT anyRowCount EQUAL 2)
   message(FATAL_ERROR "results.md should show ao.points medium at 32x32 once at half and once at quarter resolution")
 endif()
 # The refinement study from a real bench: one row of X, X_half and X_half without refinement
-# (nine numbers, two verdicts); check_report_tables.py checks which run each cell comes from.
+# (three numbers, the refined pixels of the geometry's, six numbers, two verdicts);
+# check_report_tables.py checks which run each cell comes from.
 run("${OBSCURA}" bench --scene cornell --size 32x32 --frames 20 --spp 4 --techniques ao.points
     --presets medium,medium_half --set bent_normals=0 --variant refine_threshold=0 --out "${WORK_DIR}/bench_refine")
 run("${PYTHON}" "${SOURCE_DIR}/benchmarks/plot_report.py" "${WORK_DIR}/bench/bench.json"
     --refine-study "${WORK_DIR}/bench_refine/bench.json" --out "${WORK_DIR}/docs_refine")
 file(READ "${WORK_DIR}/docs_refine/results.md" report)
-string(REPEAT "\\| [0-9][0-9.e+-]* " 9 nineNumbers)
+string(REPEAT "\\| [0-9][0-9.e+-]* " 3 threeNumbers)
+string(REPEAT "\\| [0-9][0-9.e+-]* " 6 sixNumbers)
 string(REGEX MATCH "## Refinement at half resolution[^#]*" refineTable "${report}")
-string(REGEX MATCH "\\| cornell \\| 32x32 \\| medium \\| ao.points \\| ao ${nineNumbers}\\| [*a-z]+ \\| [*a-z]+ \\|"
+string(REGEX MATCH "\\| cornell \\| 32x32 \\| medium \\| ao.points \\| ao ${threeNumbers}\\| [0-9]+ of [1-9][0-9]* \\([0-9]+%\\) ${sixNumbers}\\| [*a-z]+ \\| [*a-z]+ \\|"
        refineRow "${refineTable}")
 if(NOT refineRow)
-  message(FATAL_ERROR "results.md lacks the refinement table's ao.points row of nine numbers and two verdicts")
+  message(FATAL_ERROR "results.md lacks the refinement table's ao.points row: three numbers, the refined pixels of "
+                      "the geometry's, six numbers and two verdicts")
 endif()
 execute_process(COMMAND "${OBSCURA}" bench --scene cornell --size 8x8 --techniques ao.points --presets medium
                         --variant ray_lanes=2 --variant ray_lanes=2 --out "${WORK_DIR}/bench_bad_variant"

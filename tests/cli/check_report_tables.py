@@ -65,8 +65,9 @@ if half:
 REFINE_OFF = "refine_threshold=0"
 refine_rows = [
     row("medium", "", {}, [("ao.points", 8.0)], 0.1),
-    row("medium_half", "", {"resolution": "half"},
-        [("ao.points", 2.0), ("ao.refine", 1.5), ("ao.upsample", 0.5)], 0.11),
+    dict(row("medium_half", "", {"resolution": "half"},
+             [("ao.points", 2.0), ("ao.refine", 1.5), ("ao.upsample", 0.5)], 0.11),
+         refined_pixels=40, refine_asked=40, geometry_pixels=160),
     row("medium", REFINE_OFF, {"refine_threshold": "0"}, [("ao.points", 8.5)], 0.1),
     row("medium_half", REFINE_OFF, {"resolution": "half", "refine_threshold": "0"},
         [("ao.points", 2.0), ("ao.upsample", 0.5)], 0.3),
@@ -76,8 +77,13 @@ refine = rt.refine_lines(refine_rows)
 expect("refine rows", len(refine), 1)
 if refine:
     cells = [c.strip() for c in refine[0].strip("|").split("|")]
-    # full, half, its refinement, half without; speed-ups 8/4 and 8/2.5; RMSEs; goal met or not.
-    expect("refine cells", cells[5:], ["8", "4", "1.5", "2.5", "2", "3.2", "0.1", "0.11", "0.3", "yes", "**no**"])
+    # full, half, its refinement and pixels, half without; speed-ups 8/4 and 8/2.5; RMSEs; goal met or not.
+    expect("refine cells", cells[5:],
+           ["8", "4", "1.5", "40 of 160 (25%)", "2.5", "2", "3.2", "0.1", "0.11", "0.3", "yes", "**no**"])
+# The refined-pixels cell: an overflowed list refines none; bench files from before the counts say n/a.
+expect("overflowed cell", rt.refined_cell({"refined_pixels": 0, "refine_asked": 50, "geometry_pixels": 160}),
+       "none: 50 asked, over the list")
+expect("old bench cell", rt.refined_cell({"rmse": 0.1}), "n/a")
 for failure in failures:
     print(failure, file=sys.stderr)
 sys.exit(1 if failures else 0)

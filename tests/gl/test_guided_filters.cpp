@@ -171,6 +171,7 @@ struct Expected {
     std::vector<glm::vec4> refinedValue, refinedDirection;
     std::vector<char> refined, either;
     int qualifying = 0;                               // pixels below the threshold
+    int surelyAsked = 0, possiblyAsked = 0;           // of them, outside and within the slack
     bool overflow = false;                            // surely more than the list holds
     bool maybeOverflow = false;                       // possibly
 };
@@ -242,6 +243,8 @@ Expected upsample(const Model& m, const LowImages& low, const FullResolution& fu
         }
     const int surely = int(std::count(e.refined.begin(), e.refined.end(), 1)) - int(std::count(e.either.begin(), e.either.end(), 1));
     const int possibly = int(std::count(e.refined.begin(), e.refined.end(), 1));
+    e.surelyAsked = surely;
+    e.possiblyAsked = possibly;
     e.overflow = surely > refineCapacity(m);
     e.maybeOverflow = possibly > refineCapacity(m);
     if (e.overflow) {
@@ -280,8 +283,15 @@ double worstDifference(const Image& gpu, const Expected& e, bool directions, int
 // nearly all but the exact ones qualify, more than the list holds, and none is refined.
 // Counted are the refined pixels whose blend differs from the refined value by more than
 // the tolerance; a few coincide (values are multiples of 1/256), hence the 9/10.
-void checkRefinedCount(const Model& m, const Expected& expected, int refined) {
-    CAPTURE(m.refineThreshold, expected.qualifying, expected.overflow, refined);
+// `reported`, the module's lastRefinement: the pixels the model lists, those within the
+// threshold's slack maybe; all of them refined unless more than the list holds; at least the
+// pixels seen refined. Without a threshold, nothing.
+void checkRefinedCount(const Model& m, const Expected& expected, int refined, const RefinementCount& reported) {
+    CAPTURE(m.refineThreshold, expected.qualifying, expected.overflow, refined, reported.asked, reported.refined);
+    CHECK(reported.asked >= std::size_t(expected.surelyAsked));
+    CHECK(reported.asked <= std::size_t(expected.possiblyAsked));
+    CHECK(reported.refined == (reported.asked <= std::size_t(refineCapacity(m)) ? reported.asked : 0));
+    CHECK(reported.refined >= std::size_t(refined));
     if (m.refineThreshold > 0.0) CHECK(expected.qualifying > 0);
     if (expected.overflow) {
         CHECK(refined == 0);
@@ -386,8 +396,12 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
         CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
         CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
               kDirectionTolerance);
-        checkRefinedCount(m, expected, refined);
+        checkRefinedCount(m, expected, refined, ao.lastRefinement());
     }
+    // At full resolution nothing is refined, whatever the run before.
+    ao.run(f.view, FilterCase{AoResolution::Full, 1, 0.25f}.settings<AmbientOcclusionSettings>());
+    CHECK(ao.lastRefinement().asked == 0);
+    CHECK(ao.lastRefinement().refined == 0);
 }
 
 TEST_CASE("The blur and upsampling keep an open faceted sphere's bent normals on its own normals", "[filters][ao]") {
@@ -457,8 +471,10 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
         const Expected expected = upsample(m, low, full);
         int refined = 0;
         CHECK(worstDifference(radiance, expected, false, 4, kTolerance, &refined) <= kTolerance);
-        checkRefinedCount(m, expected, refined);
+        checkRefinedCount(m, expected, refined, gi.lastRefinement());
     }
+    gi.run(f.view, FilterCase{AoResolution::Full, 0, 0.25f}.settings<IndirectLightSettings>());
+    CHECK(gi.lastRefinement().asked == 0);
 }
 
 TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLSL division and half stores allow",

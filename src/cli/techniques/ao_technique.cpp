@@ -112,6 +112,10 @@ public:
         return {{"gbuffer", gbuffer_.memoryBytes()}, {"ao", ao_.memoryBytes()}, {"voxelizer", voxelizer_.memoryBytes()}};
     }
 
+    std::vector<std::pair<std::string, std::size_t>> counts() const override {
+        return refinementCounts(ao_.lastRefinement());
+    }
+
     std::vector<Measurement> measurements() override {
         std::vector<Measurement> m;
         const double radius = settings_.radius;

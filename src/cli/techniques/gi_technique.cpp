@@ -85,6 +85,10 @@ public:
         return m;
     }
 
+    std::vector<std::pair<std::string, std::size_t>> counts() const override {
+        return refinementCounts(gi_.lastRefinement());
+    }
+
     std::vector<Measurement> measurements() override {
         // "indirect": against the true one-bounce light (with shadows=0 that includes the
         // shadows the gathered light lacks). "indirect_unshadowed", only with shadows=0:
