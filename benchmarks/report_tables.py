@@ -61,7 +61,7 @@ def resolution_rows(rows):
         speedup = full_ms / half_ms if half_ms > 0 else float("nan")
         ratio = half["rmse"] / full["rmse"] if full["rmse"] > 0 else float("nan")
         lines.append(f'| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {key[4]} | {fmt(full_ms)} | {fmt(half_ms)} | '
-                     f'{fmt(besides_ms)} | {fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
+                     f'{fmt(besides_ms)} | {refined_cell(half)} | {fmt(speedup, 3)} | {fmt(full["rmse"])} | {fmt(half["rmse"])} | {fmt(ratio, 3)} | '
                      f'{"yes" if goal_met(full, half) else "**no**"} |')
     return lines
 
@@ -134,8 +134,9 @@ def lanes_section(rows, heading="##"):
 
 
 RESOLUTION_HEADER = ["| scene | size | preset | technique | quantity | full ms | half ms | "
-                     "of which tiles, filters, refinement ms | speed-up | full RMSE | half RMSE | RMSE ratio | goal met |",
-                     "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                     "of which tiles, filters, refinement ms | refined pixels | speed-up | full RMSE | half RMSE | "
+                     "RMSE ratio | goal met |",
+                     "|" + "---|" * 14]
 
 
 def geometry_tiles(row):
@@ -192,7 +193,9 @@ def resolution_section(rows):
             "`<module>.tiles`, `.blur`, `.upsample`, `.refine`); since the half-resolution integrator costs more than "
             "nothing, a row can meet the goal only where `full ms` is more than twice that. On llvmpipe each of "
             "these passes has a fixed cost however little it does, which weighs most at small sizes "
-            "(benchmarks/README.md).", ""] + RESOLUTION_HEADER + lines + [""]
+            "(benchmarks/README.md). `refined pixels`: how many G-buffer pixels the refinement computed at full "
+            "resolution, of those with geometry (n/a: a bench file from before they were counted); a small or thin "
+            "object is mostly edges, and there the refinement redoes much of the full-resolution work.", ""] + RESOLUTION_HEADER + lines + [""]
 
 
 RESOLUTIONS = ("full", "half", "quarter")  # the integrators' `resolution` (shadow techniques' is a map size)

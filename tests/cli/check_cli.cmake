@@ -403,6 +403,20 @@ foreach(i 0 1)
   if(preset STREQUAL "medium_half" AND upsample EQUAL -1)
     message(FATAL_ERROR "medium_half timed ${names}, without its upsampling")
   endif()
+  # The counts beside the time: pixels with geometry (the box fills the 16x16 image); only the
+  # half-resolution run asks for refinement, for at most those, and gets all it asked for, or
+  # none past the list's 64 (a quarter of the pixels: so many edges at this size that it does).
+  string(JSON geometry GET "${bench}" rows ${i} geometry_pixels)
+  string(JSON asked GET "${bench}" rows ${i} refine_asked)
+  string(JSON refined GET "${bench}" rows ${i} refined_pixels)
+  set(granted ${asked})
+  if(asked GREATER 64)
+    set(granted 0)
+  endif()
+  if(NOT geometry EQUAL 256 OR asked GREATER geometry OR NOT refined EQUAL granted OR
+     (preset STREQUAL "medium" AND NOT asked EQUAL 0) OR (preset STREQUAL "medium_half" AND asked EQUAL 0))
+    message(FATAL_ERROR "${preset}: ${refined} of ${asked} pixels refined, ${geometry} with geometry")
+  endif()
 endforeach()
 
 # --variant: every preset runs once more with each variant's settings (a comma-separated list)

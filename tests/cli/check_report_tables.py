@@ -20,8 +20,9 @@ def row(preset, variant, settings, passes, rmse, technique="ao.points", renderer
 QUARTER = "resolution=quarter"
 rows = [
     row("medium", "", {"rays": "16"}, [("ao.points", 8.0)], 0.1),
-    row("medium_half", "", {"resolution": "half", "blur_radius": "3"},
-        [("ao.points", 2.0), ("ao.blur", 0.5), ("ao.upsample", 0.5)], 0.125),
+    dict(row("medium_half", "", {"resolution": "half", "blur_radius": "3"},
+             [("ao.points", 2.0), ("ao.blur", 0.5), ("ao.upsample", 0.5)], 0.125),
+         refined_pixels=12, refine_asked=12, geometry_pixels=48),
     row("medium", QUARTER, {"resolution": "quarter"}, [("ao.points", 0.5), ("ao.upsample", 0.25)], 0.25),
     row("medium_half", QUARTER, {"resolution": "quarter", "blur_radius": "3"},
         [("ao.points", 0.5), ("ao.blur", 0.25), ("ao.upsample", 0.25), ("ao.refine", 0.25)], 0.15),
@@ -59,7 +60,8 @@ expect("half rows", len(half), 2)
 expect("half presets", [line.split("|")[3].strip() for line in half], ["medium", "high"])
 if half:
     cells = [c.strip() for c in half[0].strip("|").split("|")]
-    expect("half cells", cells[5:12], ["8", "3", "1", "2.67", "0.1", "0.125", "1.25"])
+    expect("header cells", len(rt.RESOLUTION_HEADER[0].strip("|").split("|")), len(cells))
+    expect("half cells", cells[5:], ["8", "3", "1", "12 of 48 (25%)", "2.67", "0.1", "0.125", "1.25", "yes"])
 # The refinement study: X, X_half, and both with refine_threshold=0 (X's is the same full-resolution
 # computation and stays out). Without the refinement X_half is 3.2x faster but at 3x the RMSE.
 REFINE_OFF = "refine_threshold=0"
