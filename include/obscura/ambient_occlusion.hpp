@@ -136,7 +136,8 @@ struct AmbientOcclusionView {
 //! "<module>.refine"). The share of edge pixels is what decides whether a reduced resolution
 //! pays: a small or thin object at a low resolution is mostly edges.
 struct RefinementCount {
-    //! G-buffer pixels the upsampling found too little similar reduced-resolution weight for
+    //! G-buffer pixels with geometry the upsampling found too little similar reduced-resolution
+    //! weight for
     std::size_t asked = 0;
     //! Of them, computed at full resolution: all, or none when more asked than the list holds
     //! (a quarter of the G-buffer's pixels; they keep the upsampled value)
@@ -157,7 +158,8 @@ public:
     //! stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
-    //! The last run's refinement; zeros when it ran at full resolution or without one.
+    //! The last run's refinement; zeros when it ran at full resolution or without one. A run
+    //! refused for its settings or inputs (it throws before any GL work) leaves it unchanged.
     //! Reads a count back from the GPU, so it waits for the run to finish: for diagnostics
     //! and benchmarks, not for every frame.
     RefinementCount lastRefinement() const;

@@ -93,7 +93,8 @@ public:
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     //! The last run's refinement (RefinementCount, ambient_occlusion.hpp); zeros when it ran
-    //! at full resolution or without one. Waits for the run to finish: not for every frame.
+    //! at full resolution or without one; a refused run leaves it unchanged. Waits for the run
+    //! to finish: not for every frame.
     RefinementCount lastRefinement() const;
 
     std::size_t memoryBytes() const;

@@ -79,6 +79,7 @@ refine = rt.refine_lines(refine_rows)
 expect("refine rows", len(refine), 1)
 if refine:
     cells = [c.strip() for c in refine[0].strip("|").split("|")]
+    expect("refine header cells", len(rt.refine_section(refine_rows)[4].strip("|").split("|")), len(cells))
     # full, half, its refinement and pixels, half without; speed-ups 8/4 and 8/2.5; RMSEs; goal met or not.
     expect("refine cells", cells[5:],
            ["8", "4", "1.5", "40 of 160 (25%)", "2.5", "2", "3.2", "0.1", "0.11", "0.3", "yes", "**no**"])

@@ -475,6 +475,7 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
     }
     gi.run(f.view, FilterCase{AoResolution::Full, 0, 0.25f}.settings<IndirectLightSettings>());
     CHECK(gi.lastRefinement().asked == 0);
+    CHECK(gi.lastRefinement().refined == 0);
 }
 
 TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLSL division and half stores allow",
