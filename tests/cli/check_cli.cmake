@@ -484,6 +484,17 @@ endif()
 if(NOT report MATCHES "## Geometry tiles" OR NOT report MATCHES "\\| cornell \\| 16x16 \\| ao.points \\| ao \\| medium_half \\|")
   message(FATAL_ERROR "results.md lacks the geometry-tiles table or its ao.points medium_half row")
 endif()
+# A results.md table row's cells, without the row's outer bars, so that no list element is
+# empty (which CMP0007, unset in script mode, would drop); fails unless there are `count`.
+function(row_cells row count outVar)
+  string(REGEX REPLACE "^\\| (.*) \\|$" "\\1" inner "${row}")
+  string(REPLACE " | " ";" cells "${inner}")
+  list(LENGTH cells cellCount)
+  if(NOT cellCount EQUAL count)
+    message(FATAL_ERROR "a table row should have ${count} cells, has ${cellCount}: ${row}")
+  endif()
+  set(${outVar} "${cells}" PARENT_SCOPE)
+endfunction()
 # The geometry-tiles table pairs the preset with geometry_tiles=0 alone, not with the variant that
 # also blurs otherwise: one row per preset, and (bit-identical results) equal RMSEs.
 string(REGEX MATCHALL "\\| cornell \\| 16x16 \\| ao.points \\| ao \\| medium_half \\|[^\n]*" tileRows "${report}")
@@ -491,15 +502,9 @@ list(LENGTH tileRows tileRowCount)
 if(NOT tileRowCount EQUAL 1)
   message(FATAL_ERROR "the geometry-tiles table has ${tileRowCount} medium_half rows, expected 1: ${tileRows}")
 endif()
-string(REGEX REPLACE " *\\| *$" "" tileRow "${tileRows}") # the last column's closing bar
-string(REPLACE "|" ";" cells "${tileRow}")
-list(LENGTH cells cellCount)
-math(EXPR everyTileRmse "${cellCount} - 2")
-math(EXPR tiledRmse "${cellCount} - 1")
-list(GET cells ${everyTileRmse} a)
-list(GET cells ${tiledRmse} b)
-string(STRIP "${a}" a)
-string(STRIP "${b}" b)
+row_cells("${tileRows}" 10 cells)
+list(GET cells 8 a) # RMSE, every tile
+list(GET cells 9 b) # RMSE, geometry tiles
 if(NOT a STREQUAL b)
   message(FATAL_ERROR "the geometry-tiles table's RMSEs differ (${a} and ${b}): ${tileRows}")
 endif()
@@ -522,17 +527,6 @@ foreach(thicknessRow IN LISTS thicknessRows)
     message(FATAL_ERROR "a thickness row lacks one of its five RMSEs: ${thicknessRow}")
   endif()
 endforeach()
-# A results.md table row's cells, without the row's outer bars, so that no list element is
-# empty (which CMP0007, unset in script mode, would drop); fails unless there are `count`.
-function(row_cells row count outVar)
-  string(REGEX REPLACE "^\\| (.*) \\|$" "\\1" inner "${row}")
-  string(REPLACE " | " ";" cells "${inner}")
-  list(LENGTH cells cellCount)
-  if(NOT cellCount EQUAL count)
-    message(FATAL_ERROR "a table row should have ${count} cells, has ${cellCount}: ${row}")
-  endif()
-  set(${outVar} "${cells}" PARENT_SCOPE)
-endfunction()
 # The falloff study: each obscurance preset with the four falloffs, one row each with four
 # times and four RMSEs, each against the reference with its own falloff (so they differ).
 run("${OBSCURA}" bench --scene cornell --size 16x16 --frames 20 --spp 4 --techniques obscurance.points --presets low

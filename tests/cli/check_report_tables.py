@@ -45,22 +45,31 @@ def expect(what, got, want):
         failures.append(f"{what}: got {got!r}, want {want!r}")
 
 
+def cells_of(what, line, header):
+    """A table line's cells; the header above it must have as many."""
+    cells = [c.strip() for c in line.strip("|").split("|")]
+    expect(f"{what} header cells", len(header.strip("|").split("|")), len(cells))
+    return cells
+
+
+def presets_of(lines):
+    return [line.split("|")[3].strip() for line in lines]
+
+
 quarter = rt.quarter_lines(rows)
 expect("quarter rows", len(quarter), 2)
-expect("quarter presets", [line.split("|")[3].strip() for line in quarter], ["medium", "high"])
+expect("quarter presets", presets_of(quarter), ["medium", "high"])
 if quarter:
-    cells = [c.strip() for c in quarter[0].strip("|").split("|")]
-    expect("header cells", len(rt.QUARTER_HEADER[0].strip("|").split("|")), len(cells))
+    cells = cells_of("quarter", quarter[0], rt.QUARTER_HEADER[0])
     # full, half, quarter ms; tiles/filters/refinement of the quarter run; speed-ups 8/3 and
     # 8/1.25; RMSEs full, half, quarter; their ratio 0.15/0.1; the unblurred run's ms and RMSE.
     expect("quarter cells", cells, ["engine.glb", "64x48", "medium", "ao.points", "ao", "8", "3", "1.25", "0.75",
                                     "2.67", "6.4", "0.1", "0.125", "0.15", "1.5", "0.75", "0.25"])
 half = rt.resolution_rows(rows)
 expect("half rows", len(half), 2)
-expect("half presets", [line.split("|")[3].strip() for line in half], ["medium", "high"])
+expect("half presets", presets_of(half), ["medium", "high"])
 if half:
-    cells = [c.strip() for c in half[0].strip("|").split("|")]
-    expect("header cells", len(rt.RESOLUTION_HEADER[0].strip("|").split("|")), len(cells))
+    cells = cells_of("half", half[0], rt.RESOLUTION_HEADER[0])
     expect("half cells", cells[5:], ["8", "3", "1", "12 of 48 (25%)", "2.67", "0.1", "0.125", "1.25", "yes"])
 # The refinement study: X, X_half, and both with refine_threshold=0 (X's is the same full-resolution
 # computation and stays out). Without the refinement X_half is 3.2x faster but at 3x the RMSE.
@@ -78,8 +87,7 @@ refine_rows = [
 refine = rt.refine_lines(refine_rows)
 expect("refine rows", len(refine), 1)
 if refine:
-    cells = [c.strip() for c in refine[0].strip("|").split("|")]
-    expect("refine header cells", len(rt.refine_section(refine_rows)[4].strip("|").split("|")), len(cells))
+    cells = cells_of("refine", refine[0], rt.refine_section(refine_rows)[4])
     # full, half, its refinement and pixels, half without; speed-ups 8/4 and 8/2.5; RMSEs; goal met or not.
     expect("refine cells", cells[5:],
            ["8", "4", "1.5", "40 of 160 (25%)", "2.5", "2", "3.2", "0.1", "0.11", "0.3", "yes", "**no**"])
