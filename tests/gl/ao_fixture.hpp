@@ -136,4 +136,36 @@ inline double discAo(double rho, double a, double h) {
     return 1.0 - 0.5 * (1.0 - (h * h + rho * rho - a * a) / std::sqrt(s * s - 4.0 * a * a * rho * rho));
 }
 
+// Every method, and the ray march with each of its depth-buffer marches (their padded Hi-Z
+// pyramid included).
+struct AoVariant {
+    AoMethod method;
+    ScreenMarch march = ScreenMarch::View;
+    ScreenThickness thickness = ScreenThickness::Constant;
+    VoxelTraversal traversal = VoxelTraversal::Hierarchical;
+};
+inline const AoVariant kAllVariants[] = {{AoMethod::RayMarch, ScreenMarch::View}, {AoMethod::RayMarch, ScreenMarch::Texture},
+                                         {AoMethod::RayMarch, ScreenMarch::HiZ},  {AoMethod::Points},
+                                         {AoMethod::Horizon},                     {AoMethod::Voxel}};
+
+// AO settings with the variant's method, march, thickness and traversal (the rest default).
+inline AmbientOcclusionSettings settingsOf(const AoVariant& variant) {
+    AmbientOcclusionSettings s;
+    s.method = variant.method;
+    s.march = variant.march;
+    s.thicknessMode = variant.thickness;
+    s.voxelTraversal = variant.traversal;
+    return s;
+}
+
+inline const char* nameOf(AoMethod m) {
+    switch (m) {
+    case AoMethod::RayMarch: return "raymarch";
+    case AoMethod::Points: return "points";
+    case AoMethod::Horizon: return "horizon";
+    case AoMethod::Voxel: return "voxel";
+    }
+    return "?";
+}
+
 } // namespace obscura::test

@@ -81,20 +81,15 @@ double largestBound(Context& ctx, const GBufferView& adopted) {
 
 // Every AO method and march, each voxel traversal, cosine and uniform weighting (uniform
 // sends about e of the rays within e of the tangent plane, cosine about e^2).
-struct AoVariant {
-    AoMethod method;
-    ScreenMarch march = ScreenMarch::View;
-    VoxelTraversal traversal = VoxelTraversal::Hierarchical;
-};
-std::vector<AoVariant> aoVariants() {
+std::vector<test::AoVariant> aoVariants() {
     return {{AoMethod::RayMarch, ScreenMarch::View},
             {AoMethod::RayMarch, ScreenMarch::Texture},
             {AoMethod::RayMarch, ScreenMarch::HiZ},
             {AoMethod::Points},
             {AoMethod::Horizon},
-            {AoMethod::Voxel, ScreenMarch::View, VoxelTraversal::Hierarchical},
-            {AoMethod::Voxel, ScreenMarch::View, VoxelTraversal::Exact},
-            {AoMethod::Voxel, ScreenMarch::View, VoxelTraversal::March}};
+            {AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::Hierarchical},
+            {AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::Exact},
+            {AoMethod::Voxel, ScreenMarch::View, ScreenThickness::Constant, VoxelTraversal::March}};
 }
 
 // AO of every variant on the floor (or the floor under a disc) through the host's depth
@@ -115,15 +110,12 @@ void eachAo(const Scene& scene, int sign, const std::function<void(const test::A
         // trust no ray, and pass trivially).
         CHECK(bound > 0.01);
         CHECK(bound < 0.05);
-        for (const AoVariant variant : aoVariants())
+        for (const test::AoVariant variant : aoVariants())
             for (const bool cosine : {true, false}) {
                 if (variant.method == AoMethod::Horizon && !cosine) continue; // cosine only
                 CAPTURE(sign, v.name, static_cast<int>(variant.method), static_cast<int>(variant.march),
                         static_cast<int>(variant.traversal), cosine, bound);
-                AmbientOcclusionSettings s;
-                s.method = variant.method;
-                s.march = variant.march;
-                s.voxelTraversal = variant.traversal;
+                AmbientOcclusionSettings s = test::settingsOf(variant);
                 s.cosineWeighted = cosine;
                 s.radius = kRadius;
                 s.rays = kRays;

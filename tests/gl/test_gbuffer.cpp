@@ -1,25 +1,22 @@
-// G-buffer: position reconstruction precision, normals, direct lighting, host inputs.
+// G-buffer: position reconstruction precision, normals, direct lighting, sizes, degenerate and
+// NaN input, scenes and area lights (the host's depth, normals and meshes: test_gbuffer_host.cpp).
 #include "gl_fixture.hpp"
 #include "obscura/assets.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
 
 #include <catch2/catch.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <cfloat>
 #include <cmath>
 
 using namespace obscura;
 using test::AnalyticQuad;
+using test::kHalfRelative;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Relative precision of half-float storage (11-bit significand): one ulp, 2^-10. Rounding to
-// nearest would give half of it, but the rounding of float to half is the implementation's
-// (NVIDIA 580 rounds toward zero: its error was 1.13 times the half-ulp bound).
-constexpr double kHalfRelative = 1.0 / 1024.0;
 
 // The "depth range" scene: a floor from 1.7 to ~110 units away, and in the upper half eight
 // camera-facing stripes at depths from 0.15 to 990 (near/far = 0.1/1000).
@@ -220,7 +217,7 @@ TEST_CASE("Direct radiance follows Lambert's law for directional point and spot 
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             REQUIRE(positions.at(x, y, 3) == 1.0f);
-            const glm::dvec3 p = glm::dvec3(inverseView * glm::dvec4(test::texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = test::worldPoint(positions, inverseView, x, y);
             double e;
             if (light.type == LightType::Directional) {
                 e = light.intensity * std::max(0.0, -glm::normalize(glm::dvec3(light.direction)).y);
@@ -308,139 +305,6 @@ TEST_CASE("Tiny odd and non-square targets work and reversed-Z with an infinite 
     CHECK(test::drainGlErrors().empty());
 }
 
-TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]") {
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer ours(ctx), host(ctx);
-    constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, 1.2f, 0.1f, 50.0f,
-                                              DepthMode::Reversed);
-    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
-    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
-    const GBufferView rendered = ours.render(test::quadScene({floor, wall}), camera, {W, H, false, {}});
-    const Image expected = readTexture(ctx, rendered.normal);
-
-    SECTION("normals reconstructed from depth alone") {
-        HostGBuffer in;
-        in.depth = rendered.depth;
-        const GBufferView adopted = host.adopt(in, camera);
-        CHECK(adopted.depth.name == rendered.depth.name);
-        const Image n = readTexture(ctx, adopted.normal);
-        const Image p = readTexture(ctx, ours.positions(rendered));
-        // A pixel is interior when its 3x3 neighbourhood is geometry with one face normal: the
-        // one-sided differences then stay on that plane. Their error is the float error of the
-        // positions (relative ~1e-7, i.e. ~5e-7 units here) over a pixel step (>= 0.05 units
-        // here): ~1e-5, far below the half-float storage of the result (2 half ulps, 1e-3).
-        const auto sameNormal = [&](int x, int y) {
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx)
-                    if (expected.at(x + dx, y + dy, 3) == 0.0f ||
-                        test::texel3(expected, x + dx, y + dy) != test::texel3(expected, x, y))
-                        return false;
-            return true;
-        };
-        int interior = 0;
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                // Alpha: 0 on background; on geometry the pixel's normal error in units of
-                // normalError, at least 1 (test_depth_normals.cpp checks the bound).
-                CHECK((n.at(x, y, 3) == 0.0f) == (expected.at(x, y, 3) == 0.0f));
-                if (expected.at(x, y, 3) == 0.0f) continue;
-                CHECK(n.at(x, y, 3) >= 1.0f);
-                const glm::dvec3 got = test::texel3(n, x, y);
-                // Everywhere: unit length, facing the camera.
-                CHECK(std::abs(glm::length(got) - 1.0) < 2 * kHalfRelative);
-                CHECK(glm::dot(got, -test::texel3(p, x, y)) >= 0.0);
-                if (x == 0 || y == 0 || x == W - 1 || y == H - 1 || !sameNormal(x, y)) continue;
-                ++interior;
-                CHECK(glm::length(got - test::texel3(expected, x, y)) < 4 * kHalfRelative);
-            }
-        CHECK(interior > W * H / 3);
-    }
-    SECTION("world-space normals in an RGBA8 texture") {
-        const glm::dmat3 toWorld = glm::transpose(glm::dmat3(camera.view));
-        std::vector<std::uint8_t> bytes(static_cast<std::size_t>(W * H * 4));
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                const glm::dvec3 w = toWorld * test::texel3(expected, x, y);
-                for (int c = 0; c < 3; ++c)
-                    bytes[static_cast<std::size_t>(((H - 1 - y) * W + x) * 4 + c)] =
-                        static_cast<std::uint8_t>(std::lround((w[c] * 0.5 + 0.5) * 255));
-            }
-        GLuint tex = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-        glTextureStorage2D(tex, 1, GL_RGBA8, W, H);
-        glTextureSubImage2D(tex, 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
-        HostGBuffer in;
-        in.depth = rendered.depth;
-        in.normal = {tex, GL_RGBA8, W, H};
-        in.normalSpace = NormalSpace::World;
-        in.normalEncoding = NormalEncoding::Unsigned;
-        const Image n = readTexture(ctx, host.adopt(in, camera).normal);
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                if (expected.at(x, y, 3) == 0.0f) continue;
-                // 8-bit encoding: half a step (1/255) per component.
-                CHECK(glm::length(test::texel3(n, x, y) - test::texel3(expected, x, y)) < 2.0 / 255 * std::sqrt(3.0));
-            }
-        glDeleteTextures(1, &tex);
-    }
-    CHECK(test::drainGlErrors().empty());
-}
-
-TEST_CASE("Host meshes in the host's buffers and VAO render like uploaded meshes", "[gbuffer]") {
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    const Camera camera = Camera::perspective({{0.5f, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 20.0f);
-    const auto data = test::quadMesh({{{-1, -1, 0}, {1, -1, 0.5}, {1, 1, 0}, {-1, 1, -0.5}}});
-    Scene cpu = test::quadScene({});
-    cpu.meshes.push_back({data, glm::translate(glm::mat4(1), {0.1f, 0, 0}), 0, "quad"});
-    const Image expected = readTexture(ctx, gbuffer.render(cpu, camera, {32, 32, false, {}}).normal);
-
-    // Interleaved position+normal in one host buffer, 16-bit indices in another.
-    std::vector<float> interleaved;
-    for (std::size_t i = 0; i < 4; ++i)
-        for (const glm::vec3& v : {data->positions[i], data->normals[i]}) interleaved.insert(interleaved.end(), {v.x, v.y, v.z});
-    const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-    GLuint buffers[2];
-    glCreateBuffers(2, buffers);
-    glNamedBufferData(buffers[0], static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
-    glNamedBufferData(buffers[1], sizeof indices, indices, GL_STATIC_DRAW);
-
-    MeshRef ref;
-    ref.count = 6;
-    ref.indexType = GL_UNSIGNED_SHORT;
-    ref.model = glm::translate(glm::mat4(1), {0.1f, 0, 0});
-    SECTION("streams") {
-        ref.position = {buffers[0], 0, 24, 3, GL_FLOAT, false};
-        ref.normal = {buffers[0], 12, 24, 3, GL_FLOAT, false};
-        ref.indexBuffer = buffers[1];
-    }
-    GLuint vao = 0;
-    SECTION("host VAO with its own attribute locations") {
-        glCreateVertexArrays(1, &vao);
-        glVertexArrayVertexBuffer(vao, 3, buffers[0], 0, 24);
-        glVertexArrayAttribFormat(vao, 5, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribFormat(vao, 7, 3, GL_FLOAT, GL_FALSE, 12);
-        glVertexArrayAttribBinding(vao, 5, 3);
-        glVertexArrayAttribBinding(vao, 7, 3);
-        glEnableVertexArrayAttrib(vao, 5);
-        glEnableVertexArrayAttrib(vao, 7);
-        glVertexArrayElementBuffer(vao, buffers[1]);
-        ref.vao = vao;
-        ref.positionLocation = 5;
-        ref.normalLocation = 7;
-    }
-    Scene host = test::quadScene({});
-    host.meshRefs.push_back(ref);
-    const Image got = readTexture(ctx, gbuffer.render(host, camera, {32, 32, false, {}}).normal);
-    CHECK(got.pixels == expected.pixels);
-    if (vao) glDeleteVertexArrays(1, &vao);
-    glDeleteBuffers(2, buffers);
-    CHECK(test::drainGlErrors().empty());
-}
-
 TEST_CASE("Degenerate triangles are skipped and NaN host vertices never reach the output", "[gbuffer][stability]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
@@ -489,7 +353,7 @@ TEST_CASE("The built-in Cornell box renders its walls with their published colou
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             if (positions.at(x, y, 3) == 0.0f) continue;
-            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(test::texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = test::worldPoint(positions, toWorld, x, y);
             const glm::dvec3 a = test::texel3(albedo, x, y);
             // The red wall is x ~ 550 (image left), the green wall x = 0 (image right); the
             // back wall (z = 559.2), floor and ceiling share their edges.
@@ -559,7 +423,7 @@ TEST_CASE("Area lights - a rectangle matches the view-factor closed form and a s
     const glm::dmat4 toWorld = glm::inverse(glm::dmat4(camera.view));
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
-            const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(test::texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = test::worldPoint(positions, toWorld, x, y);
             double e;
             if (rect) {
                 e = kPi * light.intensity * rectViewFactor(-0.5, 1.5, -0.75, 0.25, 1.5, p.x, p.z);

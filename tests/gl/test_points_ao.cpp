@@ -316,7 +316,7 @@ LayerErrors compareLayers(const RoomCamera& room, const Camera& camera, const Im
             }
             ++e.checked;
             const double dz = std::abs((room.view * glm::dvec4(dir, 0.0)).z); // the ray's view-z slope
-            const glm::dvec3 p = glm::dvec3(room.toWorld * glm::dvec4(test::texel3(positions, x, y), 1.0));
+            const glm::dvec3 p = test::worldPoint(positions, room.toWorld, x, y);
             const double frontBound = frontChange / dz * std::abs(glm::dot(hit.normal, dir)) + room.depthError(o) +
                                       1e-5 * glm::length(o - room.eye);
             e.front = std::max(e.front, std::abs(plane(hit.normal, p - o)) / frontBound);

@@ -133,6 +133,10 @@ glm::dvec2 pixelNdc(int x, int y, int width, int height) {
 
 glm::dvec3 texel3(const Image& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 
+glm::dvec3 worldPoint(const Image& viewPositions, const glm::dmat4& toWorld, int x, int y) {
+    return glm::dvec3(toWorld * glm::dvec4(texel3(viewPositions, x, y), 1.0));
+}
+
 ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height) {
     const glm::dvec2 ndc = pixelNdc(x, y, width, height);
     const glm::dmat4 p(camera.projection);

@@ -52,7 +52,14 @@ struct ViewRay {
 ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height);
 //! NDC of the centre of pixel (x, y), row 0 at the top.
 glm::dvec2 pixelNdc(int x, int y, int width, int height);
+//! Relative precision of half-float storage (11-bit significand): one ulp, 2^-10. Rounding to
+//! nearest would give half of it, but the rounding of float to half is the implementation's
+//! (NVIDIA 580 rounds toward zero: its error was 1.13 times the half-ulp bound).
+inline constexpr double kHalfRelative = 1.0 / 1024.0;
 //! The first three channels of pixel (x, y).
 glm::dvec3 texel3(const Image& image, int x, int y);
+//! The world point of pixel (x, y) of view-space positions (GBuffer::readPositions), through
+//! the inverse view matrix `toWorld`.
+glm::dvec3 worldPoint(const Image& viewPositions, const glm::dmat4& toWorld, int x, int y);
 
 } // namespace obscura::test
