@@ -18,8 +18,11 @@
 
 #include <EGL/egl.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace obscura::examples {
 namespace {
@@ -51,14 +54,24 @@ ExampleScene loadExampleScene(const AppOptions& options, int width, int height) 
     return s;
 }
 
+namespace {
+// A CLI11 check: the pictures are 8-bit display images, written as PNG whatever the name says.
+std::string pngPath(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".png" ? std::string() : "must end in .png: the picture is an 8-bit display image";
+}
+} // namespace
+
 void addAppOptions(CLI::App& cli, AppOptions& o) {
     cli.add_option("--scene", o.scene, "Built-in scene, JSON scene or mesh file")->capture_default_str();
     cli.add_option("--camera", o.camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg");
     cli.add_option("--size", o.size, "WxH pixels")->capture_default_str();
     cli.add_flag("--window", o.window, "Open a GLFW window (default: headless EGL)");
     cli.add_option("--frames", o.frames, "Frames to render; 0 = until the window is closed")->capture_default_str();
-    cli.add_option("--out", o.out, "Write the last picture as PNG");
-    cli.add_option("--screenshot", o.screenshot, "With --window: write the last frame as shown (panel included) as PNG");
+    cli.add_option("--out", o.out, "Write the last picture as FILE.png")->check(pngPath);
+    cli.add_option("--screenshot", o.screenshot, "With --window: write the last frame as shown (panel included) as FILE.png")
+        ->check(pngPath);
 }
 
 // The window's back buffer, top row first.

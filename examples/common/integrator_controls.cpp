@@ -28,14 +28,18 @@ void IntegratorControls::addOptions(CLI::App& cli) {
         method = indexOf(methods, v);
         if (method < 0) throw CLI::ValidationError("--method", v + " is not one of the methods");
     }, known + " (default " + methods.front() + ")");
-    cli.add_option("--rays", rays, "Directions per pixel [1, 1024]")->capture_default_str();
-    cli.add_option("--steps", steps, "Samples per ray [1, 256]")->capture_default_str();
-    cli.add_option("--radius", radius, "World units (0: a tenth of the scene's diagonal)")->capture_default_str();
+    cli.add_option("--rays", rays, "Directions per pixel [1, 1024] (horizon: even, rays / 2 slices)")
+        ->check(CLI::Range(1, 1024))
+        ->capture_default_str();
+    cli.add_option("--steps", steps, "Samples per ray [1, 256]")->check(CLI::Range(1, 256))->capture_default_str();
+    cli.add_option("--radius", radius, "World units, >= 0 (0: a tenth of the scene's diagonal)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     cli.add_option_function<std::string>("--resolution", [this](const std::string& v) {
         resolution = indexOf({std::begin(kResolutions), std::end(kResolutions)}, v);
         if (resolution < 0) throw CLI::ValidationError("--resolution", v + ": expected full, half or quarter");
     }, "full|half|quarter (default full)");
-    cli.add_option("--blur", blur, "Geometry-aware blur taps each side [0, 16]")->capture_default_str();
+    cli.add_option("--blur", blur, "Geometry-aware blur taps each side [0, 16]")->check(CLI::Range(0, 16))->capture_default_str();
     cli.add_option_function<std::string>("--thickness-mode", [this](const std::string& v) {
         thicknessMode = indexOf({std::begin(kThicknessModes), std::end(kThicknessModes)}, v);
         if (thicknessMode < 0)
@@ -47,8 +51,12 @@ void IntegratorControls::addOptions(CLI::App& cli) {
 }
 
 void IntegratorControls::check() const {
-    if (rays < 1 || rays > 1024 || steps < 1 || steps > 256 || blur < 0 || blur > 16 || !(radius >= 0.0f))
-        throw Error(ErrorCode::Parse, "--rays [1, 1024], --steps [1, 256], --blur [0, 16], --radius >= 0");
+    // The flags' own checks ran while parsing; these are the ones that depend on two flags, or
+    // that CLI11 does not make (NaN passes NonNegativeNumber).
+    if (!(radius >= 0.0f) || std::isinf(radius)) throw Error(ErrorCode::Parse, "--radius: world units, finite and >= 0");
+    if (methods[std::size_t(method)] == "horizon" && rays % 2 != 0)
+        throw Error(ErrorCode::Parse, "--rays: the horizon method takes an even count (rays / 2 slices), got " +
+                                          std::to_string(rays));
     if (!(thickness >= 0.0f) || std::isinf(thickness))
         throw Error(ErrorCode::Parse, "--thickness: world units, finite and >= 0");
 }

@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
     parser.add_option("--ao", withAo, "Shade the ambient term of --formula thesis with AO (1) or not (0)")
         ->capture_default_str();
     parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping, [0, 1e3] (0: 1, no scaling)")
+        ->check(CLI::Range(0.0f, 1e3f))
         ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {

@@ -53,6 +53,12 @@ enum class AoMethod {
     //! start lifted off the surface's own voxels by a voxel diagonal and the depth's error,
     //! more for a pixel whose normal is only known within a bound (HostGBuffer::normal); a
     //! segment that may sink back toward its own plane ends where it might (open beyond).
+    //! Where other geometry lies within about a voxel diagonal of the lifted start (an inner
+    //! corner, a gap narrower than a voxel), the start is inside its voxels and every ray hits
+    //! at once: AO 0, whatever the radius (the grid cannot tell nearer geometry apart). Measured
+    //! at 128 x 128: 230 of the Cornell box's 15252 geometry pixels (its corners' edges) and
+    //! 552 of 2CylinderEngine's 2720 at voxel_resolution 128, 74 and 423 at 256, 51 and 43 at
+    //! 512; the ray march gives 0 at none.
     Voxel,
 };
 

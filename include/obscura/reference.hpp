@@ -196,8 +196,11 @@ struct Reference {
     int samplesPerPixel = 0;
 };
 
-//! Renders the quantity at every point. Throws Error{InvalidArgument} for a quantity that
-//! refers to a missing light, medium or environment, or settings outside their ranges.
+//! Renders the quantity at every point. Background points (no surface) are 0 in every
+//! channel except for SingleScattering, which the medium in front of the background has; the
+//! GPU modules write their own background values there (AmbientOcclusion 1), so compare the
+//! two on surfaceMask. Throws Error{InvalidArgument} for a quantity that refers to a missing
+//! light, medium or environment, or settings outside their ranges.
 OBSCURA_API Reference render(const RayScene& scene, const ShadingPoints& points, const Quantity& quantity,
                              const RenderSettings& settings);
 

@@ -8,6 +8,8 @@
 #include "scene_options.hpp"
 #include "technique_registry.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -34,6 +36,30 @@ void printTimings(const std::string& technique, Profiler& profiler) {
                     s.maxMs, s.samples, toString(s.clock));
 }
 
+// The technique's outputs that its settings produce; says which it leaves out and why.
+std::vector<std::string> presentOutputs(const TechniqueInfo& t, const TechniqueRun& run) {
+    std::vector<std::string> names;
+    for (const std::string& name : t.outputs) {
+        if (const std::string why = run.missingOutput(name); why.empty())
+            names.push_back(name);
+        else
+            std::printf("%-12s output %s skipped: %s\n", t.name.c_str(), name.c_str(), why.c_str());
+    }
+    return names;
+}
+
+// ".exr" or ".png" (in any case) for an image file, empty for a directory: one that exists,
+// or a new one without an extension. Anything else is refused, rather than becoming a
+// directory named like an image.
+std::string imageExtension(const std::filesystem::path& out) {
+    std::string ext = out.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".exr" || ext == ".png") return ext;
+    if (ext.empty() || std::filesystem::is_directory(out)) return {};
+    throw Error(ErrorCode::InvalidArgument, "--out " + out.string() +
+                                                ": not FILE.exr, FILE.png or a directory (a new directory's name takes no extension)");
+}
+
 void runRender(const RenderOptions& o) {
     if (o.frames < 1) throw Error(ErrorCode::Parse, "--frames must be >= 1");
     const ResolvedScene resolved = resolveScene(o.scene);
@@ -54,8 +80,8 @@ void runRender(const RenderOptions& o) {
         selected.push_back(&it->second);
     }
     const std::filesystem::path out(o.out.empty() ? "out" : o.out);
-    const std::string ext = out.extension().string();
-    const bool toDirectory = ext != ".exr" && ext != ".png";
+    const std::string ext = imageExtension(out);
+    const bool toDirectory = ext.empty();
     if (!toDirectory && selected.size() > 1)
         throw Error(ErrorCode::InvalidArgument, "--technique all writes several images: --out must be a directory");
 
@@ -81,7 +107,7 @@ void runRender(const RenderOptions& o) {
         for (int i = 0; i < o.frames; ++i) run->run(frame);
         printTimings(t->name, ctx.profiler());
         const std::vector<std::string> names =
-            toDirectory ? (o.output.empty() ? t->outputs : std::vector<std::string>{o.output})
+            toDirectory ? (o.output.empty() ? presentOutputs(*t, *run) : std::vector<std::string>{o.output})
                         : std::vector<std::string>{o.output.empty() ? t->outputs.front() : o.output};
         for (const TechniqueOutput& output : run->outputs(names)) {
             if (toDirectory) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace obscura::cli {
@@ -41,6 +42,22 @@ bool parseBool(const std::string& key, const std::string& value) {
 }
 
 namespace {
+std::string boundText(double v) {
+    if (v >= 1e30) return "inf";
+    if (v <= -1e30) return "-inf";
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+// [lo, hi] as a reader takes it: a lower bound above 0 but at most 1e-30 means "more than 0",
+// an upper bound of 1e30 or more "no limit".
+std::string rangeText(double lo, double hi) {
+    std::string text = lo > 0.0 && lo <= 1e-30 ? std::string("(0") : std::string("[").append(boundText(lo));
+    text.append(", ").append(boundText(hi)).append(hi >= 1e30 ? ")" : "]");
+    return text;
+}
+
 // `value` as a number in [lo, hi]; an Error{Parse} saying "<said>: <why not>" otherwise.
 double numberIn(const std::string& value, double lo, double hi, const std::string& unit, const std::string& said) {
     double v = 0;
@@ -53,7 +70,7 @@ double numberIn(const std::string& value, double lo, double hi, const std::strin
     }
     if (!(v >= lo && v <= hi))
         throw Error(ErrorCode::Parse,
-                    said + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] " + unit);
+                    said + ": must be in " + rangeText(lo, hi) + (unit.empty() ? "" : " " + unit));
     return v;
 }
 } // namespace

@@ -84,6 +84,10 @@ public:
     virtual GBufferSamples samples() = 0;
     //! Why the technique cannot run on `scene` (the tools skip it and say so), or empty.
     virtual std::string unsupported(const Scene&) const { return {}; }
+    //! Why its output `name` is missing with the settings given (render skips it when it writes
+    //! every output into a directory, and says so; asked for by name, outputs() refuses it), or
+    //! empty.
+    virtual std::string missingOutput(const std::string& /*name*/) const { return {}; }
     //! After run(): the GPU memory each module (or, where a module says, each pass) holds,
     //! bytes (e.g. {"gbuffer", ...}, {"shadow.maps", ...}).
     virtual std::vector<std::pair<std::string, std::size_t>> memory() const = 0;

@@ -88,7 +88,8 @@ public:
     //! list bound at FILTER_REFINE_SSBO. The caller binds the program's inputs and outputs.
     void dispatchRefinement(ContextImpl& ctx);
     //! After an upsample with a refinement threshold: the pixels it asked to refine and how
-    //! many the list held (all, or none past its capacity). Waits for the GPU.
+    //! many the refinement computed (all of them, or none past the list's capacity). Waits for
+    //! the GPU.
     RefinementCount refinementCount(ContextImpl& ctx) const;
     //! The most pixels an upsample to fullSize lists for refinement.
     static std::size_t refineCapacity(glm::ivec2 fullSize);

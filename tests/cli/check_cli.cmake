@@ -78,11 +78,8 @@ foreach(technique ao.raymarch ao.voxel)
   endif()
 endforeach()
 # Counts are whole numbers: a fraction is refused, not cut.
-execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.raymarch --set rays=7.9
-                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(rc EQUAL 0 OR NOT err MATCHES "rays=7.9.*whole number")
-  message(FATAL_ERROR "rays=7.9 was not refused clearly: ${err}")
-endif()
+refused("rays=7.9.*whole number"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.raymarch --set rays=7.9 --out "${WORK_DIR}/x.exr")
 
 # The gap between the depth layers (benchmarks/layer_gaps.sh): 0 where one is missing (the
 # Cornell box's walls), nowhere longer than a path through the tall block (its space diagonal:
@@ -99,11 +96,41 @@ if(gapMin STREQUAL "" OR gapMax STREQUAL "" OR NOT gapMin EQUAL 0 OR NOT gapMax 
    OR NOT info MATCHES "NanCount: 0 ")
   message(FATAL_ERROR "layer_gap: expected 0 where a layer is missing, the largest gap in (0, 405] mm, no NaN: ${info}")
 endif()
-execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique gbuffer --output layer_gap
-                        --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-if(rc EQUAL 0 OR NOT err MATCHES "depth_layers=2")
-  message(FATAL_ERROR "layer_gap without the second layer was not refused clearly: ${err}")
+refused("layer_gap\" needs --set depth_layers=2"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique gbuffer --output layer_gap --out "${WORK_DIR}/x.exr")
+
+# Every technique into a directory (scripts/demo.sh's run): the outputs that need a setting
+# the run does not have (layer_gap without the second layer, bent_normal without bent normals)
+# are left out and named, the others all written.
+file(MAKE_DIRECTORY "${WORK_DIR}/all")
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 16x12 --technique all --frames 1 --out "${WORK_DIR}/all"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "gbuffer +output layer_gap skipped: needs --set depth_layers=2")
+  message(FATAL_ERROR "render --technique all into a directory failed or did not name the output it left out: ${out}${err}")
 endif()
+foreach(name gbuffer_depth gbuffer_normal ao.raymarch_ao ao.raymarch_bent_normal ao.voxel_ao gi.hybrid_indirect compose_image)
+  if(NOT EXISTS "${WORK_DIR}/all/${name}.exr" OR NOT EXISTS "${WORK_DIR}/all/${name}.png")
+    message(FATAL_ERROR "render --technique all wrote no ${name}.exr/.png")
+  endif()
+endforeach()
+if(EXISTS "${WORK_DIR}/all/gbuffer_layer_gap.exr")
+  message(FATAL_ERROR "render --technique all wrote layer_gap without the second layer")
+endif()
+execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.points --set bent_normals=0
+                        --frames 1 --out "${WORK_DIR}/no_bent" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "output bent_normal skipped: needs --set bent_normals=1"
+   OR NOT EXISTS "${WORK_DIR}/no_bent/ao.points_ao.exr" OR EXISTS "${WORK_DIR}/no_bent/ao.points_bent_normal.exr")
+  message(FATAL_ERROR "bent_normals=0 into a directory: expected the AO alone and the bent normal named: ${out}${err}")
+endif()
+# --out is an image file or a directory: another extension is refused, not made a directory.
+refused("not FILE.exr, FILE.png or a directory"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.points --out "${WORK_DIR}/ao.jpg")
+if(EXISTS "${WORK_DIR}/ao.jpg")
+  message(FATAL_ERROR "--out ao.jpg was refused but made")
+endif()
+# Ranges read as numbers: radius is more than 0, with no upper limit.
+refused("radius=0: must be in \\(0, inf\\) world units"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.points --set radius=0 --out "${WORK_DIR}/x.exr")
 
 # Every field of a settings struct is a `--set` key of its technique, as `obscura info` lists
 # them: the field names (read from the header) in snake case, but for those in `skip` (the

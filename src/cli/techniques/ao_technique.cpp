@@ -82,6 +82,10 @@ public:
         result_ = ao_.run(view_, settings_);
     }
 
+    std::string missingOutput(const std::string& name) const override {
+        return name == "bent_normal" && !settings_.bentNormals ? "needs --set bent_normals=1" : "";
+    }
+
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
         std::vector<TechniqueOutput> out;
         for (const std::string& name : names) {

@@ -131,11 +131,15 @@ private:
         return o;
     }
 
+    std::string missingOutput(const std::string& name) const override {
+        return name == "layer_gap" && settings_.depthLayers != 2 ? "needs --set depth_layers=2" : "";
+    }
+
     // World units between the first and the second depth layer's points along each pixel's
     // ray (what depth-peeled thickness takes as solid), 0 where either layer is missing.
     Image layerGap() {
-        if (view_.backDepth.name == 0)
-            throw Error(ErrorCode::InvalidArgument, "gbuffer output \"layer_gap\" needs --set depth_layers=2");
+        if (const std::string why = missingOutput("layer_gap"); !why.empty())
+            throw Error(ErrorCode::InvalidArgument, "gbuffer output \"layer_gap\" " + why);
         const Image front = readTexture(ctx_, gbuffer_.positions(view_));
         GBufferView back = view_;
         back.depth = view_.backDepth;
