@@ -25,8 +25,9 @@ struct RenderOptions {
     int frames = 5;
 };
 
+// EXR (the raw values, but for a display picture: none) and PNG, each where a path is given.
 void writeOutput(const TechniqueOutput& o, const std::filesystem::path& exr, const std::filesystem::path& png) {
-    if (!exr.empty()) assets::writeImage(exr, o.image);
+    if (!exr.empty() && !o.displayOnly) assets::writeImage(exr, o.image);
     if (!png.empty()) assets::writeImage(png, o.display, o.encoding);
 }
 
@@ -114,6 +115,9 @@ void runRender(const RenderOptions& o) {
                 const std::string stem = t->name + "_" + output.name;
                 writeOutput(output, out / (stem + ".exr"), out / (stem + ".png"));
             } else {
+                if (ext == ".exr" && output.displayOnly)
+                    throw Error(ErrorCode::InvalidArgument, t->name + " output " + output.name +
+                                                                " is a display picture (tone mapped, encoded): write it as .png");
                 writeOutput(output, ext == ".exr" ? out : std::filesystem::path{}, ext == ".png" ? out : std::filesystem::path{});
             }
         }

@@ -25,6 +25,9 @@ struct TechniqueOutput {
     Image image;                 //!< raw values (what EXR files contain)
     Image display;               //!< mapped for an 8-bit PNG
     assets::PngEncoding encoding = assets::PngEncoding::Srgb;
+    //! The values are a display picture already (tone mapped, gamma encoded): written as PNG
+    //! only, since an EXR holds linear values (and is tagged so).
+    bool displayOnly = false;
 };
 
 //! A `--set key=value` setting: name, unit and range as documented in the settings struct.

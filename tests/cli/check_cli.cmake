@@ -108,7 +108,8 @@ execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 16x12 --techn
 if(NOT rc EQUAL 0 OR NOT out MATCHES "gbuffer +output layer_gap skipped: needs --set depth_layers=2")
   message(FATAL_ERROR "render --technique all into a directory failed or did not name the output it left out: ${out}${err}")
 endif()
-foreach(name gbuffer_depth gbuffer_normal ao.raymarch_ao ao.raymarch_bent_normal ao.voxel_ao gi.hybrid_indirect compose_image)
+foreach(name gbuffer_depth gbuffer_normal ao.raymarch_ao ao.raymarch_bent_normal ao.voxel_ao gi.hybrid_indirect
+             compose_radiance)
   if(NOT EXISTS "${WORK_DIR}/all/${name}.exr" OR NOT EXISTS "${WORK_DIR}/all/${name}.png")
     message(FATAL_ERROR "render --technique all wrote no ${name}.exr/.png")
   endif()
@@ -116,6 +117,12 @@ endforeach()
 if(EXISTS "${WORK_DIR}/all/gbuffer_layer_gap.exr")
   message(FATAL_ERROR "render --technique all wrote layer_gap without the second layer")
 endif()
+# Compose's picture is display-encoded: a PNG only (an EXR is tagged linear), and refused as .exr.
+if(NOT EXISTS "${WORK_DIR}/all/compose_image.png" OR EXISTS "${WORK_DIR}/all/compose_image.exr")
+  message(FATAL_ERROR "compose's display picture: expected compose_image.png and no compose_image.exr")
+endif()
+refused("compose output image is a display picture.*\\.png"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique compose --out "${WORK_DIR}/image.exr")
 execute_process(COMMAND "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.points --set bent_normals=0
                         --frames 1 --out "${WORK_DIR}/no_bent" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "output bent_normal skipped: needs --set bent_normals=1"

@@ -81,6 +81,7 @@ public:
                 o.image = rgbOf(readTexture(ctx_, display_));
                 o.display = o.image;
                 o.encoding = assets::PngEncoding::Linear; // already display-encoded
+                o.displayOnly = true;
             } else if (name == "radiance") {
                 o.image = rgbOf(readTexture(ctx_, composer_.radiance()));
                 o.display = o.image;
