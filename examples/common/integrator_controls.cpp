@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <stdexcept>
+#include <string>
 
 namespace obscura::examples {
 namespace {
@@ -17,6 +19,16 @@ const char* const kThicknessModes[] = {"constant", "depth_peeling", "peeling_or_
 int indexOf(const std::vector<std::string>& names, const std::string& name) {
     const auto it = std::find(names.begin(), names.end(), name);
     return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+// A CLI11 check with a short message (CLI::NonNegativeNumber prints DBL_MAX in full).
+std::string finiteNonNegative(const std::string& value) {
+    try {
+        const float v = std::stof(value);
+        return v >= 0.0f && std::isfinite(v) ? std::string() : "world units, finite and >= 0";
+    } catch (const std::exception&) {
+        return "not a number";
+    }
 }
 
 } // namespace
@@ -33,7 +45,7 @@ void IntegratorControls::addOptions(CLI::App& cli) {
         ->capture_default_str();
     cli.add_option("--steps", steps, "Samples per ray [1, 256]")->check(CLI::Range(1, 256))->capture_default_str();
     cli.add_option("--radius", radius, "World units, >= 0 (0: a tenth of the scene's diagonal)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(finiteNonNegative)
         ->capture_default_str();
     cli.add_option_function<std::string>("--resolution", [this](const std::string& v) {
         resolution = indexOf({std::begin(kResolutions), std::end(kResolutions)}, v);
@@ -51,9 +63,7 @@ void IntegratorControls::addOptions(CLI::App& cli) {
 }
 
 void IntegratorControls::check() const {
-    // The flags' own checks ran while parsing; these are the ones that depend on two flags, or
-    // that CLI11 does not make (NaN passes NonNegativeNumber).
-    if (!(radius >= 0.0f) || std::isinf(radius)) throw Error(ErrorCode::Parse, "--radius: world units, finite and >= 0");
+    // The flags' own checks ran while parsing; these depend on two flags.
     if (methods[std::size_t(method)] == "horizon" && rays % 2 != 0)
         throw Error(ErrorCode::Parse, "--rays: the horizon method takes an even count (rays / 2 slices), got " +
                                           std::to_string(rays));

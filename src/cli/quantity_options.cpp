@@ -14,7 +14,7 @@ using Setter = std::function<void(reference::Quantity&, const std::string&, cons
 
 double distance(const std::string& key, const std::string& value) {
     if (value == "inf") return reference::kInfinity;
-    return parseNumber(key, value, 1e-30, DBL_MAX, "world units (or inf)");
+    return parseNumber(key, value, 1e-30, DBL_MAX, "world units, or inf for no limit");
 }
 
 template <typename Q>

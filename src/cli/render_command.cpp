@@ -49,14 +49,14 @@ std::vector<std::string> presentOutputs(const TechniqueInfo& t, const TechniqueR
     return names;
 }
 
-// ".exr" or ".png" (in any case) for an image file, empty for a directory: one that exists,
-// or a new one without an extension. Anything else is refused, rather than becoming a
+// Empty for a directory (one that exists, or a new one without an extension), else ".exr"
+// or ".png" (in any case) for an image file. Anything else is refused, rather than becoming a
 // directory named like an image.
 std::string imageExtension(const std::filesystem::path& out) {
+    if (std::filesystem::is_directory(out)) return {};
     std::string ext = out.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".exr" || ext == ".png") return ext;
-    if (ext.empty() || std::filesystem::is_directory(out)) return {};
+    if (ext == ".exr" || ext == ".png" || ext.empty()) return ext;
     throw Error(ErrorCode::InvalidArgument, "--out " + out.string() +
                                                 ": not FILE.exr, FILE.png or a directory (a new directory's name takes no extension)");
 }

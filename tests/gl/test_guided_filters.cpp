@@ -448,7 +448,7 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
           "filters", "[filters][gi]") {
     FilterFixture f;
     // The albedo the upsampling multiplies in is left out here (kNoModulation): the test of
-    // that step is "Filtered indirect light takes each pixel's own albedo" in test_indirect_light.cpp.
+    // that step is "Filtered indirect light takes each pixel's own albedo" in test_indirect_light_gather.cpp.
     test::overrideShaders(f.ctx, {{"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * meanRadiance), 1.0)",
                                    "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)",
                                    kHashGlsl},

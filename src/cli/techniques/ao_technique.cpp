@@ -98,6 +98,8 @@ public:
                 o.image = rgbOf(readTexture(ctx_, result_.bentNormal));
                 o.display = o.image;
                 for (float& v : o.display.pixels) v = v * 0.5f + 0.5f;
+            } else if (const std::string why = missingOutput(name); !why.empty()) {
+                throw Error(ErrorCode::InvalidArgument, "ao output \"" + name + "\" " + why);
             } else {
                 throw Error(ErrorCode::InvalidArgument, "ao has no output \"" + name +
                                                             "\" (outputs: ao, bent_normal with bent_normals=1)");
