@@ -18,11 +18,8 @@
 
 #include <EGL/egl.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 
 namespace obscura::examples {
 namespace {
@@ -57,9 +54,7 @@ ExampleScene loadExampleScene(const AppOptions& options, int width, int height) 
 namespace {
 // A CLI11 check: the pictures are 8-bit display images, written as PNG whatever the name says.
 std::string pngPath(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".png" ? std::string() : "must end in .png: the picture is an 8-bit display image";
+    return assets::lowerExtension(path) == ".png" ? std::string() : "must end in .png: the picture is an 8-bit display image";
 }
 } // namespace
 

@@ -60,6 +60,9 @@ enum class PngEncoding {
     Linear, //!< write values as they are (already display-mapped data: normals * 0.5 + 0.5, AO)
 };
 
+//! A path's extension in lower case (".exr" for "AO.EXR"; empty without one): how the image
+//! and scene readers and writers tell formats apart.
+OBSCURA_API std::string lowerExtension(const std::filesystem::path& path);
 //! Reads an image as float (sRGB 8-bit files are linearized). Throws Error{Io}.
 OBSCURA_API Image readImage(const std::filesystem::path& path);
 //! Writes .exr (float, values as they are, any number of channels) or .png (8-bit, 1 to 4

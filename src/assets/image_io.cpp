@@ -9,13 +9,14 @@
 #include <cmath>
 
 namespace obscura::assets {
-namespace {
 
-std::string lowerExtension(const std::filesystem::path& p) {
-    std::string e = p.extension().string();
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string e = path.extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return e;
 }
+
+namespace {
 
 float srgbEncode(float linear) {
     const float v = std::clamp(linear, 0.0f, 1.0f);

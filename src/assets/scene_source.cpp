@@ -12,8 +12,7 @@ LoadedScene loadScene(const std::string& source) {
     const auto names = builtinSceneNames();
     if (std::find(names.begin(), names.end(), source) != names.end()) return builtinScene(source);
     const std::filesystem::path path(source);
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lowerExtension(path);
     if (ext == ".json") return loadJsonScene(path);
     if (ext.empty() && !std::filesystem::exists(path)) {
         std::string known;

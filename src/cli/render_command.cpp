@@ -8,8 +8,6 @@
 #include "scene_options.hpp"
 #include "technique_registry.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -54,8 +52,7 @@ std::vector<std::string> presentOutputs(const TechniqueInfo& t, const TechniqueR
 // directory named like an image.
 std::string imageExtension(const std::filesystem::path& out) {
     if (std::filesystem::is_directory(out)) return {};
-    std::string ext = out.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = assets::lowerExtension(out);
     if (ext == ".exr" || ext == ".png" || ext.empty()) return ext;
     throw Error(ErrorCode::InvalidArgument, "--out " + out.string() +
                                                 ": not FILE.exr, FILE.png or a directory (a new directory's name takes no extension)");
