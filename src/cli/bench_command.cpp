@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -194,6 +195,14 @@ public:
             if (split(v).empty() || std::find(o.variants.begin(), o.variants.begin() + i, v) != o.variants.begin() + i)
                 throw Error(ErrorCode::Parse, "--variant '" + v + "': each variant must be a new, non-empty KEY=VALUE list");
             for (const std::string& kv : split(v)) splitSetting(kv); // throws for an item without '='
+        }
+        // Every key of --set and --variant is one of each benched technique's: refused now, not
+        // after the scenes before it have run.
+        for (const auto& [name, info] : techniques()) {
+            if (fnmatch(o.techniques.c_str(), name.c_str(), 0) != 0) continue;
+            for (const std::string& kv : o.overrides) requireSetting(info, splitSetting(kv).first);
+            for (const std::string& v : o.variants)
+                for (const std::string& kv : split(v)) requireSetting(info, splitSetting(kv).first);
         }
         cache_ = o.cache.empty() ? std::filesystem::path(o.out) / "reference-cache" : std::filesystem::path(o.cache);
     }
@@ -390,7 +399,11 @@ private:
         for (const PresetRun& preset : presets) {
             runs.push_back(info.create(ctx));
             for (const auto& [key, value] : preset.preset->settings) runs.back()->set(key, value);
-            applySettings(*runs.back(), preset.keyValues);
+            applySettings(info, *runs.back(), preset.keyValues);
+            // Once per run, not per scene: e.g. refine_threshold at a full-resolution preset.
+            for (const std::string& note : ignoredSettingNotes(info, *runs.back(), preset.keyValues))
+                if (notes_.insert(preset.preset->name + ": " + note).second)
+                    std::printf("  note: preset %s: %s\n", preset.preset->name.c_str(), note.c_str());
         }
         const std::vector<Timing> timings = timeInTurn(ctx, runs, FrameSetup{r.scene, r.camera, r.width, r.height});
         groupReferences_.clear();
@@ -503,6 +516,7 @@ private:
     std::filesystem::path cache_;
     std::map<std::uint64_t, reference::Reference> groupReferences_; //!< groupReference's, for one group
     std::vector<Row> rows_;
+    std::set<std::string> notes_; //!< the ignored-setting notes printed so far
     nlohmann::json perf_ = nlohmann::json::array();
     nlohmann::ordered_json voxel_;
 };
@@ -554,7 +568,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--set", o->overrides, "KEY=VALUE after each preset's settings (every technique benched must take it)");
     cmd->add_option("--variant", o->variants,
                     "Comma-separated KEY=VALUE list after --set: every preset runs once more with it, its frames timed in turn "
-                    "with the preset's own (repeatable; rows carry it in the `variant` column)");
+                    "with the preset's own (repeatable; rows carry it in the `variant` column; every technique benched must take its keys)");
     cmd->add_option("--out", o->out, "Output directory for bench.csv and bench.json")->capture_default_str();
     cmd->add_flag("--images", o->images, "Also write each measured output and its reference as OUT/images/*.exr");
     cmd->add_flag("--reference-performance", o->referencePerformance,

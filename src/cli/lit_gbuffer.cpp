@@ -20,6 +20,10 @@ bool LitGBuffer::set(const std::string& key, const std::string& value) {
     return true;
 }
 
+std::string LitGBuffer::ignoredSetting(const std::string& key) const {
+    return !enabled_ && (key == "shadow_resolution" || key == "shadow_filter") ? "read only with shadows=1" : "";
+}
+
 const GBufferView& LitGBuffer::render(const FrameSetup& frame, GBufferSettings settings) {
     if (enabled_ && settings.directLighting) {
         settings.shadows = &shadows_.render(frame.scene.scene, frame.camera, maps_);

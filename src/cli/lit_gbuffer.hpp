@@ -19,6 +19,8 @@ public:
     static const std::vector<SettingInfo>& settings();
     //! Takes `key` if it is one of settings(); returns whether it did.
     bool set(const std::string& key, const std::string& value);
+    //! As TechniqueRun::ignoredSetting: the shadow maps' keys with shadows=0.
+    std::string ignoredSetting(const std::string& key) const;
     //! Renders shadow maps (pass "shadow.maps", only for scenes with shadow-casting lights)
     //! and the G-buffer; `settings` gives everything but the shadows.
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);

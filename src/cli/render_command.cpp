@@ -77,6 +77,9 @@ void runRender(const RenderOptions& o) {
         }
         selected.push_back(&it->second);
     }
+    // Every key before any GL work: with --technique all, each technique must take it.
+    for (const TechniqueInfo* t : selected)
+        for (const std::string& kv : o.sets) requireSetting(*t, splitSetting(kv).first);
     const std::filesystem::path out(o.out.empty() ? "out" : o.out);
     const std::string ext = imageExtension(out);
     const bool toDirectory = ext.empty();
@@ -98,7 +101,8 @@ void runRender(const RenderOptions& o) {
             std::printf("%-12s skipped: %s\n", t->name.c_str(), why.c_str());
             continue;
         }
-        applySettings(*run, o.sets);
+        applySettings(*t, *run, o.sets);
+        for (const std::string& note : ignoredSettingNotes(*t, *run, o.sets)) std::fprintf(stderr, "note: %s\n", note.c_str());
         const FrameSetup frame{scene, camera, width, height};
         run->run(frame); // warm-up: shader compilation and allocation are not timed
         ctx.profiler().reset();
@@ -129,7 +133,7 @@ void addRenderCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a technique's output buffers headless (EXR and/or PNG)");
     addSceneOptions(*cmd, options->scene);
     cmd->add_option("--technique", options->technique, "Technique name, or 'all'")->capture_default_str();
-    cmd->add_option("--set", options->sets, "Technique setting key=value (repeatable)");
+    cmd->add_option("--set", options->sets, "Technique setting key=value (repeatable; `obscura info` lists each technique's keys)");
     cmd->add_option("--output", options->output, "Output buffer (default: the technique's first; a directory gets all)");
     cmd->add_option("--out", options->out, "FILE.exr, FILE.png, or a directory")->required();
     cmd->add_option("--frames", options->frames, "Timed frames after one warm-up frame")->capture_default_str();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <stdexcept>
 
 namespace obscura::cli {
 namespace {
@@ -17,7 +18,19 @@ std::map<std::string, TechniqueInfo>& registry() {
 
 const std::map<std::string, TechniqueInfo>& techniques() { return registry(); }
 
+namespace {
+bool hasSetting(const std::vector<SettingInfo>& settings, const std::string& key) {
+    return std::any_of(settings.begin(), settings.end(), [&](const SettingInfo& s) { return s.key == key; });
+}
+} // namespace
+
 void registerTechnique(TechniqueInfo info) {
+    // A preset's key the technique does not take is a slip in its source file: fail at start-up,
+    // in every tool and test, rather than when the preset is run.
+    for (const Preset& p : info.presets)
+        for (const auto& [key, value] : p.settings)
+            if (!hasSetting(info.settings, key))
+                throw std::logic_error(info.name + " preset " + p.name + " sets " + key + ", which is not one of its settings");
     const std::string name = info.name;
     registry().emplace(name, std::move(info));
 }
@@ -28,11 +41,42 @@ std::pair<std::string, std::string> splitSetting(const std::string& keyValue) {
     return {keyValue.substr(0, eq), keyValue.substr(eq + 1)};
 }
 
-void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues) {
+void requireSetting(const TechniqueInfo& info, const std::string& key) {
+    if (hasSetting(info.settings, key)) return;
+    std::string others;
+    for (const auto& [name, other] : techniques())
+        if (hasSetting(other.settings, key)) others += (others.empty() ? "" : ", ") + name;
+    throw Error(ErrorCode::Parse, info.name + " has no setting \"" + key + "\"" +
+                                      (others.empty() ? "" : " (" + others + " have it)") +
+                                      "; its settings: " + settingKeys(info.settings));
+}
+
+void applySettings(const TechniqueInfo& info, TechniqueRun& run, const std::vector<std::string>& keyValues) {
     for (const std::string& kv : keyValues) {
         const auto [key, value] = splitSetting(kv);
+        requireSetting(info, key);
         run.set(key, value);
     }
+}
+
+std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
+                                             const std::vector<std::string>& keyValues) {
+    std::vector<std::string> notes;
+    for (const std::string& kv : keyValues)
+        if (const std::string why = run.ignoredSetting(splitSetting(kv).first); !why.empty())
+            notes.push_back(info.name + " ignores --set " + kv + ": " + why);
+    return notes;
+}
+
+std::string ignoredIntegratorSetting(const std::string& key, AoResolution resolution, int blurRadius,
+                                     std::optional<VoxelTraversal> voxelTraversal) {
+    const bool full = resolution == AoResolution::Full;
+    if (full && (key == "refine_threshold" || key == "geometry_tiles")) return "read only at resolution half or quarter";
+    if (full && blurRadius == 0 && (key == "blur_depth_sigma" || key == "blur_normal_power"))
+        return "read only by the blur (blur_radius > 0) and the upsampling (resolution half or quarter)";
+    if (voxelTraversal && *voxelTraversal != VoxelTraversal::March && key == "steps")
+        return "read only with voxel_traversal=march (the other traversals visit every voxel on the way)";
+    return {};
 }
 
 bool parseBool(const std::string& key, const std::string& value) {
@@ -144,6 +188,24 @@ std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vec
     return a;
 }
 
+std::vector<SettingInfo> withoutSettings(std::vector<SettingInfo> settings, const std::vector<std::string>& keys) {
+    for (const std::string& key : keys) {
+        const auto it = std::find_if(settings.begin(), settings.end(), [&](const SettingInfo& s) { return s.key == key; });
+        if (it == settings.end()) throw std::logic_error("withoutSettings: no setting " + key);
+        settings.erase(it);
+    }
+    return settings;
+}
+
+const std::vector<std::string>& voxelGridKeys() {
+    static const std::vector<std::string> keys = [] {
+        std::vector<std::string> k;
+        for (const SettingInfo& s : voxelGridSettings("")) k.push_back(s.key);
+        return k;
+    }();
+    return keys;
+}
+
 std::string settingKeys(const std::vector<SettingInfo>& settings) {
     std::string keys;
     for (const auto& k : settings) keys += (keys.empty() ? "" : ", ") + k.key;
@@ -196,6 +258,12 @@ std::vector<Preset> integratorPresets(bool voxelGrid) {
         halved.settings.push_back({"blur_radius", blurTaps.at(name)});
         presets.insert(full + 1, halved);
     }
+    return presets;
+}
+
+std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& settings) {
+    for (Preset& p : presets)
+        std::erase_if(p.settings, [&](const auto& kv) { return !hasSetting(settings, kv.first); });
     return presets;
 }
 

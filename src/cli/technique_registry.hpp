@@ -97,6 +97,10 @@ public:
     //! After run(): counts the bench reports beside the time, e.g. {"refined_pixels", ...}.
     //! May wait for the GPU.
     virtual std::vector<std::pair<std::string, std::size_t>> counts() const { return {}; }
+    //! After the settings are applied: why its setting `key` has no effect with the others
+    //! (e.g. the upsampling's keys at full resolution), or empty. The tools print it as a note
+    //! for the keys the user set, since a preset sets keys whether or not they matter.
+    virtual std::string ignoredSetting(const std::string& /*key*/) const { return {}; }
 };
 
 //! A named set of `--set` values ("low", "medium", "high", "ultra", or "default").
@@ -110,6 +114,9 @@ struct Preset {
 //! 256^3, 512^3 and 1024^3), and "<preset>_half" for medium and high: the same settings at
 //! half resolution with a blur, for the resolution trade-off.
 std::vector<Preset> integratorPresets(bool voxelGrid);
+//! The presets with only the settings `settings` has (ao.points takes no steps): so that a
+//! technique's presets set nothing it would ignore.
+std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& settings);
 
 struct TechniqueInfo {
     std::string name;                  //!< "<module>.<method>", or "gbuffer"
@@ -129,8 +136,21 @@ struct TechniqueRegistrar {
 
 //! Splits a --set argument "key=value"; throws Error{Parse} without the '='.
 std::pair<std::string, std::string> splitSetting(const std::string& keyValue);
-//! Applies --set arguments to a run, after its preset (each must be one of its settings).
-void applySettings(TechniqueRun& run, const std::vector<std::string>& keyValues);
+//! Throws Error{Parse} unless `key` is one of the technique's settings; the message names the
+//! techniques that have it, since most such keys are another method's (ao.points: steps).
+void requireSetting(const TechniqueInfo& info, const std::string& key);
+//! Applies --set arguments to a run of `info`, after its preset (requireSetting for each).
+void applySettings(const TechniqueInfo& info, TechniqueRun& run, const std::vector<std::string>& keyValues);
+//! After applySettings: "<technique> ignores --set key=value: <why>" for each of `keyValues`
+//! the run ignores (TechniqueRun::ignoredSetting).
+std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
+                                             const std::vector<std::string>& keyValues);
+//! Why an integrator's (AO's, GI's) setting `key` has no effect with the others, or empty: the
+//! refinement's and the tiles' keys at full resolution, the filters' weights with neither the
+//! blur nor the upsampling, march samples with another voxel traversal (`voxelTraversal`:
+//! empty for the screen-space methods).
+std::string ignoredIntegratorSetting(const std::string& key, AoResolution resolution, int blurRadius,
+                                     std::optional<VoxelTraversal> voxelTraversal);
 //! Parses a boolean setting value ("1/0/true/false/on/off"); throws Error{Parse}.
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.
@@ -169,6 +189,10 @@ struct VoxelGridOptions {
 bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal);
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
+//! `settings` without `keys` (each must be there): a method's list from its module's.
+std::vector<SettingInfo> withoutSettings(std::vector<SettingInfo> settings, const std::vector<std::string>& keys);
+//! The keys of voxelGridSettings, which only the voxel methods read.
+const std::vector<std::string>& voxelGridKeys();
 //! "a, b, c": the keys of the settings, for error messages.
 std::string settingKeys(const std::vector<SettingInfo>& settings);
 //! The radius techniques use when none is set: a tenth of the scene's bounding-box

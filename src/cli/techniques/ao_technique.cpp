@@ -36,6 +36,24 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"bent_normals", "", "0|1", "also compute the bent normal (default 1; horizon: of the directions above its slices' horizons)"},
 }, voxelGridSettings("ao.voxel"));
 
+// Each method's keys: the module's, less those it does not read, so that setting one is refused
+// instead of silently ignored (the module cannot tell a set field from its default).
+std::vector<SettingInfo> methodSettings(AoMethod method) {
+    const auto& voxel = voxelGridKeys();
+    const auto withVoxel = [&](std::vector<std::string> keys) {
+        keys.insert(keys.end(), voxel.begin(), voxel.end());
+        return keys;
+    };
+    switch (method) {
+    case AoMethod::RayMarch: return withoutSettings(kSettings, voxel);
+    case AoMethod::Points: return withoutSettings(kSettings, withVoxel({"steps", "march"})); // points, not marches
+    case AoMethod::Horizon: // cosine-weighted AO only (the module refuses the others); no thickness test
+        return withoutSettings(kSettings, withVoxel({"cosine_weighted", "falloff", "thickness", "thickness_mode", "march"}));
+    case AoMethod::Voxel: return withoutSettings(kSettings, {"thickness", "thickness_mode", "march"});
+    }
+    return kSettings;
+}
+
 class AoRun final : public TechniqueRun {
 public:
     AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx) {
@@ -84,6 +102,12 @@ public:
 
     std::string missingOutput(const std::string& name) const override {
         return name == "bent_normal" && !settings_.bentNormals ? "needs --set bent_normals=1" : "";
+    }
+
+    std::string ignoredSetting(const std::string& key) const override {
+        const auto& s = settings_;
+        return ignoredIntegratorSetting(key, s.resolution, s.blurRadius,
+                                        s.method == AoMethod::Voxel ? std::optional(s.voxelTraversal) : std::nullopt);
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
@@ -157,7 +181,8 @@ private:
 TechniqueInfo aoTechnique(const std::string& name, const std::string& description, AoMethod method,
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
     const std::vector<std::string> outputs = {"ao", "bent_normal"};
-    return {name, description, outputs, kSettings, integratorPresets(method == AoMethod::Voxel),
+    const std::vector<SettingInfo> settings = methodSettings(method);
+    return {name, description, outputs, settings, presetsFor(integratorPresets(method == AoMethod::Voxel), settings),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }
 

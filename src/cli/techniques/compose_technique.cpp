@@ -72,6 +72,18 @@ public:
         display_ = composer_.compose(inputs, settings_);
     }
 
+    std::string ignoredSetting(const std::string& key) const override {
+        const auto& s = settings_;
+        const bool physicalGi = s.formula == CombineFormula::Physical && withGi_;
+        if (key.starts_with("drago_") && s.toneMapper != ToneMapper::Drago) return "read only with tone_mapper=drago";
+        if (key == "gamma" && s.srgb) return "read only with srgb=0";
+        if ((key == "ambient" || key == "ao") && physicalGi)
+            return "the physical formula replaces the ambient term by the indirect light: read only with gi=0 or formula=thesis";
+        if (key == "indirect_scale" && !withGi_) return "read only with gi=1";
+        if (key == "radius" && !withGi_ && !withAo_) return "read only with ao=1 or gi=1";
+        return lit_.ignoredSetting(key);
+    }
+
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
         std::vector<TechniqueOutput> out;
         for (const std::string& name : names) {

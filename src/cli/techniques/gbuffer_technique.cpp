@@ -56,6 +56,8 @@ public:
 
     std::vector<std::pair<std::string, std::size_t>> memory() const override { return lit_.memory(); }
 
+    std::string ignoredSetting(const std::string& key) const override { return lit_.ignoredSetting(key); }
+
     // Positions and face normals against primary-ray hits (the reconstruction and
     // rasterization error); the direct radiance (shadowed through shadow maps unless
     // shadows=0) against direct light with visibility (what the shadow maps and the

@@ -29,6 +29,13 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
 }, joinSettings(voxelGridSettings("gi.hybrid"), LitGBuffer::settings()));
 
+// Each method's keys, less those it does not read (as ao_technique.cpp): the hybrid method's
+// rays test voxels, not depth samples.
+std::vector<SettingInfo> methodSettings(GiMethod method) {
+    if (method == GiMethod::Hybrid) return withoutSettings(kSettings, {"thickness_mode", "march"});
+    return withoutSettings(kSettings, voxelGridKeys());
+}
+
 class GiRun final : public TechniqueRun {
 public:
     GiRun(Context& ctx, GiMethod method) : ctx_(ctx), lit_(ctx), gi_(ctx), voxelizer_(ctx) { settings_.method = method; }
@@ -60,6 +67,13 @@ public:
         view_ = lit_.render(frame, g);
         if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
         result_ = gi_.run(view_, settings_);
+    }
+
+    std::string ignoredSetting(const std::string& key) const override {
+        const auto& s = settings_;
+        const std::string why = ignoredIntegratorSetting(
+            key, s.resolution, s.blurRadius, s.method == GiMethod::Hybrid ? std::optional(s.voxelTraversal) : std::nullopt);
+        return why.empty() ? lit_.ignoredSetting(key) : why;
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
@@ -119,7 +133,8 @@ private:
 };
 
 TechniqueInfo giTechnique(const std::string& name, const std::string& description, GiMethod method) {
-    return {name, description, {"indirect"}, kSettings, integratorPresets(method == GiMethod::Hybrid),
+    const std::vector<SettingInfo> settings = methodSettings(method);
+    return {name, description, {"indirect"}, settings, presetsFor(integratorPresets(method == GiMethod::Hybrid), settings),
             [method](Context& ctx) { return std::make_unique<GiRun>(ctx, method); }};
 }
 

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <map>
 #include <optional>
 
 namespace obscura::cli {
@@ -43,6 +44,50 @@ const std::vector<SettingInfo> kSettings = {
     {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
 };
 
+// The cascades' keys: the spot and directional techniques' (a point technique's mask is of a
+// light mapped from its centre).
+const std::vector<std::string> kCascadeKeys = {"cascades", "split_lambda", "reflective", "depth_bounds", "cascade_blend"};
+
+const std::map<std::string, ShadowFilter> kFilterNames = {
+    {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},     {"vsm", ShadowFilter::Vsm},
+    {"esm", ShadowFilter::Esm},   {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
+    {"msm", ShadowFilter::Msm},   {"pcss", ShadowFilter::Pcss}};
+
+std::string filterName(ShadowFilter filter) {
+    for (const auto& [name, f] : kFilterNames)
+        if (f == filter) return name;
+    return "?";
+}
+
+bool isMomentFilter(ShadowFilter f) { return f != ShadowFilter::Hard && f != ShadowFilter::Pcf && f != ShadowFilter::Pcss; }
+
+// Whether `filter` reads `key` (shadow_maps.hpp's ShadowMaskSettings: PCF's kernel, PCSS's
+// search, the moment filters' prefilter and bounds); the keys every filter reads: true.
+bool filterReads(ShadowFilter filter, const std::string& key) {
+    const bool chebyshev = filter == ShadowFilter::Vsm || filter == ShadowFilter::Evsm2 || filter == ShadowFilter::Evsm4;
+    if (key == "pcf_radius" || key == "pcf_kernel") return filter == ShadowFilter::Pcf;
+    if (key == "receiver_plane") return filter == ShadowFilter::Pcf || filter == ShadowFilter::Pcss;
+    if (key == "pcss_blocker_fraction") return filter == ShadowFilter::Pcss;
+    if (key == "moment_blur" || key == "moment_precision") return isMomentFilter(filter);
+    if (key == "min_variance" || key == "light_bleed_reduction") return chebyshev;
+    if (key == "exponent") return filter == ShadowFilter::Esm || filter == ShadowFilter::Evsm2 || filter == ShadowFilter::Evsm4;
+    if (key == "negative_exponent") return filter == ShadowFilter::Evsm4;
+    return true;
+}
+
+// A technique's keys: a point technique's without the cascades'; one whose name fixes the
+// filter (all but shadow.cube and shadow.paraboloid, which take `filter`) without `filter` and
+// the keys of the other filters.
+std::vector<SettingInfo> techniqueSettings(ShadowFilter filter, bool point, bool filterKey) {
+    std::vector<std::string> unread = point ? kCascadeKeys : std::vector<std::string>{};
+    if (!filterKey) {
+        unread.push_back("filter");
+        for (const SettingInfo& s : kSettings)
+            if (!filterReads(filter, s.key)) unread.push_back(s.key);
+    }
+    return withoutSettings(kSettings, unread);
+}
+
 // The lights a technique maps: those mapped from a centre (point and sphere lights: cube or
 // paraboloids; rect lights: one paraboloid, whatever the technique) or spot and directional ones.
 bool mapped(const Light& l, bool point) {
@@ -72,10 +117,7 @@ public:
         else if (key == "depth_bounds") depthBounds_ = parseBool(key, value);
         else if (key == "reflective") maps_.reflective = parseBool(key, value);
         else if (key == "filter")
-            mask_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},
-                                                                {"vsm", ShadowFilter::Vsm}, {"esm", ShadowFilter::Esm},
-                                                                {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
-                                                                {"msm", ShadowFilter::Msm}, {"pcss", ShadowFilter::Pcss}});
+            mask_.filter = parseChoice<ShadowFilter>(key, value, kFilterNames);
         else if (key == "pcf_radius") mask_.pcfRadius = parseInteger(key, value, 0, 8, "texels");
         else if (key == "pcss_blocker_fraction")
             mask_.pcssBlockerFraction = static_cast<float>(parseNumber(key, value, 1e-3, 0.999, ""));
@@ -102,6 +144,13 @@ public:
         else if (key == "negative_exponent") mask_.negativeExponent = static_cast<float>(parseNumber(key, value, 0, 42, ""));
         else if (key == "cascade_blend") mask_.cascadeBlend = static_cast<float>(parseNumber(key, value, 0, 0.5, ""));
         else throw Error(ErrorCode::Parse, "shadow has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+    }
+
+    std::string ignoredSetting(const std::string& key) const override {
+        if (!filterReads(mask_.filter, key)) return "not read with filter=" + filterName(mask_.filter);
+        if ((key == "contact_steps" || key == "contact_thickness") && mask_.contactLength == 0.0f)
+            return "read only with contact_length > 0";
+        return {};
     }
 
     std::string unsupported(const Scene& scene) const override {
@@ -255,10 +304,11 @@ std::vector<Preset> cubePresets() {
 
 TechniqueInfo shadowTechnique(const std::string& name, const std::string& description, ShadowFilter filter,
                               bool point = false, PointShadowMapping mapping = PointShadowMapping::Cube) {
-    const bool moments = filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf && filter != ShadowFilter::Pcss;
     const bool cube = point && filter == ShadowFilter::Hard && mapping == PointShadowMapping::Cube;
-    return {name, description, {"shadow"}, kSettings,
-            cube ? cubePresets() : moments ? momentPresets() : presets(filter == ShadowFilter::Pcf),
+    const bool filterKey = point && filter == ShadowFilter::Hard; // shadow.cube, shadow.paraboloid
+    const std::vector<SettingInfo> settings = techniqueSettings(filter, point, filterKey);
+    return {name, description, {"shadow"}, settings,
+            presetsFor(cube ? cubePresets() : isMomentFilter(filter) ? momentPresets() : presets(filter == ShadowFilter::Pcf), settings),
             [filter, point, mapping](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point, mapping); }};
 }
 
