@@ -44,10 +44,11 @@ std::pair<std::string, std::string> splitSetting(const std::string& keyValue) {
 void requireSetting(const TechniqueInfo& info, const std::string& key) {
     if (hasSetting(info.settings, key)) return;
     std::string others;
+    int count = 0;
     for (const auto& [name, other] : techniques())
-        if (hasSetting(other.settings, key)) others += (others.empty() ? "" : ", ") + name;
+        if (hasSetting(other.settings, key)) others += (count++ ? ", " : "") + name;
     throw Error(ErrorCode::Parse, info.name + " has no setting \"" + key + "\"" +
-                                      (others.empty() ? "" : " (" + others + " have it)") +
+                                      (count ? " (" + others + (count == 1 ? " has it)" : " have it)") : "") +
                                       "; its settings: " + settingKeys(info.settings));
 }
 
@@ -261,9 +262,13 @@ std::vector<Preset> integratorPresets(bool voxelGrid) {
     return presets;
 }
 
-std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& settings) {
-    for (Preset& p : presets)
+std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& moduleSettings,
+                               const std::vector<SettingInfo>& settings) {
+    for (Preset& p : presets) {
+        for (const auto& [key, value] : p.settings)
+            if (!hasSetting(moduleSettings, key)) throw std::logic_error("preset " + p.name + " sets " + key + ", no setting of its module");
         std::erase_if(p.settings, [&](const auto& kv) { return !hasSetting(settings, kv.first); });
+    }
     return presets;
 }
 

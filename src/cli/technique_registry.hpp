@@ -115,8 +115,10 @@ struct Preset {
 //! half resolution with a blur, for the resolution trade-off.
 std::vector<Preset> integratorPresets(bool voxelGrid);
 //! The presets with only the settings `settings` has (ao.points takes no steps): so that a
-//! technique's presets set nothing it would ignore.
-std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& settings);
+//! technique's presets set nothing it would ignore. A key that is none of `moduleSettings`
+//! (the module's keys, of which `settings` is the method's) is a slip: std::logic_error.
+std::vector<Preset> presetsFor(std::vector<Preset> presets, const std::vector<SettingInfo>& moduleSettings,
+                               const std::vector<SettingInfo>& settings);
 
 struct TechniqueInfo {
     std::string name;                  //!< "<module>.<method>", or "gbuffer"

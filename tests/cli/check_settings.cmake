@@ -85,6 +85,9 @@ check_settings_keys(shadow_maps.hpp ShadowMaskSettings "shadow.hard;shadow.cube"
 # hybrid method's rays test voxels), are not listed.
 function(check_unlisted technique)
   listed_keys(${technique} keys)
+  if(NOT keys)
+    message(FATAL_ERROR "obscura info lists no keys for ${technique}")
+  endif()
   foreach(key IN LISTS ARGN)
     if(key IN_LIST keys)
       message(FATAL_ERROR "${technique} lists ${key}, which it does not read (keys: ${keys})")

@@ -182,7 +182,7 @@ TechniqueInfo aoTechnique(const std::string& name, const std::string& descriptio
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
     const std::vector<std::string> outputs = {"ao", "bent_normal"};
     const std::vector<SettingInfo> settings = methodSettings(method);
-    return {name, description, outputs, settings, presetsFor(integratorPresets(method == AoMethod::Voxel), settings),
+    return {name, description, outputs, settings, presetsFor(integratorPresets(method == AoMethod::Voxel), kSettings, settings),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }
 

@@ -134,7 +134,7 @@ private:
 
 TechniqueInfo giTechnique(const std::string& name, const std::string& description, GiMethod method) {
     const std::vector<SettingInfo> settings = methodSettings(method);
-    return {name, description, {"indirect"}, settings, presetsFor(integratorPresets(method == GiMethod::Hybrid), settings),
+    return {name, description, {"indirect"}, settings, presetsFor(integratorPresets(method == GiMethod::Hybrid), kSettings, settings),
             [method](Context& ctx) { return std::make_unique<GiRun>(ctx, method); }};
 }
 

@@ -45,7 +45,8 @@ const std::vector<SettingInfo> kSettings = {
 };
 
 // The cascades' keys: the spot and directional techniques' (a point technique's mask is of a
-// light mapped from its centre).
+// light mapped from its centre; in a scene that also has spot or directional lights, their
+// maps are rendered with the defaults).
 const std::vector<std::string> kCascadeKeys = {"cascades", "split_lambda", "reflective", "depth_bounds", "cascade_blend"};
 
 const std::map<std::string, ShadowFilter> kFilterNames = {
@@ -308,7 +309,8 @@ TechniqueInfo shadowTechnique(const std::string& name, const std::string& descri
     const bool filterKey = point && filter == ShadowFilter::Hard; // shadow.cube, shadow.paraboloid
     const std::vector<SettingInfo> settings = techniqueSettings(filter, point, filterKey);
     return {name, description, {"shadow"}, settings,
-            presetsFor(cube ? cubePresets() : isMomentFilter(filter) ? momentPresets() : presets(filter == ShadowFilter::Pcf), settings),
+            presetsFor(cube ? cubePresets() : isMomentFilter(filter) ? momentPresets() : presets(filter == ShadowFilter::Pcf),
+                       kSettings, settings),
             [filter, point, mapping](Context& ctx) { return std::make_unique<ShadowRun>(ctx, filter, point, mapping); }};
 }
 
