@@ -217,7 +217,10 @@ private:
         }
         if (j.contains("inner_deg")) l.innerAngle = number(j["inner_deg"], where + ".inner_deg") * kDegrees;
         if (j.contains("outer_deg")) l.outerAngle = number(j["outer_deg"], where + ".outer_deg") * kDegrees;
-        if (j.contains("casts_shadows")) l.castsShadows = j["casts_shadows"].get<bool>();
+        if (j.contains("casts_shadows")) {
+            if (!j["casts_shadows"].is_boolean()) fail(where + ".casts_shadows", "expected true or false");
+            l.castsShadows = j["casts_shadows"].get<bool>();
+        }
         return l;
     }
 

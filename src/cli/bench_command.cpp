@@ -404,6 +404,9 @@ private:
             for (const std::string& note : ignoredSettingNotes(info, *runs.back(), preset.keyValues))
                 if (notes_.insert(preset.preset->name + ": " + note).second)
                     std::printf("  note: preset %s: %s\n", preset.preset->name.c_str(), note.c_str());
+            for (const std::string& note : ignoredInSceneNotes(info, *runs.back(), preset.keyValues, r.scene.scene))
+                if (notes_.insert(preset.preset->name + " " + r.scene.name + ": " + note).second)
+                    std::printf("  note: preset %s on %s: %s\n", preset.preset->name.c_str(), r.scene.name.c_str(), note.c_str());
         }
         const std::vector<Timing> timings = timeInTurn(ctx, runs, FrameSetup{r.scene, r.camera, r.width, r.height});
         groupReferences_.clear();

@@ -19,8 +19,11 @@ public:
     static const std::vector<SettingInfo>& settings();
     //! Takes `key` if it is one of settings(); returns whether it did.
     bool set(const std::string& key, const std::string& value);
-    //! As TechniqueRun::ignoredSetting: the shadow maps' keys with shadows=0.
-    std::string ignoredSetting(const std::string& key) const;
+    //! As TechniqueRun::ignoredSetting: the shadow maps' keys with shadows=0, and all of
+    //! settings() when the G-buffer computes no direct light (`directLighting` false).
+    std::string ignoredSetting(const std::string& key, bool directLighting = true) const;
+    //! As TechniqueRun::ignoredInScene: settings() in a scene without shadow-casting lights.
+    static std::string ignoredInScene(const std::string& key, const Scene& scene);
     //! Renders shadow maps (pass "shadow.maps", only for scenes with shadow-casting lights)
     //! and the G-buffer; `settings` gives everything but the shadows.
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);

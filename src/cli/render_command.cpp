@@ -103,6 +103,8 @@ void runRender(const RenderOptions& o) {
         }
         applySettings(*t, *run, o.sets);
         for (const std::string& note : ignoredSettingNotes(*t, *run, o.sets)) std::fprintf(stderr, "note: %s\n", note.c_str());
+        for (const std::string& note : ignoredInSceneNotes(*t, *run, o.sets, scene.scene))
+            std::fprintf(stderr, "note: %s\n", note.c_str());
         const FrameSetup frame{scene, camera, width, height};
         run->run(frame); // warm-up: shader compilation and allocation are not timed
         ctx.profiler().reset();

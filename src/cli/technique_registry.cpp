@@ -60,13 +60,25 @@ void applySettings(const TechniqueInfo& info, TechniqueRun& run, const std::vect
     }
 }
 
-std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
-                                             const std::vector<std::string>& keyValues) {
+namespace {
+std::vector<std::string> notesFor(const TechniqueInfo& info, const std::vector<std::string>& keyValues,
+                                  const std::function<std::string(const std::string&)>& reason) {
     std::vector<std::string> notes;
     for (const std::string& kv : keyValues)
-        if (const std::string why = run.ignoredSetting(splitSetting(kv).first); !why.empty())
+        if (const std::string why = reason(splitSetting(kv).first); !why.empty())
             notes.push_back(info.name + " ignores --set " + kv + ": " + why);
     return notes;
+}
+} // namespace
+
+std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
+                                             const std::vector<std::string>& keyValues) {
+    return notesFor(info, keyValues, [&](const std::string& key) { return run.ignoredSetting(key); });
+}
+
+std::vector<std::string> ignoredInSceneNotes(const TechniqueInfo& info, const TechniqueRun& run,
+                                             const std::vector<std::string>& keyValues, const Scene& scene) {
+    return notesFor(info, keyValues, [&](const std::string& key) { return run.ignoredInScene(key, scene); });
 }
 
 std::string ignoredIntegratorSetting(const std::string& key, AoResolution resolution, int blurRadius,

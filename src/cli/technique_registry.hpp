@@ -101,6 +101,9 @@ public:
     //! (e.g. the upsampling's keys at full resolution), or empty. The tools print it as a note
     //! for the keys the user set, since a preset sets keys whether or not they matter.
     virtual std::string ignoredSetting(const std::string& /*key*/) const { return {}; }
+    //! As ignoredSetting, for what only the scene decides (a directional light's cascade keys
+    //! in a scene without one); the tools ask once the scene is loaded.
+    virtual std::string ignoredInScene(const std::string& /*key*/, const Scene&) const { return {}; }
 };
 
 //! A named set of `--set` values ("low", "medium", "high", "ultra", or "default").
@@ -147,6 +150,9 @@ void applySettings(const TechniqueInfo& info, TechniqueRun& run, const std::vect
 //! the run ignores (TechniqueRun::ignoredSetting).
 std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
                                              const std::vector<std::string>& keyValues);
+//! The same for what `scene` decides (TechniqueRun::ignoredInScene).
+std::vector<std::string> ignoredInSceneNotes(const TechniqueInfo& info, const TechniqueRun& run,
+                                             const std::vector<std::string>& keyValues, const Scene& scene);
 //! Why an integrator's (AO's, GI's) setting `key` has no effect with the others, or empty: the
 //! refinement's and the tiles' keys at full resolution, the filters' weights with neither the
 //! blur nor the upsampling, march samples with another voxel traversal (`voxelTraversal`:

@@ -203,3 +203,68 @@ if(NOT rc EQUAL 0 OR NOT notes STREQUAL
    "note: preset medium: ao.points ignores --set refine_threshold=0: read only at resolution half or quarter")
   message(FATAL_ERROR "bench --variant refine_threshold=0: expected one note, for preset medium: ${notes}\n${out}${err}")
 endif()
+
+# Notes the settings alone cannot decide. The G-buffer computes no direct light to shadow.
+expect_note("note: gbuffer ignores --set shadow_resolution=64: read only with direct_lighting=1"
+            ${render} --technique gbuffer --set direct_lighting=0 --set shadow_resolution=64 --out "${WORK_DIR}/x.exr")
+expect_note("" ${render} --technique gbuffer --set shadow_resolution=64 --out "${WORK_DIR}/x.exr")
+# The physical combine without indirect light multiplies AO into the ambient term only (0 by
+# default), so ao and radius do nothing until ambient > 0 or under the thesis's formula, which
+# darkens the direct light with AO too.
+expect_note("note: compose ignores --set ao=1: the physical formula darkens only the ambient term"
+            ${render} --technique compose --set gi=0 --set ao=1 --out "${WORK_DIR}/x.png")
+expect_note("note: compose ignores --set radius=0.5: read only with gi=1, or ao=1 where the combine uses AO"
+            ${render} --technique compose --set gi=0 --set radius=0.5 --out "${WORK_DIR}/x.png")
+expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set ambient=0.2 --out "${WORK_DIR}/x.png")
+expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set formula=thesis --out "${WORK_DIR}/x.png")
+# ... and runs the AO pass only where the combine uses it.
+foreach(case "gi=0;0" "gi=0;ambient=0.2;1" "gi=0;formula=thesis;1" "formula=thesis;1" "ambient=0.2;0")
+  list(POP_BACK case expected)
+  list(TRANSFORM case PREPEND "--set;")
+  execute_process(COMMAND ${render} --technique compose ${case} --out "${WORK_DIR}/x.png"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(out MATCHES "compose +ao\\.")
+    set(ran 1)
+  else()
+    set(ran 0)
+  endif()
+  if(NOT rc EQUAL 0 OR NOT ran EQUAL expected)
+    message(FATAL_ERROR "compose ${case}: AO pass ran: ${ran}, expected ${expected}\n${out}${err}")
+  endif()
+endforeach()
+# What the scene decides: cascades with only a spot light, the shadow maps' keys with no
+# shadow-casting light. The same floor lit three ways.
+function(write_lit_floor name lights)
+  file(WRITE "${WORK_DIR}/${name}.json" "{\"meshes\": [{\"positions\": [-1,0,-1, -1,0,1, 1,0,1, 1,0,-1], \"indices\": [0,1,2, 0,2,3]},
+  {\"positions\": [-0.2,0.5,-0.2, -0.2,0.5,0.2, 0.2,0.5,0.2, 0.2,0.5,-0.2], \"indices\": [0,1,2, 0,2,3]}],
+  \"lights\": [${lights}], \"camera\": {\"eye\": [0,2,3], \"target\": [0,0,0], \"fovy_deg\": 50, \"near\": 0.05, \"far\": 20}}")
+endfunction()
+set(spot "{\"type\": \"spot\", \"position\": [0,3,0], \"direction\": [0,-1,0], \"intensity\": 10, \"inner_deg\": 20, \"outer_deg\": 30}")
+write_lit_floor(spot "${spot}")
+write_lit_floor(spot_sun "${spot}, {\"type\": \"directional\", \"direction\": [0,-1,0], \"intensity\": 3}")
+write_lit_floor(unshadowed "{\"type\": \"point\", \"position\": [0,3,0], \"intensity\": 10, \"casts_shadows\": false}")
+set(floor_render "${OBSCURA}" render --size 8x8 --frames 1)
+foreach(key cascades=2 split_lambda=0.5 depth_bounds=0 cascade_blend=0.2)
+  expect_note("note: shadow.pcf ignores --set ${key}: the scene has no shadow-casting directional light"
+              ${floor_render} --scene "${WORK_DIR}/spot.json" --technique shadow.pcf --set ${key} --out "${WORK_DIR}/x.exr")
+  expect_note("" ${floor_render} --scene "${WORK_DIR}/spot_sun.json" --technique shadow.pcf --set ${key} --out "${WORK_DIR}/x.exr")
+endforeach()
+expect_note("" ${floor_render} --scene "${WORK_DIR}/spot.json" --technique shadow.pcf --set reflective=1 --out "${WORK_DIR}/x.exr")
+foreach(technique gbuffer gi.screen compose)
+  set(out "${WORK_DIR}/x.exr")
+  if(technique STREQUAL "compose")
+    set(out "${WORK_DIR}/x.png")
+  endif()
+  expect_note("note: ${technique} ignores --set shadow_filter=hard: the scene has no shadow-casting light"
+              ${floor_render} --scene "${WORK_DIR}/unshadowed.json" --technique ${technique} --set shadow_filter=hard --out "${out}")
+  expect_note("" ${floor_render} --scene "${WORK_DIR}/spot.json" --technique ${technique} --set shadow_filter=hard --out "${out}")
+endforeach()
+# bench names the scene for such a note.
+execute_process(COMMAND "${OBSCURA}" bench --scene "${WORK_DIR}/spot.json" --size 8x8 --frames 20 --spp 4
+                        --techniques shadow.pcf --presets medium --set cascades=2 --out "${WORK_DIR}/bench_scene_note"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCHALL "note: [^\n]*" notes "${out}")
+if(NOT rc EQUAL 0 OR NOT notes STREQUAL
+   "note: preset medium on spot: shadow.pcf ignores --set cascades=2: the scene has no shadow-casting directional light, the only kind with cascades")
+  message(FATAL_ERROR "bench --set cascades=2 on a spot light: expected one note naming the scene: ${notes}\n${out}${err}")
+endif()

@@ -140,6 +140,10 @@ TEST_CASE("JSON errors name the file and the path of the bad value", "[unit][sce
     CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad4.json", "{\"lights\": [{\"type\": \"area\"}]}")),
                       Catch::Contains("lights[0].type"));
     CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad5.json", "{ not json")), Catch::Contains("bad5.json"));
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad6.json", "{\"lights\": [{\"type\": \"point\", \"casts_shadows\": 1}]}")),
+                      Catch::Contains("lights[0].casts_shadows") && Catch::Contains("true or false"));
+    const std::string unshadowed = "{\"lights\": [{\"type\": \"point\", \"casts_shadows\": false}]}";
+    CHECK_FALSE(assets::loadJsonScene(writeTemp("unshadowed.json", unshadowed)).scene.lights.at(0).castsShadows);
     CHECK_THROWS_AS(assets::loadJsonScene("/nonexistent/scene.json"), Error);
 }
 

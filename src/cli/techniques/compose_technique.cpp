@@ -24,7 +24,7 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"drago_display_max", "cd/m^2", "(0, 1e4]", "Drago's display maximum L_dmax"},
     {"srgb", "", "0|1", "sRGB transfer function (else x^(1/gamma))"},
     {"gamma", "", "[1, 4]", "display gamma when srgb=0"},
-    {"ao", "", "0|1", "ray-marched AO (medium quality; the physical formula uses it only with gi=0)"},
+    {"ao", "", "0|1", "ray-marched AO (medium quality; the physical formula uses it only with gi=0 and ambient > 0)"},
     {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
     {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
 }, LitGBuffer::settings());
@@ -58,8 +58,7 @@ public:
         const float radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(frame.scene.scene));
         view_ = lit_.render(frame, {frame.width, frame.height, true, {}});
         ComposeInputs inputs{view_, {}, {}};
-        // The physical combine does not use AO next to indirect light: no AO pass then.
-        if (withAo_ && !(withGi_ && settings_.formula == CombineFormula::Physical)) {
+        if (aoUsed()) {
             AmbientOcclusionSettings a;
             a.radius = radius;
             inputs.ao = ao_.run(view_, a).ao;
@@ -79,9 +78,15 @@ public:
         if (key == "gamma" && s.srgb) return "read only with srgb=0";
         if ((key == "ambient" || key == "ao") && physicalGi)
             return "the physical formula replaces the ambient term by the indirect light: read only with gi=0 or formula=thesis";
+        if (key == "ao" && withAo_ && !aoUsed())
+            return "the physical formula darkens only the ambient term with AO, and ambient is 0: read only with ambient > 0 "
+                   "or formula=thesis";
         if (key == "indirect_scale" && !withGi_) return "read only with gi=1";
-        if (key == "radius" && !withGi_ && !withAo_) return "read only with ao=1 or gi=1";
+        if (key == "radius" && !withGi_ && !aoUsed()) return "read only with gi=1, or ao=1 where the combine uses AO";
         return lit_.ignoredSetting(key);
+    }
+    std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
+        return LitGBuffer::ignoredInScene(key, scene);
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
@@ -119,6 +124,15 @@ public:
     std::vector<Measurement> measurements() override { return {}; }
 
 private:
+    // Whether the combine reads AO (compose.hpp): the thesis's formula always (AO darkens the
+    // direct light too), the physical one only as the ambient term's factor, with no indirect
+    // light and an ambient above 0. Otherwise no AO pass runs.
+    bool aoUsed() const {
+        const auto& s = settings_;
+        const bool ambient = glm::any(glm::greaterThan(s.ambient, glm::vec3(0.0f)));
+        return withAo_ && (s.formula == CombineFormula::Thesis || (!withGi_ && ambient));
+    }
+
     Context& ctx_;
     LitGBuffer lit_;
     GBuffer& gbuffer_ = lit_.gbuffer();

@@ -56,7 +56,12 @@ public:
 
     std::vector<std::pair<std::string, std::size_t>> memory() const override { return lit_.memory(); }
 
-    std::string ignoredSetting(const std::string& key) const override { return lit_.ignoredSetting(key); }
+    std::string ignoredSetting(const std::string& key) const override {
+        return lit_.ignoredSetting(key, settings_.directLighting);
+    }
+    std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
+        return LitGBuffer::ignoredInScene(key, scene);
+    }
 
     // Positions and face normals against primary-ray hits (the reconstruction and
     // rasterization error); the direct radiance (shadowed through shadow maps unless

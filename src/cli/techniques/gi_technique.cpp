@@ -75,6 +75,9 @@ public:
             key, s.resolution, s.blurRadius, s.method == GiMethod::Hybrid ? std::optional(s.voxelTraversal) : std::nullopt);
         return why.empty() ? lit_.ignoredSetting(key) : why;
     }
+    std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
+        return LitGBuffer::ignoredInScene(key, scene);
+    }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
         std::vector<TechniqueOutput> out;

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -152,6 +153,18 @@ public:
         if ((key == "contact_steps" || key == "contact_thickness") && mask_.contactLength == 0.0f)
             return "read only with contact_length > 0";
         return {};
+    }
+
+    // Only directional lights have cascades (a spot light has one map); `reflective` is
+    // both kinds'. A point technique has none of these keys.
+    std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
+        const bool cascadeKey = key != "reflective" &&
+                                std::find(kCascadeKeys.begin(), kCascadeKeys.end(), key) != kCascadeKeys.end();
+        const bool directional = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+            return l.type == LightType::Directional && hasShadowMaps(l);
+        });
+        return cascadeKey && !directional ? "the scene has no shadow-casting directional light, the only kind with cascades"
+                                          : "";
     }
 
     std::string unsupported(const Scene& scene) const override {
