@@ -22,21 +22,14 @@ bool LitGBuffer::set(const std::string& key, const std::string& value) {
     return true;
 }
 
-namespace {
-bool isLitGBufferKey(const std::string& key) {
-    const auto& s = LitGBuffer::settings();
-    return std::any_of(s.begin(), s.end(), [&](const SettingInfo& i) { return i.key == key; });
-}
-} // namespace
-
 std::string LitGBuffer::ignoredSetting(const std::string& key, bool directLighting) const {
-    if (!directLighting && isLitGBufferKey(key)) return "read only with direct_lighting=1 (shadows darken the direct light)";
+    if (!directLighting && hasSetting(settings(), key)) return "read only with direct_lighting=1 (shadows darken the direct light)";
     return !enabled_ && (key == "shadow_resolution" || key == "shadow_filter") ? "read only with shadows=1" : "";
 }
 
 std::string LitGBuffer::ignoredInScene(const std::string& key, const Scene& scene) {
     const bool shadowed = std::any_of(scene.lights.begin(), scene.lights.end(), hasShadowMaps);
-    return isLitGBufferKey(key) && !shadowed ? "the scene has no shadow-casting light" : "";
+    return hasSetting(settings(), key) && !shadowed ? "the scene has no shadow-casting light" : "";
 }
 
 const GBufferView& LitGBuffer::render(const FrameSetup& frame, GBufferSettings settings) {

@@ -18,11 +18,9 @@ std::map<std::string, TechniqueInfo>& registry() {
 
 const std::map<std::string, TechniqueInfo>& techniques() { return registry(); }
 
-namespace {
 bool hasSetting(const std::vector<SettingInfo>& settings, const std::string& key) {
     return std::any_of(settings.begin(), settings.end(), [&](const SettingInfo& s) { return s.key == key; });
 }
-} // namespace
 
 void registerTechnique(TechniqueInfo info) {
     // A preset's key the technique does not take is a slip in its source file: fail at start-up,
@@ -78,7 +76,9 @@ std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const Te
 
 std::vector<std::string> ignoredInSceneNotes(const TechniqueInfo& info, const TechniqueRun& run,
                                              const std::vector<std::string>& keyValues, const Scene& scene) {
-    return notesFor(info, keyValues, [&](const std::string& key) { return run.ignoredInScene(key, scene); });
+    return notesFor(info, keyValues, [&](const std::string& key) {
+        return run.ignoredSetting(key).empty() ? run.ignoredInScene(key, scene) : std::string{};
+    });
 }
 
 std::string ignoredIntegratorSetting(const std::string& key, AoResolution resolution, int blurRadius,

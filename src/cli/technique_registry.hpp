@@ -150,7 +150,8 @@ void applySettings(const TechniqueInfo& info, TechniqueRun& run, const std::vect
 //! the run ignores (TechniqueRun::ignoredSetting).
 std::vector<std::string> ignoredSettingNotes(const TechniqueInfo& info, const TechniqueRun& run,
                                              const std::vector<std::string>& keyValues);
-//! The same for what `scene` decides (TechniqueRun::ignoredInScene).
+//! The same for what `scene` decides (TechniqueRun::ignoredInScene), for the keys
+//! ignoredSettingNotes has no note for: one note a key.
 std::vector<std::string> ignoredInSceneNotes(const TechniqueInfo& info, const TechniqueRun& run,
                                              const std::vector<std::string>& keyValues, const Scene& scene);
 //! Why an integrator's (AO's, GI's) setting `key` has no effect with the others, or empty: the
@@ -198,6 +199,8 @@ bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelG
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
 //! `settings` without `keys` (each must be there): a method's list from its module's.
+//! Whether `key` is one of `settings`' keys.
+bool hasSetting(const std::vector<SettingInfo>& settings, const std::string& key);
 std::vector<SettingInfo> withoutSettings(std::vector<SettingInfo> settings, const std::vector<std::string>& keys);
 //! The keys of voxelGridSettings, which only the voxel methods read.
 const std::vector<std::string>& voxelGridKeys();

@@ -213,8 +213,10 @@ expect_note("" ${render} --technique gbuffer --set shadow_resolution=64 --out "$
 # darkens the direct light with AO too.
 expect_note("note: compose ignores --set ao=1: the physical formula darkens only the ambient term"
             ${render} --technique compose --set gi=0 --set ao=1 --out "${WORK_DIR}/x.png")
-expect_note("note: compose ignores --set radius=0.5: read only with gi=1, or ao=1 where the combine uses AO"
+expect_note("note: compose ignores --set radius=0.5: read only with gi=1, or with ao=1 where the combine reads AO"
             ${render} --technique compose --set gi=0 --set radius=0.5 --out "${WORK_DIR}/x.png")
+expect_note("note: compose ignores --set ao=0: the physical formula darkens only the ambient term"
+            ${render} --technique compose --set gi=0 --set ao=0 --out "${WORK_DIR}/x.png")
 expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set ambient=0.2 --out "${WORK_DIR}/x.png")
 expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set formula=thesis --out "${WORK_DIR}/x.png")
 # ... and runs the AO pass only where the combine uses it.
@@ -250,6 +252,9 @@ foreach(key cascades=2 split_lambda=0.5 depth_bounds=0 cascade_blend=0.2)
   expect_note("" ${floor_render} --scene "${WORK_DIR}/spot_sun.json" --technique shadow.pcf --set ${key} --out "${WORK_DIR}/x.exr")
 endforeach()
 expect_note("" ${floor_render} --scene "${WORK_DIR}/spot.json" --technique shadow.pcf --set reflective=1 --out "${WORK_DIR}/x.exr")
+expect_note("note: shadow.pcf ignores --set split_lambda=0.5: read only with cascades > 1"
+            ${floor_render} --scene "${WORK_DIR}/spot_sun.json" --technique shadow.pcf --set cascades=1 --set split_lambda=0.5
+            --out "${WORK_DIR}/x.exr")
 foreach(technique gbuffer gi.screen compose)
   set(out "${WORK_DIR}/x.exr")
   if(technique STREQUAL "compose")
@@ -259,6 +264,16 @@ foreach(technique gbuffer gi.screen compose)
               ${floor_render} --scene "${WORK_DIR}/unshadowed.json" --technique ${technique} --set shadow_filter=hard --out "${out}")
   expect_note("" ${floor_render} --scene "${WORK_DIR}/spot.json" --technique ${technique} --set shadow_filter=hard --out "${out}")
 endforeach()
+# gi's shadows=0 adds the unshadowed measurement in bench whatever the scene's lights.
+expect_note("" ${floor_render} --scene "${WORK_DIR}/unshadowed.json" --technique gi.screen --set shadows=0 --out "${WORK_DIR}/x.exr")
+# One note a key: a key the settings already leave without effect gets no scene note too.
+execute_process(COMMAND ${floor_render} --scene "${WORK_DIR}/unshadowed.json" --technique gbuffer --set direct_lighting=0
+                        --set shadow_filter=hard --out "${WORK_DIR}/x.exr" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCHALL "note: [^\n]*" notes "${err}")
+if(NOT rc EQUAL 0 OR NOT notes STREQUAL
+   "note: gbuffer ignores --set shadow_filter=hard: read only with direct_lighting=1 (shadows darken the direct light)")
+  message(FATAL_ERROR "direct_lighting=0 shadow_filter=hard without shadow-casting lights: expected one note: ${notes}\n${out}${err}")
+endif()
 # bench names the scene for such a note.
 execute_process(COMMAND "${OBSCURA}" bench --scene "${WORK_DIR}/spot.json" --size 8x8 --frames 20 --spp 4
                         --techniques shadow.pcf --presets medium --set cascades=2 --out "${WORK_DIR}/bench_scene_note"

@@ -78,11 +78,12 @@ public:
         if (key == "gamma" && s.srgb) return "read only with srgb=0";
         if ((key == "ambient" || key == "ao") && physicalGi)
             return "the physical formula replaces the ambient term by the indirect light: read only with gi=0 or formula=thesis";
-        if (key == "ao" && withAo_ && !aoUsed())
+        if (key == "ao" && !combineReadsAo())
             return "the physical formula darkens only the ambient term with AO, and ambient is 0: read only with ambient > 0 "
                    "or formula=thesis";
         if (key == "indirect_scale" && !withGi_) return "read only with gi=1";
-        if (key == "radius" && !withGi_ && !aoUsed()) return "read only with gi=1, or ao=1 where the combine uses AO";
+        if (key == "radius" && !withGi_ && !aoUsed())
+            return "read only with gi=1, or with ao=1 where the combine reads AO (formula=thesis, or ambient > 0)";
         return lit_.ignoredSetting(key);
     }
     std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
@@ -127,11 +128,12 @@ private:
     // Whether the combine reads AO (compose.hpp): the thesis's formula always (AO darkens the
     // direct light too), the physical one only as the ambient term's factor, with no indirect
     // light and an ambient above 0. Otherwise no AO pass runs.
-    bool aoUsed() const {
+    bool combineReadsAo() const {
         const auto& s = settings_;
         const bool ambient = glm::any(glm::greaterThan(s.ambient, glm::vec3(0.0f)));
-        return withAo_ && (s.formula == CombineFormula::Thesis || (!withGi_ && ambient));
+        return s.formula == CombineFormula::Thesis || (!withGi_ && ambient);
     }
+    bool aoUsed() const { return withAo_ && combineReadsAo(); }
 
     Context& ctx_;
     LitGBuffer lit_;

@@ -75,8 +75,10 @@ public:
             key, s.resolution, s.blurRadius, s.method == GiMethod::Hybrid ? std::optional(s.voxelTraversal) : std::nullopt);
         return why.empty() ? lit_.ignoredSetting(key) : why;
     }
+    // shadows=0 adds the indirect_unshadowed measurement (measurements()) in any scene: the
+    // reference shadows every light, whether or not it has shadow maps.
     std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
-        return LitGBuffer::ignoredInScene(key, scene);
+        return key == "shadows" ? "" : LitGBuffer::ignoredInScene(key, scene);
     }
 
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {

@@ -45,10 +45,11 @@ const std::vector<SettingInfo> kSettings = {
     {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
 };
 
-// The cascades' keys: the spot and directional techniques' (a point technique's mask is of a
-// light mapped from its centre; in a scene that also has spot or directional lights, their
-// maps are rendered with the defaults).
-const std::vector<std::string> kCascadeKeys = {"cascades", "split_lambda", "reflective", "depth_bounds", "cascade_blend"};
+// The directional lights' cascades' keys. A point technique takes neither these nor
+// `reflective` (spot and directional lights' reflective maps): its mask is of a light mapped
+// from its centre; in a scene that also has spot or directional lights, their maps are
+// rendered with the defaults.
+const std::vector<std::string> kCascadeKeys = {"cascades", "split_lambda", "depth_bounds", "cascade_blend"};
 
 const std::map<std::string, ShadowFilter> kFilterNames = {
     {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},     {"vsm", ShadowFilter::Vsm},
@@ -82,6 +83,7 @@ bool filterReads(ShadowFilter filter, const std::string& key) {
 // the keys of the other filters.
 std::vector<SettingInfo> techniqueSettings(ShadowFilter filter, bool point, bool filterKey) {
     std::vector<std::string> unread = point ? kCascadeKeys : std::vector<std::string>{};
+    if (point) unread.push_back("reflective");
     if (!filterKey) {
         unread.push_back("filter");
         for (const SettingInfo& s : kSettings)
@@ -152,14 +154,14 @@ public:
         if (!filterReads(mask_.filter, key)) return "not read with filter=" + filterName(mask_.filter);
         if ((key == "contact_steps" || key == "contact_thickness") && mask_.contactLength == 0.0f)
             return "read only with contact_length > 0";
+        // One cascade spans the whole view distance: nothing to split or blend into.
+        if ((key == "split_lambda" || key == "cascade_blend") && maps_.cascades == 1) return "read only with cascades > 1";
         return {};
     }
 
-    // Only directional lights have cascades (a spot light has one map); `reflective` is
-    // both kinds'. A point technique has none of these keys.
+    // Only directional lights have cascades (a spot light has one map).
     std::string ignoredInScene(const std::string& key, const Scene& scene) const override {
-        const bool cascadeKey = key != "reflective" &&
-                                std::find(kCascadeKeys.begin(), kCascadeKeys.end(), key) != kCascadeKeys.end();
+        const bool cascadeKey = std::find(kCascadeKeys.begin(), kCascadeKeys.end(), key) != kCascadeKeys.end();
         const bool directional = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
             return l.type == LightType::Directional && hasShadowMaps(l);
         });
