@@ -198,9 +198,9 @@ struct VoxelGridOptions {
 bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal);
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
-//! `settings` without `keys` (each must be there): a method's list from its module's.
 //! Whether `key` is one of `settings`' keys.
 bool hasSetting(const std::vector<SettingInfo>& settings, const std::string& key);
+//! `settings` without `keys` (each must be there): a method's list from its module's.
 std::vector<SettingInfo> withoutSettings(std::vector<SettingInfo> settings, const std::vector<std::string>& keys);
 //! The keys of voxelGridSettings, which only the voxel methods read.
 const std::vector<std::string>& voxelGridKeys();
