@@ -38,12 +38,9 @@ using ivec4 = glm::ivec4;
 #define FILTER_REFINE_HEADER_UINTS 4
 // The tile list's header: two indirect dispatches (groups x, y, z), one group per listed tile
 // at the low resolution, then scale / 2 x scale / 2 groups of the upsampling's quads per tile
-// (y, z: the group's place in the tile); two unused, padding the header to 32 bytes.
+// (y, z: the group's place in the tile); the count of marking groups that are done
+// (geometry_tiles.comp.glsl), and one unused, padding the header to 32 bytes.
 #define FILTER_TILES_HEADER_UINTS 8
-// Invocations of geometry_tiles.comp.glsl's COMPACT group, each counting a run of marks: a
-// quarter of the 1024 every GL 4.5 implementation takes, so that one invocation's serial sum of
-// the runs stays short while the runs do too (32 marks each at 1920 x 1080, half resolution).
-#define FILTER_TILE_SCAN 256
 
 struct FilterParams {
     ivec4 sizes;   // x, y: low resolution; z: scale to the full resolution; w: blur taps each side

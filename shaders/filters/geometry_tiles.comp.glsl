@@ -1,33 +1,38 @@
-// Lists the tiles with geometry (geometry_tiles.glsl), in row order, in two dispatches:
-// - without COMPACT, one invocation per tile marks it, looking at the G-buffer depth of its
+// Lists the tiles with geometry (geometry_tiles.glsl), in row order, in one dispatch:
+// - one invocation per tile marks it, looking at the G-buffer depth of its
 //   (FILTER_WORKGROUP scale)^2 pixels, 2 x 2 texels per textureGather, until one is not
 //   background (isBackground). The passes also treat a pixel with normal alpha 0 as
 //   background, so the list holds every tile that any of them computes anything in, and
 //   possibly a few more;
-// - COMPACT, one group of FILTER_TILE_SCAN invocations writes the marked tiles' codes in row
-//   order and the dispatch headers: each invocation counts a run of marks, one adds the counts
-//   up, and each writes its run's tiles from its offset.
+// - the group that finishes marking last (a counter in the header) writes the marked tiles'
+//   codes in row order and the dispatch headers: each invocation counts a run of marks, one
+//   adds the counts up, and each writes its run's tiles from its offset.
 // Why row order, not an append per tile: on llvmpipe the integrator took about 7 % longer over
 // a list in the order the appends came (the Cornell box at 512 x 512, every tile listed), as
 // each group's tiles came from rows the threads interleaved. Why one invocation per tile, not
-// a group: a group's barriers, to combine its invocations' findings, made the pass cost 1.7 ms
-// there.
-//! variant: COMPACT
+// a group per tile: the groups' barriers, to combine their invocations' findings, made the
+// pass cost 1.7 ms there (the two barriers here come once per 8 x 8 tiles). Why the last group
+// compacts, not a second dispatch: at 128 x 128 on llvmpipe that dispatch cost 0.03-0.17 ms a
+// frame, as much as the marking (benchmarks/README.md).
 #include "../visibility/screen_march.glsl"
-#define GEOMETRY_TILES_ACCESS
+// Coherent: the last group reads the other groups' marks.
+#define GEOMETRY_TILES_ACCESS coherent restrict
 #define TILES
 #include "geometry_tiles.glsl"
 
 layout(location = FILTER_LOC_TILE_SCALE) uniform int tileScale;
+layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
+
+const uint kGroupInvocations = uint(FILTER_WORKGROUP * FILTER_WORKGROUP);
+
+shared bool lastGroup;
+shared uint runOffsets[kGroupInvocations];
 
 int tileSide() { return FILTER_WORKGROUP * tileScale; } // in G-buffer pixels
 ivec2 tileCount() { return (frameSize() + tileSide() - 1) / tileSide(); }
 uint tileTotal() { return uint(tileCount().x * tileCount().y); }
 // The marks follow the codes' room: tileCodes[tileTotal() + tile index, row by row].
 uint markSlot(uint index) { return tileTotal() + index; }
-
-#ifndef COMPACT
-layout(local_size_x = FILTER_WORKGROUP, local_size_y = FILTER_WORKGROUP) in;
 
 // Whether the 2 x 2 G-buffer pixels from `corner` hold geometry. Past the image's last row or
 // column the clamp-to-edge sampler repeats it, and the tile reaching past the image holds that
@@ -37,24 +42,33 @@ bool quadHasGeometry(ivec2 corner) {
     return !(isBackground(depth.x) && isBackground(depth.y) && isBackground(depth.z) && isBackground(depth.w));
 }
 
-void main() {
-    const ivec2 tile = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(tile, tileCount()))) return;
+bool tileHasGeometry(ivec2 tile) {
     const int quadsPerSide = tileSide() / 2;
     const ivec2 origin = tile * tileSide();
     bool geometry = false;
     for (int i = 0; i < quadsPerSide * quadsPerSide && !geometry; ++i)
         geometry = quadHasGeometry(origin + 2 * ivec2(i % quadsPerSide, i / quadsPerSide));
-    tileCodes[markSlot(uint(tile.y * tileCount().x + tile.x))] = geometry ? 1u : 0u;
+    return geometry;
 }
-#else
-layout(local_size_x = FILTER_TILE_SCAN) in;
 
-shared uint runOffsets[FILTER_TILE_SCAN];
+// Whether this group is the last to have marked its tiles: every mark is then written.
+bool finishedLast() {
+    memoryBarrierBuffer();
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+        lastGroup = atomicAdd(tileGroupsDone, 1u) == groups - 1u;
+    }
+    memoryBarrierShared();
+    barrier();
+    return lastGroup;
+}
 
-void main() {
-    const uint total = tileTotal(), run = (total + uint(FILTER_TILE_SCAN) - 1u) / uint(FILTER_TILE_SCAN);
-    const uint k = gl_LocalInvocationID.x, first = min(k * run, total), end = min(first + run, total);
+// Writes the marked tiles' codes in row order and the headers' group counts (all invocations).
+void compactMarks() {
+    memoryBarrierBuffer();
+    const uint total = tileTotal(), run = (total + kGroupInvocations - 1u) / kGroupInvocations;
+    const uint k = gl_LocalInvocationIndex, first = min(k * run, total), end = min(first + run, total);
     uint count = 0u;
     for (uint i = first; i < end; ++i) count += tileCodes[markSlot(i)];
     runOffsets[k] = count;
@@ -62,7 +76,7 @@ void main() {
     barrier();
     if (k == 0u) { // exclusive prefix sums of the runs' counts
         uint sum = 0u;
-        for (int j = 0; j < FILTER_TILE_SCAN; ++j) {
+        for (uint j = 0u; j < kGroupInvocations; ++j) {
             const uint c = runOffsets[j];
             runOffsets[j] = sum;
             sum += c;
@@ -77,4 +91,10 @@ void main() {
     for (uint i = first; i < end; ++i)
         if (tileCodes[markSlot(i)] != 0u) tileCodes[slot++] = (i % uint(columns)) | ((i / uint(columns)) << 16);
 }
-#endif
+
+// No return before the barriers, which every invocation of the group must reach.
+void main() {
+    const ivec2 tile = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(tile, tileCount()))) tileCodes[markSlot(uint(tile.y * tileCount().x + tile.x))] = tileHasGeometry(tile) ? 1u : 0u;
+    if (finishedLast()) compactMarks();
+}

@@ -23,7 +23,8 @@
 layout(std430, binding = FILTER_TILES_SSBO) GEOMETRY_TILES_ACCESS buffer GeometryTiles {
     uint tileGroups[3];     // glDispatchComputeIndirect's arguments: (tiles listed, 1, 1)
     uint tileQuadGroups[3]; // the upsampling's: (tiles listed, scale / 2, scale / 2)
-    uint tileUnused[2];
+    uint tileGroupsDone;    // geometry_tiles.comp.glsl: the groups that have marked their tiles
+    uint tileUnused;
     uint tileCodes[];       // x | y << 16, in tiles, listed in row order; then (while
                             // listing) a mark per tile, geometry_tiles.comp.glsl
 };

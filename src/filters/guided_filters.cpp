@@ -171,18 +171,14 @@ void GuidedFilters::findGeometryTiles(ContextImpl& ctx, const FilterImages& imag
         tilesBytes_ = bytes;
     }
     const GLuint quadGroupsPerSide = GLuint(scale / 2);
+    // No groups listed yet, none done marking (geometry_tiles.glsl's header).
     const GLuint header[FILTER_TILES_HEADER_UINTS] = {0, 1, 1, 0, quadGroupsPerSide, quadGroupsPerSide, 0, 0};
     ctx.gl.NamedBufferSubData(tiles_.get(), 0, sizeof header, header);
     ctx.state.bindStorageBuffer(ctx, FILTER_TILES_SSBO, tiles_.get());
-    const GLuint mark = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {});
-    ctx.gl.UseProgram(mark);
-    ctx.gl.ProgramUniform1i(mark, FILTER_LOC_TILE_SCALE, scale);
+    const GLuint program = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {});
+    ctx.gl.UseProgram(program);
+    ctx.gl.ProgramUniform1i(program, FILTER_LOC_TILE_SCALE, scale);
     dispatchCompute2D(ctx, tiles.x, tiles.y, FILTER_WORKGROUP); // one invocation per tile
-    ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const GLuint compact = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {"COMPACT"});
-    ctx.gl.UseProgram(compact);
-    ctx.gl.ProgramUniform1i(compact, FILTER_LOC_TILE_SCALE, scale);
-    ctx.gl.DispatchCompute(1, 1, 1);
     ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 

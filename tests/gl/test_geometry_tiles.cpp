@@ -23,13 +23,17 @@ using namespace obscura;
 namespace {
 
 // Odd and not square, so that the last tiles reach past the image; the Cornell box from far
-// enough away that whole tiles are background around it.
+// enough away that whole tiles are background around it. At half resolution 5 x 7 tiles,
+// at quarter 3 x 4: one group of the marking pass (geometry_tiles.comp.glsl) each.
 constexpr int kWidth = 97, kHeight = 75;
+// Several marking groups, the last of them partly outside the tile grid: at half
+// resolution 19 x 11 tiles (3 x 2 groups of 8 x 8), at quarter 10 x 6 (2 x 1).
+constexpr glm::ivec2 kManyTiles{289, 161};
 
 // From `distance` in front of the box, moved `shift` to the side (and `rise` up).
-Camera cornellCamera(float distance, float shift = 0.0f, float rise = 0.0f) {
+Camera cornellCamera(float distance, float shift = 0.0f, float rise = 0.0f, float aspect = float(kWidth) / float(kHeight)) {
     return Camera::perspective({{278 + shift, 273 + rise, -distance}, {278 + shift, 273 + rise, 0}, {0, 1, 0}},
-                               glm::radians(45.0f), float(kWidth) / float(kHeight), 10.0f, 8000.0f);
+                               glm::radians(45.0f), aspect, 10.0f, 8000.0f);
 }
 
 struct TileFixture {
@@ -39,17 +43,17 @@ struct TileFixture {
     Voxelizer voxelizer{ctx};
     assets::LoadedScene cornell = assets::builtinScene("cornell");
 
-    GBufferView render(GBuffer& gbuffer, const Camera& camera) {
-        return gbuffer.render(cornell.scene, camera, {kWidth, kHeight, true, {}});
+    GBufferView render(GBuffer& gbuffer, const Camera& camera, glm::ivec2 size = {kWidth, kHeight}) {
+        return gbuffer.render(cornell.scene, camera, {size.x, size.y, true, {}});
     }
 
     // The share of G-buffer pixels that show geometry.
     double coverage(GBuffer& gbuffer, const GBufferView& view) {
         const Image positions = readTexture(ctx, gbuffer.positions(view));
         int geometry = 0;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) geometry += positions.at(x, y, 3) > 0.0f;
-        return double(geometry) / double(kWidth * kHeight);
+        for (int y = 0; y < view.height; ++y)
+            for (int x = 0; x < view.width; ++x) geometry += positions.at(x, y, 3) > 0.0f;
+        return double(geometry) / double(view.width * view.height);
     }
 
     // Whether geometry reaches the image's last column and its top row (GL's last row): the
@@ -181,6 +185,23 @@ TEST_CASE("Geometry tiles give AO, bent normals and indirect light bit for bit a
         IndirectLightSettings hybrid = giSettings(GiMethod::Hybrid, resolution);
         hybrid.voxels = &grid;
         checkGi(f, frame, hybrid);
+    }
+}
+
+TEST_CASE("Geometry tiles listed by several marking groups give the same images as every tile", "[filters][ao][gi]") {
+    // The last marking group to finish lists the tiles of all of them (geometry_tiles.comp.glsl);
+    // with one group, as above, the other groups' marks are never read.
+    TileFixture f;
+    const GBufferView frame =
+        f.render(f.frameBuffer, cornellCamera(1300.0f, 0.0f, 0.0f, float(kManyTiles.x) / float(kManyTiles.y)), kManyTiles);
+    const double coverage = f.coverage(f.frameBuffer, frame);
+    CAPTURE(coverage);
+    CHECK(coverage < 0.4); // most tiles hold no geometry
+    CHECK(coverage > 0.1);
+    for (const AoResolution resolution : {AoResolution::Half, AoResolution::Quarter}) {
+        CAPTURE(static_cast<int>(resolution));
+        checkAo(f, frame, aoSettings(AoMethod::Points, resolution));
+        checkGi(f, frame, giSettings(GiMethod::Screen, resolution));
     }
 }
 
