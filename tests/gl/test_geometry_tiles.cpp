@@ -23,8 +23,8 @@ using namespace obscura;
 namespace {
 
 // Odd and not square, so that the last tiles reach past the image; the Cornell box from far
-// enough away that whole tiles are background around it. At half resolution 5 x 7 tiles,
-// at quarter 3 x 4: one group of the marking pass (geometry_tiles.comp.glsl) each.
+// enough away that whole tiles are background around it. At half resolution 7 x 5 tiles,
+// at quarter 4 x 3: one group of the marking pass (geometry_tiles.comp.glsl) each.
 constexpr int kWidth = 97, kHeight = 75;
 // Several marking groups, the last of them partly outside the tile grid: at half
 // resolution 19 x 11 tiles (3 x 2 groups of 8 x 8), at quarter 10 x 6 (2 x 1).
