@@ -205,11 +205,11 @@ float screenCellExit(ScreenRay r, vec2 lo, vec2 hi, float t0) {
 // The texture-space march through the pyramid: from sample j, the run of samples j..k in
 // j's cell at the current level is skipped when its view-z range (exact: z is linear in t)
 // misses the cell's bounds, after which the level goes up; otherwise the level goes down
-// until sample j is alone in its cell (always so at level 0), and j is classified as
-// screenMarchTexture does. Not further down: the levels below would bound only j, at a fetch
-// and a cell exit each; on llvmpipe (128 x 128, ao.raymarch high, 16 steps) going down to
-// level 0 made Hi-Z 1.62-1.70x the texture-space march's time on the Cornell box against
-// 1.49x this way (benchmarks/README.md). k comes from the
+// while the run holds more than j, and once it is j alone (k = j), or at level 0, j is
+// classified as screenMarchTexture does. Not down to level 0 first: the levels below would
+// bound only j, at a fetch and a cell exit each; on llvmpipe (128 x 128, ao.raymarch high,
+// 16 steps) that made Hi-Z 1.62-1.70x the texture-space march's time on the Cornell box
+// against 1.49x this way (benchmarks/README.md). k comes from the
 // segment's exit from the cell and is kept only when sample k lands in the cell itself
 // (else the run is j alone), so no sample outside the cell's bounds is ever skipped.
 // Returns t of the first hidden sample or -1; `fetches` counts texel fetches.
