@@ -1,9 +1,10 @@
 // Lists the tiles with geometry (geometry_tiles.glsl), in row order, in one dispatch:
-// - one invocation per tile marks it, looking at the G-buffer depth of its
-//   (FILTER_WORKGROUP scale)^2 pixels, 2 x 2 texels per textureGather, until one is not
-//   background (isBackground). The passes also treat a pixel with normal alpha 0 as
-//   background, so the list holds every tile that any of them computes anything in, and
-//   possibly a few more;
+// - one invocation per tile writes its pixel mask (tilePixelMask: a gather at each
+//   low-resolution pixel's top-left G-buffer pixel) and marks it if any G-buffer pixel of
+//   its (FILTER_WORKGROUP scale)^2 is not background (isBackground): at scale 2 those gathers
+//   read them all, at 4 a scan of the rest's 2 x 2 texels per textureGather follows until
+//   one is not. The passes also treat a pixel with normal alpha 0 as background, so the list
+//   holds every tile that any of them computes anything in, and possibly a few more;
 // - the group that finishes marking last (a counter in the header) writes the marked tiles'
 //   codes in row order and the dispatch headers: each invocation counts a run of marks, one
 //   adds the counts up, and each writes its run's tiles from its offset.
@@ -29,18 +30,22 @@ shared bool lastGroup;
 shared uint runOffsets[kGroupInvocations];
 
 int tileSide() { return FILTER_WORKGROUP * tileScale; } // in G-buffer pixels
-ivec2 tileCount() { return (frameSize() + tileSide() - 1) / tileSide(); }
+ivec2 tileCount() { return tileGrid(frameSize(), tileScale); }
 uint tileTotal() { return uint(tileCount().x * tileCount().y); }
 // The marks follow the codes' room: tileCodes[tileTotal() + tile index, row by row].
 uint markSlot(uint index) { return tileTotal() + index; }
 
-// Whether the 2 x 2 G-buffer pixels from `corner` hold geometry. Past the image's last row or
-// column the clamp-to-edge sampler repeats it, and the tile reaching past the image holds that
-// row or column itself, so no tile is marked for its neighbour's geometry.
-bool quadHasGeometry(ivec2 corner) {
-    const vec4 depth = textureGather(visDepth, (vec2(corner) + 1.0) / vec2(frameSize()), 0);
+// The depths of the 2 x 2 G-buffer pixels from `corner`, w that of `corner` itself
+// (textureGather's order). Past the image's last row or column the clamp-to-edge sampler
+// repeats it, and the tile reaching past the image holds that row or column itself, so no
+// tile is marked for its neighbour's geometry.
+vec4 quadDepth(ivec2 corner) { return textureGather(visDepth, (vec2(corner) + 1.0) / vec2(frameSize()), 0); }
+
+bool anyGeometry(vec4 depth) {
     return !(isBackground(depth.x) && isBackground(depth.y) && isBackground(depth.z) && isBackground(depth.w));
 }
+
+bool quadHasGeometry(ivec2 corner) { return anyGeometry(quadDepth(corner)); }
 
 bool tileHasGeometry(ivec2 tile) {
     const int quadsPerSide = tileSide() / 2;
@@ -49,6 +54,22 @@ bool tileHasGeometry(ivec2 tile) {
     for (int i = 0; i < quadsPerSide * quadsPerSide && !geometry; ++i)
         geometry = quadHasGeometry(origin + 2 * ivec2(i % quadsPerSide, i / quadsPerSide));
     return geometry;
+}
+
+// The tile's pixel mask (tiledGeometryPixel): bit i, row by row, set where low-resolution
+// pixel i has depth at its block's top-left G-buffer pixel. `geometry`: whether the gathers
+// at those pixels found any; at scale 2 they read the whole tile.
+uvec2 tilePixelMask(ivec2 tile, out bool geometry) {
+    const ivec2 lowSize = (frameSize() + tileScale - 1) / tileScale;
+    uvec2 mask = uvec2(0u);
+    geometry = false;
+    for (int i = 0; i < FILTER_WORKGROUP * FILTER_WORKGROUP; ++i) {
+        const ivec2 low = tile * FILTER_WORKGROUP + ivec2(i % FILTER_WORKGROUP, i / FILTER_WORKGROUP);
+        const vec4 depth = quadDepth(low * tileScale);
+        geometry = geometry || anyGeometry(depth);
+        if (all(lessThan(low, lowSize)) && !isBackground(depth.w)) mask[i / 32] |= 1u << uint(i % 32);
+    }
+    return mask;
 }
 
 // Whether this group is the last to have marked its tiles: every mark is then written.
@@ -95,6 +116,15 @@ void compactMarks() {
 // No return before the barriers, which every invocation of the group must reach.
 void main() {
     const ivec2 tile = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(tile, tileCount()))) tileCodes[markSlot(uint(tile.y * tileCount().x + tile.x))] = tileHasGeometry(tile) ? 1u : 0u;
+    if (all(lessThan(tile, tileCount()))) {
+        const uint index = uint(tile.y * tileCount().x + tile.x);
+        bool geometry;
+        const uvec2 mask = tilePixelMask(tile, geometry);
+        if (!geometry && tileScale > 2) geometry = tileHasGeometry(tile);
+        tileCodes[markSlot(index)] = geometry ? 1u : 0u;
+        const uint maskSlot = pixelMaskSlot(index, tileTotal());
+        tileCodes[maskSlot] = mask.x;
+        tileCodes[maskSlot + 1u] = mask.y;
+    }
     if (finishedLast()) compactMarks();
 }

@@ -57,8 +57,8 @@ bool refinePixel(out ivec2 pixel) {
 #endif
 
 // The pixel an integrator's invocation computes and the G-buffer pixel it is computed at:
-// at the reduced resolution `size`, the top-left G-buffer pixel of its block (TILES: in a
-// listed tile, geometry_tiles.glsl); REFINE: a listed G-buffer pixel, both, so that its noise
+// at the reduced resolution `size`, the top-left G-buffer pixel of its block (TILES: one of
+// a listed tile's pixels with geometry there, geometry_tiles.glsl); REFINE: a listed G-buffer pixel, both, so that its noise
 // is what a full-resolution run gives it. False: none (past the image or the list).
 bool integratorPixel(ivec2 size, int scale, out ivec2 pixel, out ivec2 full) {
 #ifdef REFINE
@@ -67,12 +67,13 @@ bool integratorPixel(ivec2 size, int scale, out ivec2 pixel, out ivec2 full) {
     return listed;
 #else
 #ifdef TILES
-    pixel = tiledPixel();
+    const bool listed = tiledGeometryPixel(frameSize(), scale, pixel);
 #else
+    const bool listed = true;
     pixel = ivec2(gl_GlobalInvocationID.xy);
 #endif
     full = min(pixel * scale, frameSize() - 1);
-    return all(lessThan(pixel, size));
+    return listed && all(lessThan(pixel, size));
 #endif
 }
 #endif

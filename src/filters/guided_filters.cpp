@@ -164,8 +164,8 @@ void GuidedFilters::findGeometryTiles(ContextImpl& ctx, const FilterImages& imag
     clearToZero(ctx, images.direction);
     const int scale = images.scale;
     const glm::ivec2 tiles = tileGrid(images.size);
-    // The codes, then a mark per tile (geometry_tiles.comp.glsl).
-    const std::size_t bytes = (FILTER_TILES_HEADER_UINTS + 2 * std::size_t(tiles.x) * std::size_t(tiles.y)) * sizeof(GLuint);
+    // The codes, a mark per tile, two uints of pixel mask per tile (geometry_tiles.glsl).
+    const std::size_t bytes = (FILTER_TILES_HEADER_UINTS + 4 * std::size_t(tiles.x) * std::size_t(tiles.y)) * sizeof(GLuint);
     if (!tiles_ || tilesBytes_ != bytes) {
         tiles_ = createBuffer(ctx, bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.geometry_tiles");
         tilesBytes_ = bytes;
