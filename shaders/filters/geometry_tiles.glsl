@@ -46,10 +46,10 @@ ivec2 tileGrid(ivec2 gbufferSize, int scale) {
 }
 
 // Where tile `index` (row by row) keeps its pixel mask: after the codes and the marks.
-uint pixelMaskSlot(uint index, uint tileTotal) { return 2u * tileTotal + 2u * index; }
+uint pixelMaskSlot(uint index, uint tiles) { return 2u * tiles + 2u * index; }
 
-// The number of the n-th (from 0) set bit of `word`, which has more than n: a binary search
-// on the bit counts of its halves.
+// The number of the n-th (from 0) set bit of `word` (31 when it has n or fewer): a binary
+// search on the bit counts of its halves.
 uint nthSetBit(uint word, uint n) {
     uint first = 0u;
     for (int width = 16; width > 0; width >>= 1) {
@@ -79,7 +79,7 @@ bool tiledGeometryPixel(ivec2 gbufferSize, int scale, out ivec2 pixel) {
     const uvec2 mask = uvec2(tileCodes[slot], tileCodes[slot + 1u]);
     const uint k = uint(gl_LocalInvocationID.y) * uint(FILTER_WORKGROUP) + uint(gl_LocalInvocationID.x);
     const uint inLow = uint(bitCount(mask.x)), inBoth = inLow + uint(bitCount(mask.y));
-    const uint index = k < inLow ? nthSetBit(mask.x, k) : 32u + nthSetBit(mask.y, min(k, inBoth - 1u) - inLow);
+    const uint index = k < inLow ? nthSetBit(mask.x, k) : 32u + nthSetBit(mask.y, k - inLow);
     pixel = tile * FILTER_WORKGROUP + ivec2(index % uint(FILTER_WORKGROUP), index / uint(FILTER_WORKGROUP));
     return k < inBoth;
 }

@@ -63,10 +63,10 @@ public:
     //! Lists the tiles of FILTER_WORKGROUP^2 pixels at the low resolution (images.size) with a
     //! G-buffer pixel that is not background, for the integrator (dispatchGeometryTiles) and
     //! the filters (GuidedFilterSettings::geometryTiles), and leaves the list bound at
-    //! FILTER_TILES_SSBO for them. Also gives `images` what the tiles the integrator skips must
-    //! hold for the filters, which read them across tile edges (guide 0: background; the value
-    //! `background`, the direction 0: finite, for weights of 0); in the pass, so that its time
-    //! counts what running over tiles costs. The caller has bound the frame block and the
+    //! FILTER_TILES_SSBO for them. Also gives `images` what the tiles and pixels the
+    //! integrator skips (tiledGeometryPixel) must hold for the filters, which read them across
+    //! tile edges (guide 0: background; the value `background`, the direction 0: finite, for
+    //! weights of 0); in the pass, so that its time counts what running over tiles costs. The caller has bound the frame block and the
     //! G-buffer's depth (VIS_DEPTH_UNIT). Pass `passName`.
     void findGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background, const char* passName);
     //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 pixels a

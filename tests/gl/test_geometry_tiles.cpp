@@ -1,6 +1,7 @@
 // Geometry tiles (AmbientOcclusionSettings::geometryTiles, shaders/filters/geometry_tiles.glsl):
 // at half and quarter resolution the integrator, the blur and the upsampling run only over
-// the tiles with geometry, and the other tiles are cleared to the background values. The
+// the tiles with geometry (the integrator only on their pixels with geometry), and the other
+// tiles and pixels keep the background values they are cleared to. The
 // documented promise is the same result as a dispatch over every tile, so the check is
 // equality, bit for bit: each pixel's rays, sums and filter weights are the same
 // computations either way; only the order of the refinement list differs, and each listed
