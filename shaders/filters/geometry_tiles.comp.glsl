@@ -3,8 +3,9 @@
 //   low-resolution pixel's top-left G-buffer pixel) and marks it if any G-buffer pixel of
 //   its (FILTER_WORKGROUP scale)^2 is not background (isBackground): at scale 2 those gathers
 //   read them all, at 4 (when they found none) a scan of the whole tile's 2 x 2 texels per
-//   textureGather follows until one is not. The passes also treat a pixel with normal alpha 0 as background, so the list
-//   holds every tile that any of them computes anything in, and possibly a few more;
+//   textureGather follows until one is not. The passes also treat a pixel with normal
+//   alpha 0 as background, so the list holds every tile that any of them computes anything
+//   in, and possibly a few more;
 // - the group that finishes marking last (a counter in the header) writes the marked tiles'
 //   codes in row order and the dispatch headers: each invocation counts a run of marks, one
 //   adds the counts up, and each writes its run's tiles from its offset.

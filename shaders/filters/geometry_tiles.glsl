@@ -62,9 +62,9 @@ uint nthSetBit(uint word, uint n) {
     return first;
 }
 
-// The integrator's pixel for this invocation of a group per listed tile: the k-th (k the
-// invocation's place in its 8 x 8 group) of the tile's low-resolution pixels whose block's
-// top-left G-buffer pixel has depth, in row order; false for the invocations past them.
+// The integrator's pixel for invocation k (its place in its 8 x 8 group) of a group per
+// listed tile: the k-th of the tile's low-resolution pixels whose block's top-left G-buffer
+// pixel has depth, in row order; false for the invocations past them.
 // Why not tiledPixel(): on llvmpipe an 8-lane batch runs its loops as long as its slowest
 // lane, so a batch with one pixel of a thin object among background costs as much as a full
 // one. Packed, a tile's pixels fill the first batches and the rest run only the straight-line
@@ -73,11 +73,10 @@ uint nthSetBit(uint word, uint n) {
 // paired runs; benchmarks/README.md).
 // The mask, not a compaction in shared memory: that one's two barriers a group made the
 // integrator 40 % slower on the Cornell box at 512 x 512, every tile full.
-bool tiledGeometryPixel(ivec2 gbufferSize, int scale, out ivec2 pixel) {
+bool tiledGeometryPixel(ivec2 gbufferSize, int scale, uint k, out ivec2 pixel) {
     const ivec2 tile = listedTile(gl_WorkGroupID.x), grid = tileGrid(gbufferSize, scale);
     const uint slot = pixelMaskSlot(uint(tile.y * grid.x + tile.x), uint(grid.x * grid.y));
     const uvec2 mask = uvec2(tileCodes[slot], tileCodes[slot + 1u]);
-    const uint k = uint(gl_LocalInvocationID.y) * uint(FILTER_WORKGROUP) + uint(gl_LocalInvocationID.x);
     const uint inLow = uint(bitCount(mask.x)), inBoth = inLow + uint(bitCount(mask.y));
     const uint index = k < inLow ? nthSetBit(mask.x, k) : 32u + nthSetBit(mask.y, k - inLow);
     pixel = tile * FILTER_WORKGROUP + ivec2(index % uint(FILTER_WORKGROUP), index / uint(FILTER_WORKGROUP));

@@ -4,8 +4,9 @@
 //
 // Background pixels (guide z = 0) are neither read nor written: no tap reads them, so the
 // horizontal pass leaves them out of its temporary, and the vertical pass leaves the value
-// the integrator wrote there (TILES: the tiles pass's clear, as the integrator skips them). MODULATE: the vertical pass of a full-resolution blur, the
-// last step (filter_common.glsl). TILES: one group per tile with geometry
+// the integrator wrote there (TILES: the tiles pass's clear, as the integrator skips them).
+// MODULATE: the vertical pass of a full-resolution blur, the last step (filter_common.glsl).
+// TILES: one group per tile with geometry
 // (geometry_tiles.glsl); every pixel a tap reads lies in one, the rest are background.
 //! variant: RGB
 //! variant: RGB MODULATE

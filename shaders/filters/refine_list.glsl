@@ -59,7 +59,8 @@ bool refinePixel(out ivec2 pixel) {
 // The pixel an integrator's invocation computes and the G-buffer pixel it is computed at:
 // at the reduced resolution `size`, the top-left G-buffer pixel of its block (TILES: one of
 // a listed tile's pixels with geometry there, geometry_tiles.glsl); REFINE: a listed
-// G-buffer pixel, both, so that its noise is what a full-resolution run gives it. False: none (past the image or the list).
+// G-buffer pixel, both, so that its noise is what a full-resolution run gives it. False:
+// none (past the image or the list).
 bool integratorPixel(ivec2 size, int scale, out ivec2 pixel, out ivec2 full) {
 #ifdef REFINE
     const bool listed = refinePixel(pixel);
@@ -67,7 +68,7 @@ bool integratorPixel(ivec2 size, int scale, out ivec2 pixel, out ivec2 full) {
     return listed;
 #else
 #ifdef TILES
-    const bool listed = tiledGeometryPixel(frameSize(), scale, pixel);
+    const bool listed = tiledGeometryPixel(frameSize(), scale, integratorGroupPixel(), pixel);
 #else
     const bool listed = true;
     pixel = ivec2(gl_GlobalInvocationID.xy);

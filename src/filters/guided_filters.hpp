@@ -66,8 +66,9 @@ public:
     //! FILTER_TILES_SSBO for them. Also gives `images` what the tiles and pixels the
     //! integrator skips (tiledGeometryPixel) must hold for the filters, which read them across
     //! tile edges (guide 0: background; the value `background`, the direction 0: finite, for
-    //! weights of 0); in the pass, so that its time counts what running over tiles costs. The caller has bound the frame block and the
-    //! G-buffer's depth (VIS_DEPTH_UNIT). Pass `passName`.
+    //! weights of 0); in the pass, so that its time counts what running over tiles costs. The
+    //! caller has bound the frame block and the G-buffer's depth (VIS_DEPTH_UNIT). Pass
+    //! `passName`.
     void findGeometryTiles(ContextImpl& ctx, const FilterImages& images, float background, const char* passName);
     //! After findGeometryTiles: runs the program in use (TILES, FILTER_WORKGROUP^2 pixels a
     //! group) once per listed tile.
