@@ -12,7 +12,9 @@
 // pixels share the same four low-resolution neighbours, so they are loaded once per quad,
 // and the quad's own depth and normal are one textureGather per channel. TILES: only the
 // quads of the tiles with geometry (geometry_tiles.glsl); the caller has cleared the images to
-// what background pixels get.
+// what background pixels get. HALF (scale 2): the quad's first pixel lies on its lower
+// neighbour and the others halfway between neighbours, so 7 of the 16 pixel-neighbour pairs
+// have bilinear weight 0 and add exactly 0; their guide weights are not computed (main).
 //! variant: RGB
 //! variant: DIRECTION
 //! variant: REFINE
@@ -23,6 +25,9 @@
 //! variant: DIRECTION REFINE TILES
 //! variant: RGB REFINE MODULATE TILES
 //! variant: TILES
+//! variant: HALF
+//! variant: DIRECTION REFINE TILES HALF
+//! variant: RGB REFINE MODULATE TILES HALF
 #include "../visibility/screen_march.glsl"
 #include "filter_common.glsl"
 #include "geometry_tiles.glsl"
@@ -56,20 +61,51 @@ Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
 
 Blend startBlend() { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), vec3(0.0), 0.0, 1e30); }
 
-// Adds neighbour `corner` (0 or 1 per axis) with its guide, value and direction offset to a blend.
-void accumulate(inout Blend b, Target t, ivec2 corner, vec4 guide, FILTER_VALUE value, FILTER_VALUE anchor, vec3 direction) {
+// One low-resolution neighbour: its guide (w = 0: background), value and direction offset.
+struct Neighbour {
+    vec4 guide;
+    FILTER_VALUE value;
+    vec3 direction;
+};
+
+// Neighbour `corner` (0 or 1 per axis) of the low-resolution pixel `base`. Past the last row
+// or column the last one repeats (the image's own edge).
+Neighbour loadNeighbour(ivec2 base, ivec2 corner) {
+    const ivec2 q = min(base + corner, filterLowSize() - 1);
+    const vec4 guide = imageLoad(guideIn, q);
+#ifdef DIRECTION
+    return Neighbour(guide, loadValue(q), directionOffset(q, guide.xyz));
+#else
+    return Neighbour(guide, loadValue(q), vec3(0.0));
+#endif
+}
+
+// How much neighbour `corner` counts for target t: bilinearly and by guideWeight.
+float neighbourWeight(Target t, ivec2 corner, Neighbour q) {
     const vec2 bilinear = mix(1.0 - t.f, t.f, vec2(corner));
-    const bool usable = guide.w != 0.0;
-    const float w = usable ? bilinear.x * bilinear.y * guideWeight(t.n, t.z, guide.xyz, guide.w) : 0.0;
-    b.offsets += w * (value - anchor);
-    b.direction += w * direction;
+    return q.guide.w != 0.0 ? bilinear.x * bilinear.y * guideWeight(t.n, t.z, q.guide.xyz, q.guide.w) : 0.0;
+}
+
+void addWeighted(inout Blend b, float w, Neighbour q, FILTER_VALUE anchor) {
+    b.offsets += w * (q.value - anchor);
+    b.direction += w * q.direction;
     b.total += w;
-    const float dz = abs(guide.w - t.z);
-    if (usable && dz < b.nearestDz) {
+}
+
+// Keeps the neighbour nearest in depth among the usable ones (the fallback, see writePixel).
+void trackNearest(inout Blend b, Target t, Neighbour q) {
+    const float dz = abs(q.guide.w - t.z);
+    if (q.guide.w != 0.0 && dz < b.nearestDz) {
         b.nearestDz = dz;
-        b.nearest = value;
-        b.nearestDirection = direction;
+        b.nearest = q.value;
+        b.nearestDirection = q.direction;
     }
+}
+
+// Adds neighbour `corner` to a blend.
+void accumulate(inout Blend b, Target t, ivec2 corner, Neighbour q, FILTER_VALUE anchor) {
+    addWeighted(b, neighbourWeight(t, corner, q), q, anchor);
+    trackNearest(b, t, q);
 }
 
 // Whether the pixel is in the image (odd sizes: the quad's far half is outside) and, with
@@ -118,33 +154,59 @@ void main() {
     const Target t01 = makeTarget(depth.x, vec4(nx.x, ny.x, nz.x, na.x), f00 + vec2(0.0, step.y));
     const Target t11 = makeTarget(depth.y, vec4(nx.y, ny.y, nz.y, na.y), f00 + step);
     Blend b00 = startBlend(), b10 = startBlend(), b01 = startBlend(), b11 = startBlend();
-    // A loop, not straight code, so that on llvmpipe a SIMD batch of background quads skips
-    // the last three neighbours' loads: straight-line code runs for masked-off lanes too, and
-    // so does a loop's first pass, but later passes stop once no lane is left
-    // (benchmarks/README.md).
+    // Loops, not straight code, so that on llvmpipe a SIMD batch of background quads skips
+    // most neighbours' loads: straight-line code runs for masked-off lanes too, and so does a
+    // loop's first pass, but later passes stop once no lane is left (benchmarks/README.md).
     const bool geometry = !(t00.background && t10.background && t01.background && t11.background);
     FILTER_VALUE anchor = FILTER_VALUE(0.0);
     bool anchored = false;
-    for (int i = 0; i < (geometry ? 4 : 0); ++i) {
+#ifdef HALF
+    // Neighbour (0, 0) counts for all four pixels, (1, 0) for the right two, (0, 1) for the
+    // top two, (1, 1) for the last one; every pixel still looks for its nearest among all four.
+    // The same sums in the same order as accumulate's, less the terms of bilinear weight 0:
+    // 10 guide weights a quad instead of 16 (on llvmpipe at 512 x 512 the guide weights took a
+    // quarter of the upsampling's time).
+    const Neighbour q0 = loadNeighbour(base, ivec2(0));
+    if (q0.guide.w != 0.0) {
+        anchor = q0.value;
+        anchored = true;
+    }
+    accumulate(b00, t00, ivec2(0), q0, anchor);
+    accumulate(b10, t10, ivec2(0), q0, anchor);
+    accumulate(b01, t01, ivec2(0), q0, anchor);
+    accumulate(b11, t11, ivec2(0), q0, anchor);
+    for (int i = 1; i < (geometry ? 4 : 0); ++i) {
         const ivec2 corner = ivec2(i & 1, i >> 1);
-        // Past the last row or column the last one repeats (the image's own edge).
-        const ivec2 q = min(base + corner, filterLowSize() - 1);
-        const vec4 guide = imageLoad(guideIn, q);
-        const FILTER_VALUE value = loadValue(q);
-#ifdef DIRECTION
-        const vec3 direction = directionOffset(q, guide.xyz);
-#else
-        const vec3 direction = vec3(0.0);
-#endif
-        if (!anchored && guide.w != 0.0) { // the first usable neighbour (see Blend)
-            anchor = value;
+        const Neighbour q = loadNeighbour(base, corner);
+        if (!anchored && q.guide.w != 0.0) {
+            anchor = q.value;
             anchored = true;
         }
-        accumulate(b00, t00, corner, guide, value, anchor, direction);
-        accumulate(b10, t10, corner, guide, value, anchor, direction);
-        accumulate(b01, t01, corner, guide, value, anchor, direction);
-        accumulate(b11, t11, corner, guide, value, anchor, direction);
+        // The one other pixel it counts for: (1, 0) and (0, 1) their own side's; for (1, 1)
+        // none, so its weight is 0 (t10 lies on the lower row, bilinear y 0) and adds 0.
+        const bool right = corner.x == 1;
+        const float w = neighbourWeight(right ? t10 : t01, corner, q);
+        if (right) addWeighted(b10, w, q, anchor);
+        else addWeighted(b01, w, q, anchor);
+        trackNearest(b00, t00, q);
+        trackNearest(b10, t10, q);
+        trackNearest(b01, t01, q);
+        accumulate(b11, t11, corner, q, anchor);
     }
+#else
+    for (int i = 0; i < (geometry ? 4 : 0); ++i) {
+        const ivec2 corner = ivec2(i & 1, i >> 1);
+        const Neighbour q = loadNeighbour(base, corner);
+        if (!anchored && q.guide.w != 0.0) { // the first usable neighbour (see Blend)
+            anchor = q.value;
+            anchored = true;
+        }
+        accumulate(b00, t00, corner, q, anchor);
+        accumulate(b10, t10, corner, q, anchor);
+        accumulate(b01, t01, corner, q, anchor);
+        accumulate(b11, t11, corner, q, anchor);
+    }
+#endif
 #ifdef REFINE
     refineAppendQuad(p00, bvec4(wantsRefinement(p00, t00, b00), wantsRefinement(p00 + ivec2(1, 0), t10, b10),
                                 wantsRefinement(p00 + ivec2(0, 1), t01, b01), wantsRefinement(p00 + ivec2(1, 1), t11, b11)));

@@ -132,6 +132,7 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
         startRefineList(ctx, fullSize);
         defines.push_back("REFINE");
     }
+    if (images.scale == 2) defines.push_back("HALF"); // the bilinear weights' zeros, known
     ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, defines));
     bindImages(ctx, images, images.value, images.direction, fullValue, fullDirection);
     // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
