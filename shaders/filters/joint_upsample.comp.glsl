@@ -164,8 +164,8 @@ void main() {
     // Neighbour (0, 0) counts for all four pixels, (1, 0) for the right two, (0, 1) for the
     // top two, (1, 1) for the last one; every pixel still looks for its nearest among all four.
     // The same sums in the same order as accumulate's, less the terms of bilinear weight 0:
-    // 10 guide weights a quad instead of 16 (on llvmpipe at 512 x 512 the guide weights took a
-    // quarter of the upsampling's time).
+    // 10 guide weights a quad instead of 16. On llvmpipe at 512 x 512 that took the pass to
+    // 0.85-0.95 of its time (benchmarks/README.md): an `if` would not, as masked lanes run it.
     const Neighbour q0 = loadNeighbour(base, ivec2(0));
     if (q0.guide.w != 0.0) {
         anchor = q0.value;
