@@ -146,7 +146,8 @@ struct RefinementCount {
     //! weight for
     std::size_t asked = 0;
     //! Of them, computed at full resolution: all, or none when more asked than the list holds
-    //! (a quarter of the G-buffer's pixels; they keep the upsampled value)
+    //! (a quarter of the G-buffer's pixels, at most 65535 x 64 = 4194240: the groups of 64 one
+    //! indirect dispatch is sure to take; they keep the upsampled value)
     std::size_t refined = 0;
 };
 

@@ -5,6 +5,10 @@
 // units are whatever the scene uses (the Cornell box is in millimetres). Depth is stored as
 // 32-bit float. Reversed-Z (near → 1, far → 0, optionally an infinite far plane) needs
 // ClipDepth::ZeroToOne; Obscura sets glClipControl accordingly when it rasterizes.
+// Texture row 0 is the bottom of the view (glClipControl's GL_LOWER_LEFT origin, the GL
+// default): a host that renders with GL_UPPER_LEFT stores its rows the other way round, and
+// its buffers reconstruct mirrored in y unless the projection given here mirrors y too
+// (projection[1][1] < 0), which AoMethod::Horizon refuses.
 #include "obscura/export.hpp"
 
 #include <glm/glm.hpp>

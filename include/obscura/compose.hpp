@@ -54,7 +54,7 @@ struct ComposeSettings {
 
 //! The inputs of the combine; ao and indirect may be empty.
 struct ComposeInputs {
-    GBufferView gbuffer;         //!< direct radiance and albedo are required
+    GBufferView gbuffer;         //!< depth, direct radiance and albedo are required
     TextureView ao;              //!< AmbientOcclusionView::ao (the G-buffer's size) or empty
     TextureView indirect;        //!< IndirectLightView::radiance (the G-buffer's size) or empty
 };
@@ -97,8 +97,10 @@ public:
     //! Combines and tone maps into a GL_RGBA8 texture of display values (sRGB-encoded when
     //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also
     //! finds the frame's largest luminance, for Drago with an automatic maximum) and
-    //! "compose.tonemap". Throws Error{InvalidArgument} for enumerators or
-    //! settings out of range or inputs of the wrong size or without radiance/albedo.
+    //! "compose.tonemap". Background pixels (the G-buffer's depth equal to its camera's clear
+    //! depth) get their direct radiance only: no ambient or indirect term, whatever the
+    //! host's albedo there. Throws Error{InvalidArgument} for enumerators or settings out of
+    //! range or inputs of the wrong size or without depth/radiance/albedo.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
     //! The combined radiance of the last compose call times its `exposure`, as the tone

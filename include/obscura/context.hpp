@@ -49,6 +49,13 @@
 // other viewport indices, the draw buffers of framebuffers we do not own are never touched).
 // Object state of host objects is never modified either.
 //
+// Memory barriers: Obscura reads the host's textures (depth, normals, albedo, radiance)
+// through texture fetches. A host that wrote them with image stores or from a compute
+// shader calls glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT) before handing them over, as
+// GL requires of any reader; rasterized writes need nothing. Obscura's own outputs need no
+// barrier of the host's: a call ends with glMemoryBarrier for texture fetches, image access,
+// texture and buffer updates (read-backs), shader storage and framebuffer use.
+//
 // Creating a Context and destroying it or a module issue no state change other than
 // deleting Obscura's own objects (where the host bound or attached one of our textures, GL
 // unbinds it as for any deleted object). Output textures are valid until the module's next

@@ -234,12 +234,12 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        const float reach = voxelClearLength(from, normal, w, ao.shape.x);
+        float reach = voxelClearLength(from, normal, w, ao.shape.x);
         if (!(reach > 0.0)) {
             aoAdd(e, w, normal, -1.0);
             continue;
         }
-        const vec3 endVoxel = (ao.viewToVoxel * vec4(from.start + w * reach, 1.0)).xyz;
+        const vec3 endVoxel = voxelTraceableEnd(ao.viewToVoxel, from.start, w, reach);
         // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
 #if TRAVERSAL == VOXEL_METHOD_MARCH
         const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, ao.counts.y, jitter);

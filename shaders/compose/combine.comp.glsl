@@ -1,5 +1,7 @@
 // The combined radiance per pixel (see CombineFormula), times the exposure, and the largest
 // luminance of the frame for Drago's tone mapping (positive floats order like their bits).
+// Background pixels keep their direct radiance only: a host's albedo there need not be 0
+// (ours is), and ambient light on the sky would brighten it by rho * L_amb.
 #include "compose_common.glsl"
 
 layout(local_size_x = COMPOSE_WORKGROUP, local_size_y = COMPOSE_WORKGROUP) in;
@@ -7,6 +9,7 @@ layout(binding = COMPOSE_DIRECT_UNIT) uniform sampler2D directRadiance;
 layout(binding = COMPOSE_ALBEDO_UNIT) uniform sampler2D albedo;
 layout(binding = COMPOSE_AO_UNIT) uniform sampler2D aoTexture;
 layout(binding = COMPOSE_INDIRECT_UNIT) uniform sampler2D indirect;
+layout(binding = COMPOSE_DEPTH_UNIT) uniform sampler2D depth;
 layout(binding = COMPOSE_RADIANCE_IMAGE, rgba16f) writeonly uniform image2D radianceOut;
 layout(std430, binding = COMPOSE_LUMINANCE_SSBO) buffer Luminance {
     uint maxLuminanceBits;
@@ -16,9 +19,10 @@ void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, compose.size.xy))) return;
     const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
-    const vec3 rho = clampAlbedo(texelFetch(albedo, pixel, 0).rgb);
-    const float ao = (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
-    const bool hasIndirect = (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
+    const bool surface = texelFetch(depth, pixel, 0).r != compose.display.y;
+    const vec3 rho = surface ? clampAlbedo(texelFetch(albedo, pixel, 0).rgb) : vec3(0.0);
+    const float ao = surface && (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
+    const bool hasIndirect = surface && (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
     const vec3 l1 = hasIndirect ? clampRadiance(texelFetch(indirect, pixel, 0).rgb) : vec3(0.0);
     const vec3 ambient = rho * ao * compose.ambient.rgb;
     vec3 l;
@@ -26,5 +30,6 @@ void main() {
     else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
     const vec3 exposed = clampRadiance(l * compose.tone.x);
     imageStore(radianceOut, pixel, vec4(exposed, 1.0));
-    atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(exposed), 0.0)));
+    // Without its sign bit: max(-0.0, 0.0) may be -0.0, whose bits would beat every positive float.
+    atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(exposed), 0.0)) & 0x7FFFFFFFu);
 }

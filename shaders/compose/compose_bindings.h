@@ -17,6 +17,7 @@ using ivec4 = glm::ivec4;
 #define COMPOSE_INDIRECT_UNIT 3
 #define COMPOSE_RADIANCE_UNIT 4
 #define COMPOSE_SOURCE_UNIT 5      // drawToHost
+#define COMPOSE_DEPTH_UNIT 6
 #define COMPOSE_RADIANCE_IMAGE 0   // rgba16f
 #define COMPOSE_DISPLAY_IMAGE 1    // rgba8
 #define COMPOSE_LUMINANCE_SSBO 0   // uint: the largest luminance's float bits
@@ -36,7 +37,7 @@ using ivec4 = glm::ivec4;
 struct ComposeParams {
     vec4 ambient;  // rgb: L_amb; w: indirect scale k
     vec4 tone;     // x: exposure, y: Drago L_wmax (0: measured), z: Drago bias, w: Drago L_dmax
-    vec4 display;  // x: gamma (when not sRGB), y, z, w: unused
+    vec4 display;  // x: gamma (when not sRGB), y: the depth of background pixels, z, w: unused
     ivec4 flags;   // x: formula, y: tone mapper, z: sRGB (0/1), w: COMPOSE_HAS_*
     ivec4 size;    // x, y: pixels; z, w: unused
 };

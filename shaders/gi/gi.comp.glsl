@@ -105,9 +105,9 @@ vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pi
 #else
         // Only as far as the ray provably stays above the surface's own voxels
         // (surface_rays.glsl); a ray traced no farther reads nothing.
-        const float reach = voxelClearLength(from, normal, w, radius);
+        float reach = voxelClearLength(from, normal, w, radius);
         if (!(reach > 0.0)) continue;
-        const vec3 endVoxel = (gi.viewToVoxel * vec4(from.start + w * reach, 1.0)).xyz;
+        const vec3 endVoxel = voxelTraceableEnd(gi.viewToVoxel, from.start, w, reach);
 #if TRAVERSAL == VOXEL_METHOD_MARCH
         const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, gi.counts.y, jitter);
 #elif TRAVERSAL == VOXEL_METHOD_EXACT

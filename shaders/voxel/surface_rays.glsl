@@ -15,6 +15,7 @@
 // the scene it voxelizes (its own transforms' rounding, another level of detail) needs a
 // coarser grid, or its rays may start inside the surface's own voxels.
 #include "../common/depth.glsl"
+#include "voxel_traversal.glsl"
 
 struct VoxelSurfaceStart {
     vec3 start;        // the point lifted along n
@@ -37,4 +38,17 @@ float voxelClearLength(VoxelSurfaceStart s, vec3 n, vec3 w, float reach) {
     if (!(s.clearance > 0.0)) return 0.0;
     const float sink = s.normalError - dot(w, n); // the most the ray may fall per unit length
     return sink <= 0.0 ? reach : min(reach, 0.5 * s.clearance / sink);
+}
+
+// The end of a ray from `start` along w, `reach` long (view space), in voxel coordinates. A
+// radius so large that the end lies past the traversals' coordinate limit (voxelAcceptedPoint)
+// would make them refuse the whole ray as a miss; past the grid nothing is hit, so the ray is
+// shortened to where its end is at most half the limit from the start, and `reach` with it
+// (a hit's distance is its t times reach). Other rays keep their end and reach unchanged.
+vec3 voxelTraceableEnd(mat4 viewToVoxel, vec3 start, vec3 w, inout float reach) {
+    const vec3 end = (viewToVoxel * vec4(start + w * reach, 1.0)).xyz;
+    if (voxelAcceptedPoint(end)) return end;
+    const vec3 perUnit = abs((viewToVoxel * vec4(w, 0.0)).xyz); // voxels per view unit along w
+    reach = min(reach, 0.5 * kVoxelMaxCoordinate / max(max(perUnit.x, perUnit.y), max(perUnit.z, 1e-30)));
+    return (viewToVoxel * vec4(start + w * reach, 1.0)).xyz;
 }

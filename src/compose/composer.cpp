@@ -46,6 +46,25 @@ bool checkOptional(ContextImpl& ctx, const TextureView& view, const char* what, 
     return true;
 }
 
+// Whether `framebuffer`'s first draw buffer names an attached image (or, for the default
+// framebuffer, is not GL_NONE). Asked before any state is changed, so that a refusal leaves
+// the host's state as it was under every StatePolicy: GL_DRAW_BUFFER0 can only be queried on
+// the bound draw framebuffer, whose binding is put back at once.
+bool firstDrawBufferWritten(ContextImpl& ctx, GLuint framebuffer) {
+    GLint bound = 0;
+    ctx.gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    GLint firstDrawBuffer = GL_NONE;
+    ctx.gl.GetIntegerv(GL_DRAW_BUFFER0, &firstDrawBuffer);
+    ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(bound));
+    if (firstDrawBuffer == GL_NONE) return false;
+    if (framebuffer == 0) return true;
+    GLint attached = GL_NONE;
+    ctx.gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(firstDrawBuffer),
+                                                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
+    return attached != GL_NONE;
+}
+
 } // namespace
 
 struct Composer::Impl {
@@ -69,12 +88,14 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     auto& d = *impl_;
     auto& ctx = d.ctx;
     const GBufferView& g = in.gbuffer;
-    if (!g.directRadiance || !g.albedo)
-        throw Error(ErrorCode::InvalidArgument, "compose needs the G-buffer's direct radiance and albedo (GBuffer::render, "
+    if (!g.depth || !g.directRadiance || !g.albedo)
+        throw Error(ErrorCode::InvalidArgument, "compose needs the G-buffer's depth, direct radiance and albedo (GBuffer::render, "
                                                 "or HostGBuffer::albedo and directRadiance with GBuffer::adopt)");
     const TextureInfo direct = queryTexture2D(ctx, g.directRadiance.name, "GBufferView::directRadiance");
     const int w = direct.width, h = direct.height;
     checkOptional(ctx, g.albedo, "GBufferView::albedo", w, h);
+    checkOptional(ctx, g.depth, "GBufferView::depth", w, h);
+    const float backgroundDepth = analyzeProjection(g.camera).clearDepth;
     const bool hasAo = checkOptional(ctx, in.ao, "ComposeInputs::ao", w, h);
     const bool hasIndirect = checkOptional(ctx, in.indirect, "ComposeInputs::indirect", w, h);
 
@@ -82,7 +103,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     shader::ComposeParams p{};
     p.ambient = glm::vec4(s.ambient, s.indirectScale);
     p.tone = glm::vec4(s.exposure, s.dragoMaxLuminance, s.dragoBias, s.dragoDisplayMax);
-    p.display = glm::vec4(s.gamma, 0.0f, 0.0f, 0.0f);
+    p.display = glm::vec4(s.gamma, backgroundDepth, 0.0f, 0.0f);
     p.flags = glm::ivec4(s.formula == CombineFormula::Thesis ? COMPOSE_FORMULA_THESIS : COMPOSE_FORMULA_PHYSICAL,
                          s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
                          : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES
@@ -105,6 +126,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
         ctx.gl.UseProgram(ctx.shaders->program({"compose/combine.comp.glsl"}));
         d.bindRead(COMPOSE_DIRECT_UNIT, g.directRadiance.name);
         d.bindRead(COMPOSE_ALBEDO_UNIT, g.albedo.name);
+        d.bindRead(COMPOSE_DEPTH_UNIT, g.depth.name);
         // Unused inputs read the radiance itself: a valid texture, never sampled.
         d.bindRead(COMPOSE_AO_UNIT, hasAo ? in.ao.name : g.directRadiance.name);
         d.bindRead(COMPOSE_INDIRECT_UNIT, hasIndirect ? in.indirect.name : g.directRadiance.name);
@@ -151,18 +173,12 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         std::snprintf(hex, sizeof hex, "%X", status);
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
-    StateScope scope(ctx);
-    ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
-    GLint firstDrawBuffer = GL_NONE;
-    ctx.gl.GetIntegerv(GL_DRAW_BUFFER0, &firstDrawBuffer);
-    GLint attached = GL_NONE;
-    if (firstDrawBuffer != GL_NONE && target.framebuffer != 0)
-        ctx.gl.GetNamedFramebufferAttachmentParameteriv(target.framebuffer, static_cast<GLenum>(firstDrawBuffer),
-                                                        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
-    if (firstDrawBuffer == GL_NONE || (target.framebuffer != 0 && attached == GL_NONE))
+    if (!firstDrawBufferWritten(ctx, target.framebuffer))
         throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
                                                     ": its first draw buffer is GL_NONE or has no image attached, so "
                                                     "nothing would be written");
+    StateScope scope(ctx);
+    ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
     PassScope pass(ctx, "compose.output");
     setViewport(ctx, target.x, target.y, target.width, target.height);
     DrawState state;

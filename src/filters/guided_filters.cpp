@@ -7,6 +7,7 @@
 #include "core/validate.hpp"
 #include "shaders/filters/filter_bindings.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -203,7 +204,10 @@ RefinementCount GuidedFilters::refinementCount(ContextImpl& ctx) const {
 // percent need it (2-3 % on 2CylinderEngine at 512x512, its thin parts' edges), and past
 // the capacity the upsampling blends as without refinement.
 std::size_t GuidedFilters::refineCapacity(glm::ivec2 fullSize) {
-    return (std::size_t(fullSize.x) * std::size_t(fullSize.y) + 3) / 4;
+    // The list's groups are dispatched indirectly, and GL guarantees only 65535 groups a
+    // dimension (llvmpipe has no more): past 16.8M pixels a quarter of them would pass it.
+    const std::size_t quarter = (std::size_t(fullSize.x) * std::size_t(fullSize.y) + 3) / 4;
+    return std::min(quarter, std::size_t{65535} * FILTER_REFINE_GROUP);
 }
 
 std::size_t GuidedFilters::memoryBytes() const {

@@ -78,7 +78,8 @@ public:
     //! Writes the full-resolution images from the low-resolution ones; the caller has bound
     //! the frame block and the G-buffer's depth and normal (VIS_DEPTH_UNIT, VIS_NORMAL_UNIT).
     //! With a refinement threshold, it also lists the pixels with too little similar weight
-    //! (refine_list.glsl), at most a quarter of the G-buffer's pixels, for dispatchRefinement to
+    //! (refine_list.glsl), at most refineCapacity (a quarter of the G-buffer's pixels, at most
+    //! 65535 groups' worth), for dispatchRefinement to
     //! overwrite; every pixel is blended as without it, so that an overflowed list leaves
     //! blended values. With
     //! geometry tiles, the images are cleared to the background values first.

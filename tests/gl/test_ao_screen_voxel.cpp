@@ -179,3 +179,42 @@ TEST_CASE("Screen space misses an occluder hidden behind another object, voxel s
     // curtain; covered: under its middle (|x| < 1.5 - 1.25).
     checkHiddenSlab(f, scene, W, H, {3.1, 3.9, -4.75, -3.25}, {0.0, 0.25, -4.75, -3.25});
 }
+
+TEST_CASE("Voxel AO with a radius far past the grid sees what a radius just past it sees", "[ao][stability]") {
+    // The wall scene's grid is 4 m a side in 128 voxels: a radius of 1e3 m ends rays 3.2e4
+    // voxels out, within the traversals' coordinate limit (2^24), one of 1e9 m 3.2e10 out,
+    // past it. Past the grid nothing is hit, so AO (a hit occludes fully, however far) and the
+    // bent normal (of the open directions) must be the same bit for bit with either radius,
+    // for the traversals that visit every voxel on the segment (the march samples `steps`
+    // points along it, spread with the length, so it is not expected to agree). Before the
+    // long rays were shortened to the limit, every one of them counted as open: AO 1.
+    AoFixture f;
+    const Scene scene = test::wallScene();
+    constexpr int W = 48, H = 36;
+    f.render(scene, test::wallCamera(W, H), W, H);
+    AmbientOcclusionSettings s;
+    s.method = AoMethod::Voxel;
+    s.rays = 64;
+    s.bentNormals = true;
+    s.voxels = &f.voxelizer.voxelize(scene, test::wallVoxels());
+    for (const VoxelTraversal traversal : {VoxelTraversal::Exact, VoxelTraversal::Hierarchical}) {
+        CAPTURE(static_cast<int>(traversal));
+        s.voxelTraversal = traversal;
+        s.radius = 1e3f;
+        const AmbientOcclusionView nearRun = f.ao.run(f.view, s);
+        const Image ao = readTexture(f.ctx, nearRun.ao), bent = readTexture(f.ctx, nearRun.bentNormal);
+        s.radius = 1e9f;
+        const AmbientOcclusionView farRun = f.ao.run(f.view, s);
+        const Image farAo = readTexture(f.ctx, farRun.ao), farBent = readTexture(f.ctx, farRun.bentNormal);
+        int occluded = 0, differing = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (!f.geometry(x, y)) continue;
+                occluded += ao.at(x, y, 0) < 1.0f;
+                differing += ao.at(x, y, 0) != farAo.at(x, y, 0);
+                for (int c = 0; c < 3; ++c) differing += bent.at(x, y, c) != farBent.at(x, y, c);
+            }
+        CHECK(occluded > W * H / 4); // the wall and the floor occlude each other's pixels
+        CHECK(differing == 0);
+    }
+}

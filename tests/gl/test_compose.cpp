@@ -42,7 +42,7 @@ struct Frame {
     GBuffer gbuffer{ctx};
     Composer composer{ctx};
     GBufferView view;
-    Image direct, albedo;
+    Image direct, albedo, positions; // positions' alpha: 0 on background pixels
     static constexpr int W = 32, H = 24;
 
     Frame() {
@@ -50,6 +50,7 @@ struct Frame {
         view = gbuffer.render(cornell.scene, assets::makeCamera(cornell.camera, W, H), {W, H, true, {}});
         direct = readTexture(ctx, view.directRadiance);
         albedo = readTexture(ctx, view.albedo);
+        positions = readTexture(ctx, gbuffer.positions(view));
     }
 };
 
@@ -76,8 +77,10 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
             for (int y = 0; y < Frame::H; ++y)
                 for (int x = 0; x < Frame::W; ++x)
                     for (int c = 0; c < 3; ++c) {
-                        const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), a = 0.5;
-                        const double kl1 = withIndirect ? s.indirectScale * 0.1 * (c + 1) : 0.0;
+                        // Background pixels: L_dir alone (no AO, ambient or indirect term).
+                        const bool surface = f.positions.at(x, y, 3) > 0.0f;
+                        const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), a = surface ? 0.5 : 1.0;
+                        const double kl1 = withIndirect && surface ? s.indirectScale * 0.1 * (c + 1) : 0.0;
                         const double ambient = rho * a * s.ambient[c];
                         // Physical: the indirect light, where given, replaces the ambient term.
                         const double expected = s.exposure * (formula == CombineFormula::Thesis ? ambient + kl1 + a * l
@@ -181,20 +184,31 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
     }
 }
 
+// The Cornell box seen from outside, with sky around it, and the modules that light and
+// compose it.
+struct SkyFrame {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    AmbientOcclusion ao{ctx};
+    IndirectLight gi{ctx};
+    Composer composer{ctx};
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    static constexpr int W = 40, H = 30;
+    static Camera camera(DepthMode mode = DepthMode::Standard) {
+        return Camera::perspective({{278, 273, -1200}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f), float(W) / H, 10.0f,
+                                   5000.0f, mode);
+    }
+};
+
 TEST_CASE("Sky pixels compose to the background radiance with every formula and tone mapper", "[compose][stability]") {
     // The Cornell box seen from outside, with sky around it: AO there is 1 and indirect light 0
     // (ambient_occlusion.hpp, indirect_light.hpp), the albedo 0, so both formulas give the
     // background radiance L_dir; and no tone mapper or encoding may turn it into NaN or Inf.
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    AmbientOcclusion ao(ctx);
-    IndirectLight gi(ctx);
-    Composer composer(ctx);
-    const assets::LoadedScene cornell = assets::builtinScene("cornell");
-    constexpr int W = 40, H = 30;
-    const Camera camera = Camera::perspective({{278, 273, -1200}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / H, 10.0f, 5000.0f);
+    SkyFrame f;
+    auto& [gl, ctx, gbuffer, ao, gi, composer, cornell] = f;
+    constexpr int W = SkyFrame::W, H = SkyFrame::H;
+    const Camera camera = SkyFrame::camera();
     GBufferSettings g{W, H, true, glm::vec3(0.25f, 0.5f, 2.0f)};
     const GBufferView view = gbuffer.render(cornell.scene, camera, g);
     const Image positions = readTexture(ctx, gbuffer.positions(view));
@@ -228,6 +242,66 @@ TEST_CASE("Sky pixels compose to the background radiance with every formula and 
                 }
         }
     CHECK(sky > W * H / 4);
+}
+
+TEST_CASE("Sky pixels of a host G-buffer keep their direct radiance whatever the host's albedo there", "[compose][stability]") {
+    // A host's albedo need not be 0 on the sky, as ours is: a constant 0.75 everywhere. The
+    // background pixels must still compose to the direct radiance alone (no rho AO L_amb, no
+    // k L1), exactly: the direct radiance read back is what the shader reads, times 1, plus 0.
+    // The surface pixels must still get the ambient term from the host's albedo (Physical,
+    // no indirect light: L_dir + rho AO L_amb), within the half-float store's rounding.
+    SkyFrame f;
+    auto& [gl, ctx, gbuffer, ao, gi, composer, cornell] = f;
+    constexpr int W = SkyFrame::W, H = SkyFrame::H;
+    for (DepthMode mode : {DepthMode::Standard, DepthMode::Reversed}) {
+        CAPTURE(static_cast<int>(mode));
+        const Camera camera = SkyFrame::camera(mode);
+        const GBufferView ours = gbuffer.render(cornell.scene, camera, {W, H, true, glm::vec3(0.25f, 0.5f, 2.0f)});
+        const Image positions = readTexture(ctx, gbuffer.positions(ours));
+        const Image direct = readTexture(ctx, ours.directRadiance);
+        const ConstantTexture albedo(GL_RGBA16F, W, H, glm::vec4(0.75f)); // exact in half floats
+        const GLuint depth = test::copyDepthAsHost(ours.depth.name, W, H, GL_DEPTH_COMPONENT32F);
+        GBuffer hostGBuffer(ctx);
+        HostGBuffer host;
+        host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
+        host.albedo = albedo.view(GL_RGBA16F, W, H);
+        host.directRadiance = ours.directRadiance;
+        const GBufferView adopted = hostGBuffer.adopt(host, camera);
+        AmbientOcclusionSettings a;
+        a.radius = 100.0f;
+        const TextureView aoView = ao.run(adopted, a).ao;
+        const Image aoImage = readTexture(ctx, aoView);
+        IndirectLightSettings l;
+        l.radius = 150.0f;
+        const TextureView indirect = gi.run(adopted, l).radiance;
+        for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+            for (bool withIndirect : {true, false}) {
+                CAPTURE(formula == CombineFormula::Thesis, withIndirect);
+                ComposeSettings s;
+                s.formula = formula;
+                s.toneMapper = ToneMapper::None;
+                s.ambient = glm::vec3(0.5f);
+                composer.compose({adopted, aoView, withIndirect ? indirect : TextureView{}}, s);
+                const Image radiance = readTexture(ctx, composer.radiance());
+                int sky = 0, lit = 0;
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x)
+                        for (int c = 0; c < 3; ++c) {
+                            CAPTURE(x, y, c);
+                            if (positions.at(x, y, 3) == 0.0f) {
+                                sky += c == 0;
+                                CHECK(radiance.at(x, y, c) == direct.at(x, y, c));
+                            } else if (formula == CombineFormula::Physical && !withIndirect) {
+                                const double expected = direct.at(x, y, c) + 0.75 * aoImage.at(x, y, 0) * 0.5;
+                                CHECK(std::abs(radiance.at(x, y, c) - expected) <= std::ldexp(expected, -10) + 1e-6);
+                                lit += c == 0;
+                            }
+                        }
+                CHECK(sky > W * H / 4);
+                if (formula == CombineFormula::Physical && !withIndirect) CHECK(lit > W * H / 4);
+            }
+        glDeleteTextures(1, &depth);
+    }
 }
 
 TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour and keeps its alpha", "[compose]") {
@@ -344,6 +418,24 @@ TEST_CASE("Drawing into a host framebuffer encodes linear sources for sRGB targe
     GLint bound = -1;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     CHECK(bound == 0);
+    {
+        // Refused before any state is set, so under Clobber too the host's state stays as it
+        // was (README: bad input throws before any GL work), not at GL's initial values.
+        Context clobbering(f.gl.desc(StatePolicy::Clobber));
+        Composer composer(clobbering);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glEnable(GL_BLEND);
+        glViewport(1, 2, 3, 4);
+        CHECK_THROWS_AS(composer.drawToHost(half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H}), Error);
+        GLint viewport[4] = {};
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        CHECK(bound == GLint(fbo));
+        CHECK(glIsEnabled(GL_BLEND));
+        CHECK((viewport[0] == 1 && viewport[1] == 2 && viewport[2] == 3 && viewport[3] == 4));
+        glDisable(GL_BLEND);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    }
     // Nor where it names an attachment point with no image (a complete framebuffer all the same).
     const GLenum unattachedFirst[2] = {GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(fbo, 2, unattachedFirst);

@@ -256,3 +256,17 @@ TEST_CASE("Images with more tiles than one indirect dispatch takes run every til
     CHECK_FALSE(GuidedFilters::geometryTilesFit({2048, 2048}));
     CHECK_FALSE(GuidedFilters::geometryTilesFit({8 * 65536, 1}));
 }
+
+TEST_CASE("The refinement list never holds more pixels than one indirect dispatch's groups take", "[filters]") {
+    // The refinement runs FILTER_REFINE_GROUP (64) listed pixels a group, dispatched indirectly
+    // in one dimension, where GL 4.5 guarantees 65535 groups: the list holds a quarter of the
+    // G-buffer's pixels up to 65535 x 64 = 4194240 (a 4096 x 4095 G-buffer's quarter fits,
+    // 4096 x 4096's, 4194304, does not).
+    using obscura::detail::GuidedFilters;
+    constexpr std::size_t most = std::size_t{65535} * 64;
+    CHECK(GuidedFilters::refineCapacity({16, 16}) == 64);
+    CHECK(GuidedFilters::refineCapacity({97, 75}) == (97 * 75 + 3) / 4);
+    CHECK(GuidedFilters::refineCapacity({4096, 4095}) == 4096 * 4095 / 4);
+    CHECK(GuidedFilters::refineCapacity({4096, 4096}) == most);
+    CHECK(GuidedFilters::refineCapacity({16384, 16384}) == most);
+}
