@@ -48,7 +48,8 @@ enum class AoMethod {
               //!< on each side and the cosine-weighted integral above them (GTAO-style; exact
               //!< for height fields, darker than AO_r under overhangs: below a disc as high
               //!< as it is wide, 0.09-0.19 on 0.5); `rays` / 2 slices; cosine weighting only;
-              //!< the bent normal integrates each slice's visible arc in closed form
+              //!< the bent normal integrates each slice's visible arc in closed form; refuses
+              //!< a projection that mirrors x or y
     //! "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance), from a
     //! start lifted off the surface's own voxels by a voxel diagonal and the depth's error,
     //! more for a pixel whose normal is only known within a bound (HostGBuffer::normal); a
@@ -105,8 +106,9 @@ struct AmbientOcclusionSettings {
     //! bilinear ones, summed) are computed at full resolution instead, pass "ao.refine":
     //! mostly the edges of parts thinner than the low resolution's pixels. [0, 1]; 0: none
     //! (where no neighbour is similar, the one nearest in depth fills in). At most a quarter
-    //! of the G-buffer's pixels are refined: when more ask for it, none is (all are blended
-    //! as with 0), so that a frame does not depend on the order the GPU lists them.
+    //! of the G-buffer's pixels, and at most 65535 x 64 = 4194240, are refined: when more ask
+    //! for it, none is (all are blended as with 0), so that a frame does not depend on the
+    //! order the GPU lists them.
     float refineThreshold = 0.25f;
     //! Invocations that share each pixel's rays (Horizon: slices): 1, 2, 4, 8 or 16. With 1 a
     //! pixel's rays run one after another in one invocation, so a pass over few pixels (the
@@ -161,8 +163,9 @@ public:
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
     //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
-    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view
-    //! stays valid until the next run.
+    //! DepthPeeling and PeelingOrConstant), the Voxel method without a grid, or the Horizon
+    //! method with a projection that mirrors x or y (projection[0][0] or [1][1] < 0, see
+    //! camera.hpp). The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     //! The last run's refinement; zeros when it ran at full resolution or without one. A run

@@ -11,7 +11,9 @@
 //             (the indirect light replaces the ambient term, which is its constant stand-in:
 //             with L1 given, L_amb and AO are not used; AO never darkens the direct light,
 //             which shadow maps shadow. A host can keep L_amb set and toggle GI.)
-// Missing inputs count as absent: no AO = 1, no L1 = 0.
+// Missing inputs count as absent: no AO = 1, no L1 = 0. Background pixels (depth at the
+// camera's clear depth) get L = L_dir with either formula: no AO, ambient or indirect term,
+// whatever the albedo there.
 //
 // Tone mapping of exposure * L: None (clamp), Drago et al. 2003 (logarithmic, adapted to the
 // frame's largest luminance or a given one), or ACES (Narkowicz's fit of the ACES RRT+ODT).
@@ -98,7 +100,7 @@ public:
     //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also
     //! finds the frame's largest luminance, for Drago with an automatic maximum) and
     //! "compose.tonemap". Background pixels (the G-buffer's depth equal to its camera's clear
-    //! depth) get their direct radiance only: no ambient or indirect term, whatever the
+    //! depth) get their direct radiance only: no AO, ambient or indirect term, whatever the
     //! host's albedo there. Throws Error{InvalidArgument} for enumerators or settings out of
     //! range or inputs of the wrong size or without depth/radiance/albedo.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);

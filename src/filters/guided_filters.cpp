@@ -200,7 +200,7 @@ RefinementCount GuidedFilters::refinementCount(ContextImpl& ctx) const {
     return {asked, asked <= capacity ? std::size_t{asked} : 0};
 }
 
-// The refinement list holds up to a quarter of the G-buffer's pixels: typically a few
+// The refinement list holds up to a quarter of the G-buffer's pixels (bounded below): a few
 // percent need it (2-3 % on 2CylinderEngine at 512x512, its thin parts' edges), and past
 // the capacity the upsampling blends as without refinement.
 std::size_t GuidedFilters::refineCapacity(glm::ivec2 fullSize) {

@@ -184,10 +184,13 @@ TEST_CASE("Voxel AO with a radius far past the grid sees what a radius just past
     // The wall scene's grid is 4 m a side in 128 voxels: a radius of 1e3 m ends rays 3.2e4
     // voxels out, within the traversals' coordinate limit (2^24), one of 1e9 m 3.2e10 out,
     // past it. Past the grid nothing is hit, so AO (a hit occludes fully, however far) and the
-    // bent normal (of the open directions) must be the same bit for bit with either radius,
-    // for the traversals that visit every voxel on the segment (the march samples `steps`
-    // points along it, spread with the length, so it is not expected to agree). Before the
-    // long rays were shortened to the limit, every one of them counted as open: AO 1.
+    // bent normal (of the open directions) must be the same with either radius, for the
+    // traversals that visit every voxel on the segment (the march samples `steps` points along
+    // it, spread with the length, so it is not expected to agree). Not quite bit for bit
+    // everywhere: the two segments' ends, snapped to the traversal's 1/4096-voxel grid, may
+    // round apart, turning a ray that grazes a voxel's corner; on llvmpipe no value differs,
+    // and a handful (1 % of the values) is allowed. Before the long rays were shortened to the
+    // limit, every one of them counted as open: AO 1 (6900 values differed).
     AoFixture f;
     const Scene scene = test::wallScene();
     constexpr int W = 48, H = 36;
@@ -206,15 +209,16 @@ TEST_CASE("Voxel AO with a radius far past the grid sees what a radius just past
         s.radius = 1e9f;
         const AmbientOcclusionView farRun = f.ao.run(f.view, s);
         const Image farAo = readTexture(f.ctx, farRun.ao), farBent = readTexture(f.ctx, farRun.bentNormal);
-        int occluded = 0, differing = 0;
+        int occluded = 0, differing = 0, values = 0;
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
                 if (!f.geometry(x, y)) continue;
                 occluded += ao.at(x, y, 0) < 1.0f;
+                values += 4;
                 differing += ao.at(x, y, 0) != farAo.at(x, y, 0);
                 for (int c = 0; c < 3; ++c) differing += bent.at(x, y, c) != farBent.at(x, y, c);
             }
         CHECK(occluded > W * H / 4); // the wall and the floor occlude each other's pixels
-        CHECK(differing == 0);
+        CHECK(differing <= values / 100);
     }
 }

@@ -423,18 +423,17 @@ TEST_CASE("Drawing into a host framebuffer encodes linear sources for sRGB targe
         // was (README: bad input throws before any GL work), not at GL's initial values.
         Context clobbering(f.gl.desc(StatePolicy::Clobber));
         Composer composer(clobbering);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0); // not the target: the check binds it and puts 0 back
         glEnable(GL_BLEND);
         glViewport(1, 2, 3, 4);
         CHECK_THROWS_AS(composer.drawToHost(half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H}), Error);
         GLint viewport[4] = {};
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
         glGetIntegerv(GL_VIEWPORT, viewport);
-        CHECK(bound == GLint(fbo));
+        CHECK(bound == 0);
         CHECK(glIsEnabled(GL_BLEND));
         CHECK((viewport[0] == 1 && viewport[1] == 2 && viewport[2] == 3 && viewport[3] == 4));
         glDisable(GL_BLEND);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     }
     // Nor where it names an attachment point with no image (a complete framebuffer all the same).
     const GLenum unattachedFirst[2] = {GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT1};

@@ -506,6 +506,52 @@ TEST_CASE("Post-process mode: screen-space indirect light on a host's depth laye
     CHECK(test::drainGlErrors().empty());
 }
 
+TEST_CASE("Hybrid indirect light with a radius far past the grid gathers what a radius just past it gathers",
+          "[gi][stability]") {
+    // As for voxel AO (test_ao_screen_voxel.cpp): radius 1e3 ends rays 3.2e4 voxels out, within
+    // the traversals' coordinate limit, 1e9 past it, where rays were refused whole (no light
+    // at all) before they were shortened to half the limit. Past the grid nothing is hit, so
+    // both gather the same light, but a hit's distance is its segment parameter times the
+    // ray's reach, and the two reaches round the hit point differently (float rounding, the
+    // segment's end snapped to the traversal's 1/4096-voxel grid): a hit near a pixel border
+    // may be read from the neighbouring pixel. So the frame's total light must agree within
+    // 1 %, one ray in a hundred landing in another pixel, far more than that rounding moves.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    Voxelizer voxelizer(ctx);
+    IndirectLight gi(ctx);
+    const Scene scene = emissiveWallScene();
+    constexpr int W = 48, H = 36;
+    const GBufferView view = gbuffer.render(scene, wallCamera(W, H), {W, H, false, {}});
+    IndirectLightSettings s;
+    s.method = GiMethod::Hybrid;
+    s.rays = 64;
+    s.voxels = &voxelizer.voxelize(scene, test::wallVoxels());
+    const auto total = [](const Image& radiance, int& lit) {
+        double sum = 0.0;
+        lit = 0;
+        for (int y = 0; y < radiance.height; ++y)
+            for (int x = 0; x < radiance.width; ++x) {
+                lit += radiance.at(x, y, 0) > 0.0f;
+                for (int c = 0; c < 3; ++c) sum += radiance.at(x, y, c);
+            }
+        return sum;
+    };
+    for (const VoxelTraversal traversal : {VoxelTraversal::Exact, VoxelTraversal::Hierarchical}) {
+        CAPTURE(static_cast<int>(traversal));
+        s.voxelTraversal = traversal;
+        s.radius = 1e3f;
+        int lit = 0, farLit = 0;
+        const double near = total(readTexture(ctx, gi.run(view, s).radiance), lit);
+        s.radius = 1e9f;
+        const double far = total(readTexture(ctx, gi.run(view, s).radiance), farLit);
+        CAPTURE(near, far, lit, farLit);
+        CHECK(lit > W * H / 8); // the floor before the wall
+        CHECK(std::abs(far - near) <= 0.01 * near);
+    }
+}
+
 TEST_CASE("Indirect light refuses bad settings and buffers without radiance", "[gi][bad-input]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
