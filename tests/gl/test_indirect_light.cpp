@@ -96,6 +96,16 @@ Scene emissiveWallScene() {
     return scene;
 }
 
+// The emissive wall scene and the modules that render, voxelize and light it.
+struct WallLight {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Voxelizer voxelizer{ctx};
+    IndirectLight gi{ctx};
+    const Scene scene = emissiveWallScene();
+};
+
 // The share of a floor pixel's cosine-weighted directions that gather the wall's light, as a
 // window [lo, hi] per method (L1 = rho Le share): as for AO, marching misses hits beyond its
 // last sample, voxels bring the wall up to a side closer, and a voxel hit at the wall's foot
@@ -126,12 +136,8 @@ void checkWallLight(const Image& radiance, const Image& albedo, int x, int y, do
 
 TEST_CASE("A floor lit by an emissive wall matches the closed form within the sampling error in perspective, "
           "reversed-Z and orthographic views", "[gi]") {
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    Voxelizer voxelizer(ctx);
-    IndirectLight gi(ctx);
-    const Scene scene = emissiveWallScene();
+    WallLight f;
+    auto& [gl, ctx, gbuffer, voxelizer, gi, scene] = f;
     constexpr int W = 96, H = 72;
     constexpr double radius = 1.0;
     constexpr int rays = 1024, steps = 32;
@@ -516,12 +522,8 @@ TEST_CASE("Hybrid indirect light with a radius far past the grid gathers what a 
     // segment's end snapped to the traversal's 1/4096-voxel grid): a hit near a pixel border
     // may be read from the neighbouring pixel. So the frame's total light must agree within
     // 1 %, one ray in a hundred landing in another pixel, far more than that rounding moves.
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    Voxelizer voxelizer(ctx);
-    IndirectLight gi(ctx);
-    const Scene scene = emissiveWallScene();
+    WallLight f;
+    auto& [gl, ctx, gbuffer, voxelizer, gi, scene] = f;
     constexpr int W = 48, H = 36;
     const GBufferView view = gbuffer.render(scene, wallCamera(W, H), {W, H, false, {}});
     IndirectLightSettings s;
