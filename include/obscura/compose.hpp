@@ -100,9 +100,12 @@ public:
     //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also
     //! finds the frame's largest luminance, for Drago with an automatic maximum) and
     //! "compose.tonemap". Background pixels (the G-buffer's depth equal to its camera's clear
-    //! depth) get their direct radiance only: no AO, ambient or indirect term, whatever the
-    //! host's albedo there. Throws Error{InvalidArgument} for enumerators or settings out of
-    //! range or inputs of the wrong size or without depth/radiance/albedo.
+    //! depth, or one no surface has: NaN, Inf, outside [0, 1]) get their direct radiance
+    //! only: no AO, ambient or indirect term, whatever the host's albedo there. Throws
+    //! Error{InvalidArgument} for enumerators or settings out of range, without
+    //! depth/radiance/albedo, and for inputs of the wrong size, with a base level other than
+    //! 0, or of the wrong kind: depth must be a depth format; radiance, albedo and indirect
+    //! light normalized or float RGB/RGBA, AO normalized or float.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
     //! The combined radiance of the last compose call times its `exposure`, as the tone
@@ -111,9 +114,10 @@ public:
 
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer
     //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
-    //! Error{InvalidArgument} for a target that is not a complete framebuffer of this context,
-    //! whose first draw buffer is GL_NONE or has no image attached, or with an empty rectangle
-    //! or bad enumerators.
+    //! Error{InvalidArgument} for a source whose base level is not 0, for a target that is not
+    //! a complete framebuffer of this context, whose first draw buffer is GL_NONE or has no
+    //! image attached, with an empty rectangle or one wider or taller than
+    //! GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims), or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 
     std::size_t memoryBytes() const;

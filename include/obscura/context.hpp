@@ -133,6 +133,7 @@ struct ContextInfo {
     int maxTextureSize = 0;        //!< GL_MAX_TEXTURE_SIZE, pixels
     int maxDrawBuffers = 0;
     int maxViewports = 0;
+    int maxViewportDims[2] = {0, 0}; //!< GL_MAX_VIEWPORT_DIMS, pixels: HostTarget's largest width and height
     bool conservativeRaster = false; //!< GL_NV_conservative_raster or GL_INTEL_conservative_rasterization
     int timestampBits = 0;           //!< GL_QUERY_COUNTER_BITS of GL_TIMESTAMP; 0 = no GPU timer (wall clock used)
 };

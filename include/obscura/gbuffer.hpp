@@ -108,7 +108,11 @@ struct HostGBuffer {
     //! Required. GL_TEXTURE_2D, single-sampled, GL_DEPTH_COMPONENT16/24/32/32F or
     //! GL_DEPTH24_STENCIL8/GL_DEPTH32F_STENCIL8 (then GL_DEPTH_STENCIL_TEXTURE_MODE must be
     //! GL_DEPTH_COMPONENT). Only `name` is read (here and in the other host textures): the
-    //! format and size are GL's, and the view gets them from there.
+    //! format and size are GL's, and the view gets them from there. Pixels at the camera's
+    //! clear depth are background, and so are those a float format lets hold what no
+    //! rasterizer writes (NaN, +-Inf, below 0 or above 1); subnormal values count as 0 (the
+    //! clear depth with reversed-Z, the near plane otherwise). Every pass leaves background
+    //! pixels out.
     TextureView depth;
     //! Optional, same size. Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha

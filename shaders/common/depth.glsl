@@ -2,8 +2,11 @@
 // Works for standard and reversed-Z, [-1,1] and [0,1] clip depth, perspective (including an
 // infinite far plane) and orthographic projections.
 #include "frame.glsl"
+#include "math.glsl"
 
-bool isBackground(float depth) { return depth == frame.depthZ.w; }
+// See isBackgroundDepth: the clear depth, or a value no surface has (a host's float depth
+// may hold NaN, Inf or values outside [0, 1]).
+bool isBackground(float depth) { return isBackgroundDepth(depth, frame.depthZ.w); }
 
 // View-space z (negative in front of the camera) of a non-background depth value.
 float viewZFromDepth(float depth) {

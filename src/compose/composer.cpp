@@ -35,10 +35,31 @@ void validateSettings(const ComposeSettings& s) {
     requireInRange(s.gamma, 1.0, 4.0, "ComposeSettings::gamma", "");
 }
 
-// The size of an optional input: empty, or exactly the G-buffer's.
-bool checkOptional(ContextImpl& ctx, const TextureView& view, const char* what, int width, int height) {
+// What compose reads of an input, besides its size: texelFetch at level 0 through a float
+// sampler. A depth, stencil or integer texture would read undefined values there, and a
+// base level other than 0 another level.
+enum class InputKind { Depth, Colour, Rgb };
+
+void requireReadable(ContextImpl& ctx, GLuint name, const TextureInfo& info, const char* what, InputKind kind) {
+    requireBaseLevelZero(ctx, name, what);
+    if (kind == InputKind::Depth) {
+        if (!info.depth)
+            throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
+                                                        "; accepted: a depth format");
+        return;
+    }
+    const int channels = kind == InputKind::Rgb ? 3 : 1;
+    if (info.depth || info.integer || info.channels < channels)
+        throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
+                                                    "; accepted: a normalized or float format with " +
+                                                    (channels == 3 ? "RGB or RGBA" : "one or more") + " channels");
+}
+
+// An input that is empty (when optional), or readable as `kind` and exactly the G-buffer's size.
+bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, InputKind kind, int width, int height) {
     if (!view) return false;
     const TextureInfo info = queryTexture2D(ctx, view.name, what);
+    requireReadable(ctx, view.name, info, what, kind);
     if (info.width != width || info.height != height)
         throw Error(ErrorCode::InvalidArgument, std::string(what) + " is " + std::to_string(info.width) + "x" +
                                                     std::to_string(info.height) + ", the G-buffer " + std::to_string(width) +
@@ -93,11 +114,12 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
                                                 "or HostGBuffer::albedo and directRadiance with GBuffer::adopt)");
     const TextureInfo direct = queryTexture2D(ctx, g.directRadiance.name, "GBufferView::directRadiance");
     const int w = direct.width, h = direct.height;
-    checkOptional(ctx, g.albedo, "GBufferView::albedo", w, h);
-    checkOptional(ctx, g.depth, "GBufferView::depth", w, h);
+    requireReadable(ctx, g.directRadiance.name, direct, "GBufferView::directRadiance", InputKind::Rgb);
+    checkInput(ctx, g.albedo, "GBufferView::albedo", InputKind::Rgb, w, h);
+    checkInput(ctx, g.depth, "GBufferView::depth", InputKind::Depth, w, h);
     const float backgroundDepth = analyzeProjection(g.camera).clearDepth;
-    const bool hasAo = checkOptional(ctx, in.ao, "ComposeInputs::ao", w, h);
-    const bool hasIndirect = checkOptional(ctx, in.indirect, "ComposeInputs::indirect", w, h);
+    const bool hasAo = checkInput(ctx, in.ao, "ComposeInputs::ao", InputKind::Colour, w, h);
+    const bool hasIndirect = checkInput(ctx, in.indirect, "ComposeInputs::indirect", InputKind::Rgb, w, h);
 
     StateScope scope(ctx);
     shader::ComposeParams p{};
@@ -156,12 +178,19 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     const TextureInfo info = queryTexture2D(ctx, source.name, "drawToHost source");
     if (info.integer || info.depth)
         throw Error(ErrorCode::InvalidArgument, "drawToHost: the source must be a float or normalized colour texture");
+    requireBaseLevelZero(ctx, source.name, "drawToHost source");
     requireEnumerator(target.blend, {HostBlend::Overwrite, HostBlend::Multiply}, "HostTarget::blend");
     requireEnumerator(target.encoding, {HostSourceEncoding::Auto, HostSourceEncoding::Linear, HostSourceEncoding::Display},
                       "HostTarget::encoding");
     if (target.width < 1 || target.height < 1)
         throw Error(ErrorCode::InvalidArgument, "HostTarget: width and height must be >= 1 pixel, got " +
                                                     std::to_string(target.width) + "x" + std::to_string(target.height));
+    // GL clamps a larger viewport silently, which would stretch the source differently.
+    if (target.width > ctx.info.maxViewportDims[0] || target.height > ctx.info.maxViewportDims[1])
+        throw Error(ErrorCode::InvalidArgument, "HostTarget: " + std::to_string(target.width) + "x" +
+                                                    std::to_string(target.height) + " is larger than GL_MAX_VIEWPORT_DIMS (" +
+                                                    std::to_string(ctx.info.maxViewportDims[0]) + "x" +
+                                                    std::to_string(ctx.info.maxViewportDims[1]) + ")");
     if (target.framebuffer != 0 && !ctx.gl.IsFramebuffer(target.framebuffer))
         throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
                                                     " is not a framebuffer of this context");

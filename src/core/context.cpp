@@ -191,6 +191,7 @@ Context::Context(const ContextDesc& desc) : impl_(std::make_unique<detail::Conte
     ctx.gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &info.maxTextureSize);
     ctx.gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &info.maxDrawBuffers);
     ctx.gl.GetIntegerv(GL_MAX_VIEWPORTS, &info.maxViewports);
+    ctx.gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, info.maxViewportDims);
     ctx.gl.GetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &info.timestampBits);
     info.conservativeRaster = detail::hasExtension(ctx.gl, "GL_NV_conservative_raster") ||
                               detail::hasExtension(ctx.gl, "GL_INTEL_conservative_rasterization");

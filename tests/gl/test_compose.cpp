@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
 
 using namespace obscura;
 
@@ -448,7 +449,7 @@ TEST_CASE("Drawing into a host framebuffer encodes linear sources for sRGB targe
     glDeleteTextures(2, color);
 }
 
-TEST_CASE("Compose refuses bad settings and inputs of the wrong size", "[compose][bad-input]") {
+TEST_CASE("Compose refuses bad settings and inputs of the wrong size or kind", "[compose][bad-input]") {
     Frame f;
     const ConstantTexture small(GL_R16F, 8, 8, glm::vec4(1.0f));
     for (auto change : std::vector<void (*)(ComposeSettings&)>{
@@ -465,5 +466,55 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size", "[compose
     HostGBuffer host;
     host.depth = f.view.depth;
     CHECK_THROWS_AS(f.composer.compose({f.gbuffer.adopt(host, f.view.camera), {}, {}}, {}), Error);
+    // Inputs compose would read undefined values from, each refused by name: no depth, a
+    // colour texture as depth, depth as albedo or AO, an integer AO, one-channel indirect
+    // light and radiance, and a base level other than 0.
+    const auto refused = [&](const ComposeInputs& in, const std::string& what) {
+        CHECK_THROWS_WITH(f.composer.compose(in, {}), Catch::Contains(what));
+    };
+    GBufferView g = f.view;
+    g.depth = {};
+    refused({g, {}, {}}, "depth");
+    g = f.view;
+    g.depth = f.view.directRadiance;
+    refused({g, {}, {}}, "GBufferView::depth has format");
+    g = f.view;
+    g.albedo = f.view.depth;
+    refused({g, {}, {}}, "GBufferView::albedo has format");
+    const ConstantTexture mono(GL_R16F, Frame::W, Frame::H, glm::vec4(1.0f));
+    g = f.view;
+    g.directRadiance = mono.view(GL_R16F, Frame::W, Frame::H);
+    refused({g, {}, {}}, "GBufferView::directRadiance has format");
+    refused({f.view, f.view.depth, {}}, "ComposeInputs::ao has format");
+    GLuint integer = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &integer);
+    glTextureStorage2D(integer, 1, GL_R32UI, Frame::W, Frame::H);
+    refused({f.view, {integer, GL_R32UI, Frame::W, Frame::H}, {}}, "ComposeInputs::ao has format");
+    refused({f.view, {}, mono.view(GL_R16F, Frame::W, Frame::H)}, "ComposeInputs::indirect has format");
+    GLuint levels = 0; // two levels, the second sampled
+    glCreateTextures(GL_TEXTURE_2D, 1, &levels);
+    glTextureStorage2D(levels, 2, GL_R16F, Frame::W, Frame::H);
+    glTextureParameteri(levels, GL_TEXTURE_BASE_LEVEL, 1);
+    refused({f.view, {levels, GL_R16F, Frame::W, Frame::H}, {}}, "GL_TEXTURE_BASE_LEVEL");
+    // drawToHost: the same base level rule for its source, and no rectangle GL would clamp.
+    GLuint colour = 0, fbo = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &colour);
+    glTextureStorage2D(colour, 1, GL_RGBA8, Frame::W, Frame::H);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour, 0);
+    REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    CHECK_THROWS_WITH(f.composer.drawToHost({levels, GL_R16F, Frame::W, Frame::H}, {fbo, 0, 0, Frame::W, Frame::H}),
+                      Catch::Contains("GL_TEXTURE_BASE_LEVEL"));
+    const int widest = f.ctx.info().maxViewportDims[0], tallest = f.ctx.info().maxViewportDims[1];
+    REQUIRE(widest > 0);
+    REQUIRE(tallest > 0);
+    CHECK_THROWS_WITH(f.composer.drawToHost(mono.view(GL_R16F, Frame::W, Frame::H), {fbo, 0, 0, widest + 1, Frame::H}),
+                      Catch::Contains("GL_MAX_VIEWPORT_DIMS"));
+    CHECK_THROWS_WITH(f.composer.drawToHost(mono.view(GL_R16F, Frame::W, Frame::H), {fbo, 0, 0, Frame::W, tallest + 1}),
+                      Catch::Contains("GL_MAX_VIEWPORT_DIMS"));
+    f.composer.drawToHost(mono.view(GL_R16F, Frame::W, Frame::H), {fbo, 0, 0, widest, Frame::H}); // the largest is taken
+    glDeleteFramebuffers(1, &fbo);
+    const GLuint textures[3] = {integer, levels, colour};
+    glDeleteTextures(3, textures);
     CHECK(test::drainGlErrors().empty());
 }

@@ -12,12 +12,14 @@
 #include "scene_builders.hpp"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <string>
 
 using namespace obscura;
@@ -311,6 +313,17 @@ void checkRefinedCount(const Model& m, const Expected& expected, int refined, co
 constexpr double kUlp = 1.0 / 2048.0;
 constexpr double kTolerance = 3.0 * kUlp + 1e-5, kDirectionTolerance = 4.0 * kUlp + 1e-5;
 
+// The AO module's last output (`out`, bent normals on) against the model's, within the
+// tolerances above, and its refinement count.
+void checkAoAgainstModel(Context& ctx, const AmbientOcclusion& ao, const AmbientOcclusionView& out, const Model& m,
+                         const Expected& expected) {
+    int refined = 0;
+    CHECK(worstDifference(glRows(readTexture(ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
+    CHECK(worstDifference(glRows(readTexture(ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
+          kDirectionTolerance);
+    checkRefinedCount(m, expected, refined, ao.lastRefinement());
+}
+
 // The Cornell box seen from outside its open side: the background, its edge and the box's
 // edges in view; odd sizes, so the low resolution's last row and column are partly outside.
 constexpr int kWidth = 45, kHeight = 37;
@@ -322,10 +335,13 @@ struct FilterFixture {
     GBufferView view;
     Image positions, normals;
 
-    void render() {
-        const assets::LoadedScene cornell = assets::builtinScene("cornell");
-        const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(45.0f),
-                                                  float(kWidth) / float(kHeight), 10.0f, 5000.0f);
+    //! scale: of the scene and the camera's distances (the same image, other view depths).
+    void render(float scale = 1.0f) {
+        assets::LoadedScene cornell = assets::builtinScene("cornell");
+        for (Mesh& mesh : cornell.scene.meshes) mesh.model = glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * mesh.model;
+        const Camera camera =
+            Camera::perspective({glm::vec3(278, 273, -700) * scale, glm::vec3(278, 273, 0) * scale, {0, 1, 0}},
+                                glm::radians(45.0f), float(kWidth) / float(kHeight), 10.0f * scale, 5000.0f * scale);
         view = gbuffer.render(cornell.scene, camera, {kWidth, kHeight, true, {}});
         positions = glRows(readTexture(ctx, gbuffer.positions(view)));
         normals = glRows(readTexture(ctx, view.normal));
@@ -392,16 +408,51 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
                                   [](int i, int j) { return toHalf(directionOf(i, j)); });
         if (taps > 0) low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
         const Expected expected = upsample(m, low, full);
-        int refined = 0;
-        CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kTolerance, &refined) <= kTolerance);
-        CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kDirectionTolerance) <=
-              kDirectionTolerance);
-        checkRefinedCount(m, expected, refined, ao.lastRefinement());
+        checkAoAgainstModel(f.ctx, ao, out, m, expected);
     }
     // At full resolution nothing is refined, whatever the run before.
     ao.run(f.view, FilterCase{AoResolution::Full, 1, 0.25f}.settings<AmbientOcclusionSettings>());
     CHECK(ao.lastRefinement().asked == 0);
     CHECK(ao.lastRefinement().refined == 0);
+}
+
+TEST_CASE("A subnormal blur depth sigma gives the guided filters' limit, in which only equal depths count",
+          "[filters][ao][stability]") {
+    // blurDepthSigma accepts any float in (0, 1]. At the smallest (2^-149), sigma |z| rounds
+    // to 0 in float for |z| < 0.5 (the Cornell box scaled to a tenth of a unit here; a GPU that
+    // flushes denormals makes it 0 at any z), so the guide's relative depth difference was
+    // 0 / 0 for two samples at the same view z (the box's back wall faces the camera: its
+    // pixels share their depth exactly), a NaN weight. The model, in double, computes the
+    // limit: weight 1 at equal depth, 0 at any other. Same tolerances as the test above.
+    FilterFixture f;
+    test::overrideShader(f.ctx, "ao/ao.comp.glsl", "const Estimate e = Estimate(sums.a.x, sums.a.yzw, sums.b.x);",
+                         "const Estimate e = Estimate(1.0 - filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);",
+                         kHashGlsl);
+    f.render(1e-4f);
+    double farthest = 0.0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) farthest = std::max(farthest, std::abs(double(f.positions.at(x, y, 2))));
+    REQUIRE(farthest < 0.5);
+    AmbientOcclusion ao(f.ctx);
+    const FullResolution full{[](int x, int y) { return glm::vec4(valueOf(x, y, 0)); },
+                              [](int x, int y) { return glm::vec4(toHalf(directionOf(x, y)), 1.0f); }};
+    constexpr float kSigma = std::numeric_limits<float>::denorm_min();
+    for (const FilterCase setup : filterCases({2}, {0.0f, 0.25f})) {
+        const auto [resolution, taps, refine] = setup;
+        CAPTURE(static_cast<int>(resolution), taps, refine);
+        AmbientOcclusionSettings s = setup.settings<AmbientOcclusionSettings>();
+        s.bentNormals = true;
+        s.blurDepthSigma = kSigma;
+        const AmbientOcclusionView out = ao.run(f.view, s);
+        Model m = f.model(static_cast<int>(resolution), taps, true, 1.0f);
+        m.depthSigma = kSigma;
+        m.refineThreshold = refine;
+        LowImages low = lowImages(m, glm::vec4(1.0f), [](int i, int j) { return glm::vec4(valueOf(i, j, 0)); },
+                                  [](int i, int j) { return toHalf(directionOf(i, j)); });
+        low = blurPass(m, blurPass(m, low, {1, 0}), {0, 1});
+        const Expected expected = upsample(m, low, full);
+        checkAoAgainstModel(f.ctx, ao, out, m, expected);
+    }
 }
 
 TEST_CASE("The blur and upsampling keep an open faceted sphere's bent normals on its own normals", "[filters][ao]") {

@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -203,6 +205,31 @@ std::size_t outsideCount(const Image& image, int channels, float lo, float hi) {
     return n;
 }
 
+// The poisoned-buffer tests' integrator settings on the Cornell box: 16 rays of 300 units
+// (half the box), the voxel methods on `voxels`, bent normals on.
+AmbientOcclusionSettings poisonedAoSettings(AoMethod method, AoResolution resolution, int blur, const VoxelGrid& voxels) {
+    AmbientOcclusionSettings s;
+    s.method = method;
+    s.radius = 300.0f;
+    s.rays = 16;
+    s.resolution = resolution;
+    s.blurRadius = blur;
+    s.bentNormals = true;
+    if (method == AoMethod::Voxel) s.voxels = &voxels;
+    return s;
+}
+
+IndirectLightSettings poisonedGiSettings(GiMethod method, AoResolution resolution, int blur, const VoxelGrid& voxels) {
+    IndirectLightSettings s;
+    s.method = method;
+    s.radius = 300.0f;
+    s.rays = 16;
+    s.resolution = resolution;
+    s.blurRadius = blur;
+    if (method == GiMethod::Hybrid) s.voxels = &voxels;
+    return s;
+}
+
 } // namespace
 
 TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albedo and radiance give finite AO, "
@@ -241,15 +268,7 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
         TextureView aoTexture;
         for (const AoMethod method : {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel}) {
             CAPTURE(static_cast<int>(method));
-            AmbientOcclusionSettings s;
-            s.method = method;
-            s.radius = 300.0f;
-            s.rays = 16;
-            s.resolution = resolution;
-            s.blurRadius = blur;
-            s.bentNormals = true;
-            if (method == AoMethod::Voxel) s.voxels = &voxels;
-            const AmbientOcclusionView out = f.ao.run(adopted, s);
+            const AmbientOcclusionView out = f.ao.run(adopted, poisonedAoSettings(method, resolution, blur, voxels));
             CHECK(outsideCount(readTexture(f.ctx, out.ao), 1, 0.0f, 1.0f) == 0);
             const Image bent = readTexture(f.ctx, out.bentNormal);
             CHECK(outsideCount(bent, 3, -1.0f, 1.0f) == 0);
@@ -268,13 +287,7 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
         }
         for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
             CAPTURE(static_cast<int>(method));
-            IndirectLightSettings s;
-            s.method = method;
-            s.radius = 300.0f;
-            s.rays = 16;
-            s.resolution = resolution;
-            s.blurRadius = blur;
-            if (method == GiMethod::Hybrid) s.voxels = &voxels;
+            const IndirectLightSettings s = poisonedGiSettings(method, resolution, blur, voxels);
             const TextureView indirect = gi.run(adopted, s).radiance;
             const Image first = readTexture(f.ctx, indirect);
             CHECK(outsideCount(first, 3, 0.0f, 65504.0f) == 0);
@@ -296,5 +309,175 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
         }
     }
     for (const GLuint t : {depth, normal, albedo, radiance}) glDeleteTextures(1, &t);
+    CHECK(test::drainGlErrors().empty());
+}
+
+namespace {
+
+// Depth values a host's GL_DEPTH_COMPONENT32F texture may hold (ARB_depth_buffer_float keeps
+// uploaded float depth unclamped) though no rasterizer writes them: NaN of both signs, +-Inf,
+// values below 0 and above 1, the largest floats; then -0.0 and a subnormal, which lie in
+// [0, 1] and count as 0 (isBackgroundDepth): a surface at the near plane with standard
+// depth, the clear depth (background) with reversed-Z.
+const std::vector<float> kDepthPoisons = {std::nanf(""), -std::nanf(""), INFINITY, -INFINITY, -0.25f, 1.25f, 3e38f, -3e38f,
+                                          -0.0f, 1e-40f};
+constexpr std::size_t kAlwaysBackground = 8; // the first 8 of kDepthPoisons
+
+// The poisoned pixels: the centre of every 3 x 3 block, so that rays, blur taps and the
+// upsampling meet them everywhere, while every other pixel keeps a neighbour on each side
+// for normals reconstructed from depth. -1 where the depth is kept.
+int poisonIndex(int x, int y) {
+    return x % 3 == 1 && y % 3 == 1 ? (x / 3 + 7 * (y / 3)) % int(kDepthPoisons.size()) : -1;
+}
+
+std::vector<float> depthTexels(GLuint texture, int width, int height) {
+    std::vector<float> texels(std::size_t(width) * height);
+    glGetTextureImage(texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    return texels;
+}
+
+// Writes texels[i] into the pixels marked in `where` (GL rows). Uploads clamp depth to
+// [0, 1] (Mesa's do, NaN to 0), and so does a scissored clear, which Mesa draws as a quad at
+// the clear depth (clipped away outside [0, 1]); a whole clear of a float depth attachment
+// is not clamped (glClearBufferfv, GL 4.5 section 17.4.3.1), and glCopyImageSubData copies
+// texels as they are: a 1 x 1 texture cleared to each value, copied into its pixel.
+void poisonDepth(GLuint depth, int width, int height, const std::vector<float>& texels, const std::vector<char>& where) {
+    GLuint texel = 0, framebuffer = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texel);
+    glTextureStorage2D(texel, 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, texel, 0);
+    REQUIRE(glCheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glDepthMask(GL_TRUE);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * width + x;
+            if (!where[i]) continue;
+            glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &texels[i]);
+            glCopyImageSubData(texel, GL_TEXTURE_2D, 0, 0, 0, 0, depth, GL_TEXTURE_2D, 0, x, y, 0, 1, 1, 1);
+        }
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &texel);
+}
+
+std::uint32_t bitsOf(float v) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return bits;
+}
+
+} // namespace
+
+TEST_CASE("Post-process mode: host depth holding NaN, Inf or values outside 0..1 is background to every pass, and "
+          "every output stays finite", "[ao][gi][compose][host][stability]") {
+    // Such a pixel stands for no surface. Each pass must treat it as the background: AO 1 and
+    // no bent normal, no indirect light, the direct radiance alone after compose, alpha 0 in
+    // the positions and reconstructed normals; and its neighbours, whose rays, blur taps and
+    // upsampling read it, must stay finite and in range. Standard and reversed-Z, each with
+    // the host's normals and with normals reconstructed from the poisoned depth.
+    test::AoFixture f;
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    const VoxelGrid& voxels = f.voxelizer.voxelize(cornell.scene, {});
+    constexpr int W = 48, H = 40;
+    IndirectLight gi(f.ctx);
+    Composer composer(f.ctx);
+    GBuffer adopter(f.ctx);
+    for (const DepthMode mode : {DepthMode::Standard, DepthMode::Reversed}) {
+        const bool reversed = mode == DepthMode::Reversed;
+        CAPTURE(reversed);
+        const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                                                  float(W) / float(H), 10.0f, 5000.0f, mode);
+        f.view = f.gbuffer.render(cornell.scene, camera, {W, H, true, {}});
+        const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
+        std::vector<float> texels = depthTexels(depth, W, H); // GL rows: y = 0 at the bottom
+        std::vector<char> background(texels.size()), poisoned(texels.size());
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const std::size_t i = std::size_t(y) * W + x;
+                const int k = poisonIndex(x, y);
+                poisoned[i] = k >= 0;
+                if (k >= 0) texels[i] = kDepthPoisons[std::size_t(k)];
+                background[i] = k >= 0 ? std::size_t(k) < kAlwaysBackground || reversed : texels[i] == (reversed ? 0.0f : 1.0f);
+            }
+        poisonDepth(depth, W, H, texels, poisoned);
+        // The premise: the texture holds the poisons as given (NaNs may lose their payload).
+        const std::vector<float> stored = depthTexels(depth, W, H);
+        std::size_t changed = 0;
+        for (std::size_t i = 0; i < texels.size(); ++i)
+            changed += std::isnan(texels[i]) ? !std::isnan(stored[i]) : bitsOf(stored[i]) != bitsOf(texels[i]);
+        REQUIRE(changed == 0);
+        // readTexture's row 0 is the top.
+        const auto at = [&](const std::vector<char>& mask, int x, int yTop) { return mask[std::size_t(H - 1 - yTop) * W + x] != 0; };
+        for (const bool hostNormals : {true, false}) {
+            CAPTURE(hostNormals);
+            HostGBuffer host;
+            host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
+            if (hostNormals) host.normal = f.view.normal;
+            host.albedo = f.view.albedo;
+            host.directRadiance = f.view.directRadiance;
+            const GBufferView adopted = adopter.adopt(host, camera);
+            const Image positions = readTexture(f.ctx, adopter.positions(adopted));
+            const Image normals = readTexture(f.ctx, adopted.normal);
+            std::size_t wrongPositions = 0, wrongNormals = 0, surfaces = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    const bool sky = at(background, x, y);
+                    surfaces += !sky;
+                    wrongPositions += (positions.at(x, y, 3) == 0.0f) != sky;
+                    if (sky) wrongNormals += normals.at(x, y, 3) != 0.0f;
+                }
+            CHECK(surfaces > std::size_t(W * H / 2));
+            CHECK(wrongPositions == 0);
+            CHECK(wrongNormals == 0);
+            CHECK(outsideCount(positions, 4, -1e4f, 1e4f) == 0); // the box is 560 units across, 700 away
+            CHECK(outsideCount(normals, 3, -1.0f, 1.0f) == 0);
+            for (const auto& [resolution, blur] : {std::pair{AoResolution::Full, 0}, std::pair{AoResolution::Half, 2}}) {
+                CAPTURE(static_cast<int>(resolution), blur);
+                TextureView aoTexture;
+                for (const AoMethod method : {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel}) {
+                    CAPTURE(static_cast<int>(method));
+                    const AmbientOcclusionView out = f.ao.run(adopted, poisonedAoSettings(method, resolution, blur, voxels));
+                    const Image ao = readTexture(f.ctx, out.ao), bent = readTexture(f.ctx, out.bentNormal);
+                    CHECK(outsideCount(ao, 1, 0.0f, 1.0f) == 0);
+                    CHECK(outsideCount(bent, 3, -1.0f, 1.0f) == 0);
+                    std::size_t skyNotOpen = 0;
+                    for (int y = 0; y < H; ++y)
+                        for (int x = 0; x < W; ++x)
+                            if (at(background, x, y))
+                                skyNotOpen += ao.at(x, y, 0) != 1.0f || bent.at(x, y, 0) != 0.0f || bent.at(x, y, 1) != 0.0f ||
+                                              bent.at(x, y, 2) != 0.0f;
+                    CHECK(skyNotOpen == 0);
+                    aoTexture = out.ao;
+                }
+                for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
+                    CAPTURE(static_cast<int>(method));
+                    const TextureView indirect = gi.run(adopted, poisonedGiSettings(method, resolution, blur, voxels)).radiance;
+                    const Image light = readTexture(f.ctx, indirect);
+                    CHECK(outsideCount(light, 3, 0.0f, 65504.0f) == 0);
+                    std::size_t skyLit = 0, surfaceLit = 0;
+                    for (int y = 0; y < H; ++y)
+                        for (int x = 0; x < W; ++x) {
+                            const bool lit = light.at(x, y, 0) + light.at(x, y, 1) + light.at(x, y, 2) > 0.0f;
+                            (at(background, x, y) ? skyLit : surfaceLit) += lit;
+                        }
+                    CHECK(skyLit == 0);
+                    CHECK(surfaceLit > surfaces / 2); // the box's walls light each other
+                    ComposeSettings c;
+                    c.ambient = glm::vec3(0.5f);
+                    const Image display = readTexture(f.ctx, composer.compose({adopted, aoTexture, indirect}, c));
+                    CHECK(outsideCount(display, 3, 0.0f, 1.0f) == 0);
+                    const Image radiance = readTexture(f.ctx, composer.radiance());
+                    const Image direct = readTexture(f.ctx, f.view.directRadiance);
+                    std::size_t skyNotDirect = 0;
+                    for (int y = 0; y < H; ++y)
+                        for (int x = 0; x < W; ++x)
+                            for (int ch = 0; ch < 3 && at(background, x, y); ++ch)
+                                skyNotDirect += radiance.at(x, y, ch) != direct.at(x, y, ch);
+                    CHECK(skyNotDirect == 0);
+                }
+            }
+        }
+        glDeleteTextures(1, &depth);
+    }
     CHECK(test::drainGlErrors().empty());
 }
