@@ -77,7 +77,19 @@ struct DepthReconstruction {
     glm::vec2 xyScale{1.0f};
     glm::vec2 xyOffset{0.0f};
     float clearDepth = 1.0f; //!< background depth value, see ProjectionInfo
+    //! The stored depth at which view z reaches -kMaxViewDistance, as a float (the clear
+    //! depth where the far plane is nearer). Depths beyond it (below it with reversed-Z,
+    //! above it otherwise) are background to every pass.
+    float farthestDepth = 1.0f;
 };
+
+//! The farthest a surface may lie along the view axis, world units (2^56, about 7.2e16).
+//! Beyond it a pixel is background: the passes square and add view positions and the
+//! differences between them, which stay below FLT_MAX for |z| up to this and view rays up to
+//! about 100 times as long as their z (a 179 degree field of view). Reached only with a far
+//! plane past it: an infinite one (reversed-Z), where a host depth below near / 2^56 lies
+//! beyond, or a huge finite one.
+inline constexpr double kMaxViewDistance = 72057594037927936.0;
 
 OBSCURA_API DepthReconstruction depthReconstruction(const Camera& camera);
 

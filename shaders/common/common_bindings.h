@@ -39,7 +39,8 @@ struct FrameData {
     vec4 depthZ;      // DepthReconstruction: zScale, zBiasHi, zBiasLo, clearDepth
     ivec4 viewport;   // width, height (pixels), projection kind, reversed-Z (0/1)
     vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float;
-                         // y: GBufferView::normalError of the normals read
+                         // y: GBufferView::normalError of the normals read;
+                         // z: DepthReconstruction::farthestDepth
 };
 
 #ifdef __cplusplus

@@ -4,9 +4,9 @@
 #include "frame.glsl"
 #include "math.glsl"
 
-// See isBackgroundDepth: the clear depth, or a value no surface has (a host's float depth
-// may hold NaN, Inf or values outside [0, 1]).
-bool isBackground(float depth) { return isBackgroundDepth(depth, frame.depthZ.w); }
+// See isBackgroundDepth: the clear depth, a value no surface has (a host's float depth may
+// hold NaN, Inf or values outside [0, 1]), or one beyond kMaxViewDistance.
+bool isBackground(float depth) { return isBackgroundDepth(depth, frame.depthZ.w, frame.depthPrecision.z); }
 
 // View-space z (negative in front of the camera) of a non-background depth value.
 float viewZFromDepth(float depth) {

@@ -11,19 +11,21 @@ const float kLog2E = 1.44269504088896341; // log2(e): exp(x) = exp2(x kLog2E)
 
 bool allFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-// Whether a pixel's stored depth stands for no surface: the clear depth, or a value no
-// rasterizer writes. A host's float depth texture may hold anything (ARB_depth_buffer_float
-// stores values outside [0, 1] unclamped): NaN, +-Inf, negative or above 1 is background.
-// Subnormals and -0.0 count as 0, as GPUs that flush denormals read them, so in a reversed-Z
-// buffer they are the clear depth (the far plane; with an infinite one their view z would
-// overflow). Tested on the bits: GLSL 4.50 (4.7.1) does not require NaNs to be implemented,
-// so a comparison or isnan need not see one. Floats in (0, 1] are the patterns up to
-// 0x3F800000; the normal ones start at 0x00800000.
-bool isBackgroundDepth(float depth, float clearDepth) {
+// Whether a pixel's stored depth stands for no surface: the clear depth, a value no
+// rasterizer writes, or one beyond `farthestDepth` (DepthReconstruction::farthestDepth, the
+// depth of kMaxViewDistance; below it with reversed-Z, whose clear depth is 0, above it
+// otherwise). A host's float depth texture may hold anything (ARB_depth_buffer_float stores
+// values outside [0, 1] unclamped): NaN, +-Inf, negative or above 1 is background.
+// Subnormals and -0.0 count as 0, as GPUs that flush denormals read them. Tested on the
+// bits: GLSL 4.50 (4.7.1) does not require NaNs to be implemented, so a comparison or isnan
+// need not see one. Floats in (0, 1] are the patterns up to 0x3F800000; the normal ones start
+// at 0x00800000.
+bool isBackgroundDepth(float depth, float clearDepth, float farthestDepth) {
     const uint bits = floatBitsToUint(depth);
     const bool zero = (bits & 0x7FFFFFFFu) < 0x00800000u;
-    const bool outsideUnitRange = !zero && bits > 0x3F800000u;
-    return outsideUnitRange || (zero ? clearDepth == 0.0 : depth == clearDepth);
+    if (!zero && bits > 0x3F800000u) return true;
+    const float d = zero ? 0.0 : depth;
+    return d == clearDepth || (clearDepth == 0.0 ? d < farthestDepth : d > farthestDepth);
 }
 
 // Normalizes v; returns `fallback` for zero, NaN or Inf input. Scaling by the largest

@@ -2,7 +2,8 @@
 // luminance of the frame for Drago's tone mapping (positive floats order like their bits).
 // Background pixels keep their direct radiance only: a host's albedo there need not be 0
 // (ours is), and ambient light on the sky would brighten it by rho * L_amb. So do pixels whose
-// depth no surface can have (NaN, outside [0, 1]: isBackgroundDepth), as in every other pass.
+// depth no surface can have (NaN, outside [0, 1], beyond kMaxViewDistance: isBackgroundDepth),
+// as in every other pass.
 #include "compose_common.glsl"
 
 layout(local_size_x = COMPOSE_WORKGROUP, local_size_y = COMPOSE_WORKGROUP) in;
@@ -20,7 +21,7 @@ void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, compose.size.xy))) return;
     const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
-    const bool surface = !isBackgroundDepth(texelFetch(depth, pixel, 0).r, compose.display.y);
+    const bool surface = !isBackgroundDepth(texelFetch(depth, pixel, 0).r, compose.display.y, compose.display.z);
     const vec3 rho = surface ? clampAlbedo(texelFetch(albedo, pixel, 0).rgb) : vec3(0.0);
     const float ao = surface && (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
     const bool hasIndirect = surface && (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;

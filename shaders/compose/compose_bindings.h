@@ -37,7 +37,7 @@ using ivec4 = glm::ivec4;
 struct ComposeParams {
     vec4 ambient;  // rgb: L_amb; w: indirect scale k
     vec4 tone;     // x: exposure, y: Drago L_wmax (0: measured), z: Drago bias, w: Drago L_dmax
-    vec4 display;  // x: gamma (when not sRGB), y: the depth of background pixels, z, w: unused
+    vec4 display;  // x: gamma (when not sRGB), y: the clear depth, z: DepthReconstruction::farthestDepth, w: unused
     ivec4 flags;   // x: formula, y: tone mapper, z: sRGB (0/1), w: COMPOSE_HAS_*
     ivec4 size;    // x, y: pixels; z, w: unused
 };

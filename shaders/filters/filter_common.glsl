@@ -82,9 +82,9 @@ FILTER_VALUE filterFinish(FILTER_VALUE v) {
 // that a tap costs one exp2 (the blur adds its spatial Gaussian to it) instead of two
 // exponentials and a pow: on llvmpipe that took an eighth off the blur. Power 0 is weight 1
 // (pow(0, 0) is undefined in GLSL); a normal 90 degrees or more away gets 2^-200, which is 0
-// in float. Equal depths count as no difference even where sigma |z1| is 0 (a point on an
-// orthographic camera's plane, or a product that underflows: a subnormal sigma), which would
-// make 0/0; any other difference over 0 is infinite and weighs 0.
+// in float. Equal depths count as no difference even where sigma |z1| is 0 (the product of a
+// subnormal sigma and a small z underflows, or a GPU flushes the sigma), which would make
+// 0/0; any other difference over 0 is infinite and weighs 0.
 float guideLog2Weight(vec3 n1, float z1, vec3 n2, float z2) {
     const float difference = z2 - z1;
     const float dz = difference == 0.0 ? 0.0 : difference / (filterParams.weights.x * abs(z1));

@@ -36,18 +36,14 @@ void validateSettings(const ComposeSettings& s) {
 }
 
 // What compose reads of an input, besides its size: texelFetch at level 0 through a float
-// sampler. A depth, stencil or integer texture would read undefined values there, and a
-// base level other than 0 another level.
+// sampler. A colour input that is depth, stencil or integer would read undefined values
+// there, a depth-stencil depth in stencil mode too, and a base level other than 0 another
+// level.
 enum class InputKind { Depth, Colour, Rgb };
 
 void requireReadable(ContextImpl& ctx, GLuint name, const TextureInfo& info, const char* what, InputKind kind) {
     requireBaseLevelZero(ctx, name, what);
-    if (kind == InputKind::Depth) {
-        if (!info.depth)
-            throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
-                                                        "; accepted: a depth format");
-        return;
-    }
+    if (kind == InputKind::Depth) return requireSampledDepth(ctx, name, info, what);
     const int channels = kind == InputKind::Rgb ? 3 : 1;
     if (info.depth || info.integer || info.channels < channels)
         throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
@@ -117,7 +113,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     requireReadable(ctx, g.directRadiance.name, direct, "GBufferView::directRadiance", InputKind::Rgb);
     checkInput(ctx, g.albedo, "GBufferView::albedo", InputKind::Rgb, w, h);
     checkInput(ctx, g.depth, "GBufferView::depth", InputKind::Depth, w, h);
-    const float backgroundDepth = analyzeProjection(g.camera).clearDepth;
+    const DepthReconstruction reconstruction = depthReconstruction(g.camera);
     const bool hasAo = checkInput(ctx, in.ao, "ComposeInputs::ao", InputKind::Colour, w, h);
     const bool hasIndirect = checkInput(ctx, in.indirect, "ComposeInputs::indirect", InputKind::Rgb, w, h);
 
@@ -125,7 +121,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     shader::ComposeParams p{};
     p.ambient = glm::vec4(s.ambient, s.indirectScale);
     p.tone = glm::vec4(s.exposure, s.dragoMaxLuminance, s.dragoBias, s.dragoDisplayMax);
-    p.display = glm::vec4(s.gamma, backgroundDepth, 0.0f, 0.0f);
+    p.display = glm::vec4(s.gamma, reconstruction.clearDepth, reconstruction.farthestDepth, 0.0f);
     p.flags = glm::ivec4(s.formula == CombineFormula::Thesis ? COMPOSE_FORMULA_THESIS : COMPOSE_FORMULA_PHYSICAL,
                          s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
                          : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES

@@ -160,6 +160,13 @@ DepthReconstruction depthReconstruction(const Camera& camera) {
     DepthReconstruction r;
     r.kind = info.kind;
     r.clearDepth = info.clearDepth;
+    r.farthestDepth = info.clearDepth;
+    if (info.farPlane > kMaxViewDistance) {
+        // z(d) = -kMaxViewDistance solved for the depth, in double, as the rows below invert z.
+        const double zn = info.kind == ProjectionKind::Perspective ? p[3][2] / kMaxViewDistance - p[2][2]
+                                                                    : p[3][2] - kMaxViewDistance * p[2][2];
+        r.farthestDepth = static_cast<float>((zn - c) / a);
+    }
     if (info.kind == ProjectionKind::Perspective) {
         // -z*z_ndc = p22*z + p32  ⇒  z = -p32 / (z_ndc + p22) = (-p32/a) / (d + (c + p22)/a)
         r.zScale = static_cast<float>(-p[3][2] / a);

@@ -18,7 +18,7 @@ void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int 
                                r.kind == ProjectionKind::Perspective ? OBSCURA_PROJECTION_PERSPECTIVE
                                                                      : OBSCURA_PROJECTION_ORTHOGRAPHIC,
                                info.reversedZ ? 1 : 0);
-    data.depthPrecision = glm::vec4(static_cast<float>(depthStep), normalError, 0.0f, 0.0f);
+    data.depthPrecision = glm::vec4(static_cast<float>(depthStep), normalError, r.farthestDepth, 0.0f);
     if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
     ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
     ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());

@@ -92,6 +92,13 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
         t.pixelFormat = GL_DEPTH_COMPONENT;
         return t;
     }
+    if (stencilSize > 0) { // GL_STENCIL_INDEX8: integers, read only through usampler
+        t.stencil = true;
+        t.integer = true;
+        t.channels = 1;
+        t.pixelFormat = GL_STENCIL_INDEX;
+        return t;
+    }
     t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
     t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
     t.floating = redType == GL_FLOAT;
@@ -101,6 +108,19 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     static constexpr GLenum intFormats[4] = {GL_RED_INTEGER, GL_RG_INTEGER, GL_RGB_INTEGER, GL_RGBA_INTEGER};
     t.pixelFormat = (t.integer ? intFormats : floatFormats)[t.channels - 1];
     return t;
+}
+
+void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, const std::string& who) {
+    if (!t.depth)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " must have a depth format (GL_DEPTH_COMPONENT16/24/32/32F, GL_DEPTH24_STENCIL8, "
+                          "GL_DEPTH32F_STENCIL8), got " + formatName(t.internalFormat));
+    if (!t.stencil) return;
+    GLint mode = 0;
+    ctx.gl.GetTextureParameteriv(name, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+    if (mode != GL_DEPTH_COMPONENT)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
 }
 
 double depthStepOf(ContextImpl& ctx, GLuint depthTexture) {

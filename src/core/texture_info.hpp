@@ -14,7 +14,7 @@ struct TextureInfo {
     int width = 0, height = 0;
     int channels = 0;          //!< 1..4 (depth = 1)
     bool depth = false;        //!< a depth or depth-stencil format
-    bool stencil = false;      //!< depth-stencil
+    bool stencil = false;      //!< depth-stencil, or stencil only (then also `integer`)
     bool integer = false;      //!< *I / *UI formats
     bool floating = false;     //!< float components (GL_TEXTURE_RED_TYPE is GL_FLOAT)
     bool isSigned = false;     //!< for integer formats
@@ -35,6 +35,10 @@ double depthStepOf(ContextImpl& ctx, GLuint depthTexture);
 //! For textures Obscura samples: level 0 must be the base level (texelFetch and
 //! non-mipmapped sampling read the base level).
 void requireBaseLevelZero(ContextImpl& ctx, GLuint name, const std::string& who);
+
+//! For textures Obscura samples as depth: a depth format, and depth (not stencil) when it
+//! has both (GL_DEPTH_STENCIL_TEXTURE_MODE). Throws Error{InvalidArgument} mentioning `who`.
+void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who);
 
 std::string formatName(GLenum internalFormat);
 

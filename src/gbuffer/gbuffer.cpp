@@ -68,21 +68,6 @@ TextureInfo hostTextureBeside(ContextImpl& ctx, GLuint name, const std::string& 
     return t;
 }
 
-// A host texture the passes sample as depth: a depth format, and depth (not stencil) when
-// it has both.
-void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, const std::string& who) {
-    if (!t.depth)
-        throw Error(ErrorCode::InvalidArgument,
-                    who + " must have a depth format (GL_DEPTH_COMPONENT16/24/32/32F, GL_DEPTH24_STENCIL8, "
-                          "GL_DEPTH32F_STENCIL8), got " + formatName(t.internalFormat));
-    if (!t.stencil) return;
-    GLint mode = 0;
-    ctx.gl.GetTextureParameteriv(name, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
-    if (mode != GL_DEPTH_COMPONENT)
-        throw Error(ErrorCode::InvalidArgument,
-                    who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
-}
-
 // The host's second depth layer, read in place beside the first. Empty stays empty. The
 // first layer itself would make every peeled interval empty: a silent no-op, so refused.
 TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint depthName, const TextureInfo& depth) {

@@ -474,10 +474,10 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size or kind", "
     };
     GBufferView g = f.view;
     g.depth = {};
-    refused({g, {}, {}}, "depth");
+    refused({g, {}, {}}, "compose needs the G-buffer's depth");
     g = f.view;
     g.depth = f.view.directRadiance;
-    refused({g, {}, {}}, "GBufferView::depth has format");
+    refused({g, {}, {}}, "GBufferView::depth must have a depth format");
     g = f.view;
     g.albedo = f.view.depth;
     refused({g, {}, {}}, "GBufferView::albedo has format");
@@ -491,6 +491,16 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size or kind", "
     glTextureStorage2D(integer, 1, GL_R32UI, Frame::W, Frame::H);
     refused({f.view, {integer, GL_R32UI, Frame::W, Frame::H}, {}}, "ComposeInputs::ao has format");
     refused({f.view, {}, mono.view(GL_R16F, Frame::W, Frame::H)}, "ComposeInputs::indirect has format");
+    GLuint stencil = 0, depthStencil = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &stencil);
+    glTextureStorage2D(stencil, 1, GL_STENCIL_INDEX8, Frame::W, Frame::H);
+    refused({f.view, {stencil, GL_STENCIL_INDEX8, Frame::W, Frame::H}, {}}, "ComposeInputs::ao has format");
+    glCreateTextures(GL_TEXTURE_2D, 1, &depthStencil);
+    glTextureStorage2D(depthStencil, 1, GL_DEPTH24_STENCIL8, Frame::W, Frame::H);
+    glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    g = f.view;
+    g.depth = {depthStencil, GL_DEPTH24_STENCIL8, Frame::W, Frame::H};
+    refused({g, {}, {}}, "GBufferView::depth samples stencil");
     GLuint levels = 0; // two levels, the second sampled
     glCreateTextures(GL_TEXTURE_2D, 1, &levels);
     glTextureStorage2D(levels, 2, GL_R16F, Frame::W, Frame::H);
@@ -514,7 +524,7 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size or kind", "
                       Catch::Contains("GL_MAX_VIEWPORT_DIMS"));
     f.composer.drawToHost(mono.view(GL_R16F, Frame::W, Frame::H), {fbo, 0, 0, widest, Frame::H}); // the largest is taken
     glDeleteFramebuffers(1, &fbo);
-    const GLuint textures[3] = {integer, levels, colour};
-    glDeleteTextures(3, textures);
+    const GLuint textures[5] = {integer, levels, colour, stencil, depthStencil};
+    glDeleteTextures(5, textures);
     CHECK(test::drainGlErrors().empty());
 }

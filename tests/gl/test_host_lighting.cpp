@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -315,13 +316,25 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
 namespace {
 
 // Depth values a host's GL_DEPTH_COMPONENT32F texture may hold (ARB_depth_buffer_float keeps
-// uploaded float depth unclamped) though no rasterizer writes them: NaN of both signs, +-Inf,
-// values below 0 and above 1, the largest floats; then -0.0 and a subnormal, which lie in
-// [0, 1] and count as 0 (isBackgroundDepth): a surface at the near plane with standard
-// depth, the clear depth (background) with reversed-Z.
-const std::vector<float> kDepthPoisons = {std::nanf(""), -std::nanf(""), INFINITY, -INFINITY, -0.25f, 1.25f, 3e38f, -3e38f,
-                                          -0.0f, 1e-40f};
-constexpr std::size_t kAlwaysBackground = 8; // the first 8 of kDepthPoisons
+// uploaded float depth unclamped), and for which camera each is background
+// (isBackgroundDepth): NaN of both signs, +-Inf, values below 0 and above 1 (the float just
+// above 1 too), the largest floats, whatever the camera; -0.0 and subnormals of both signs,
+// which count as 0: the clear depth with reversed-Z, the near plane otherwise; the smallest
+// normal float and 1e-30, farther than kMaxViewDistance with reversed-Z and an infinite far
+// plane (view z = -near / d), just in front of the far plane with a finite one.
+enum class PoisonBackground { Always, Reversed, InfiniteFar };
+struct DepthPoison {
+    float value;
+    PoisonBackground when;
+};
+const std::vector<DepthPoison> kDepthPoisons = {
+    {std::nanf(""), PoisonBackground::Always},           {-std::nanf(""), PoisonBackground::Always},
+    {INFINITY, PoisonBackground::Always},                {-INFINITY, PoisonBackground::Always},
+    {-0.25f, PoisonBackground::Always},                  {1.25f, PoisonBackground::Always},
+    {std::nextafter(1.0f, 2.0f), PoisonBackground::Always}, {3e38f, PoisonBackground::Always},
+    {-3e38f, PoisonBackground::Always},                  {-0.0f, PoisonBackground::Reversed},
+    {1e-40f, PoisonBackground::Reversed},                {-1e-40f, PoisonBackground::Reversed},
+    {std::numeric_limits<float>::min(), PoisonBackground::InfiniteFar}, {1e-30f, PoisonBackground::InfiniteFar}};
 
 // The poisoned pixels: the centre of every 3 x 3 block, so that rays, blur taps and the
 // upsampling meet them everywhere, while every other pixel keeps a neighbour on each side
@@ -373,8 +386,9 @@ TEST_CASE("Post-process mode: host depth holding NaN, Inf or values outside 0..1
     // Such a pixel stands for no surface. Each pass must treat it as the background: AO 1 and
     // no bent normal, no indirect light, the direct radiance alone after compose, alpha 0 in
     // the positions and reconstructed normals; and its neighbours, whose rays, blur taps and
-    // upsampling read it, must stay finite and in range. Standard and reversed-Z, each with
-    // the host's normals and with normals reconstructed from the poisoned depth.
+    // upsampling read it, must stay finite and in range. Standard depth, reversed-Z and
+    // reversed-Z with an infinite far plane, each with the host's normals and with normals
+    // reconstructed from the poisoned depth.
     test::AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     const VoxelGrid& voxels = f.voxelizer.voxelize(cornell.scene, {});
@@ -382,11 +396,12 @@ TEST_CASE("Post-process mode: host depth holding NaN, Inf or values outside 0..1
     IndirectLight gi(f.ctx);
     Composer composer(f.ctx);
     GBuffer adopter(f.ctx);
-    for (const DepthMode mode : {DepthMode::Standard, DepthMode::Reversed}) {
-        const bool reversed = mode == DepthMode::Reversed;
-        CAPTURE(reversed);
+    for (const PoisonBackground mode : {PoisonBackground::Always, PoisonBackground::Reversed, PoisonBackground::InfiniteFar}) {
+        const bool reversed = mode != PoisonBackground::Always, infinite = mode == PoisonBackground::InfiniteFar;
+        CAPTURE(reversed, infinite);
         const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                                  float(W) / float(H), 10.0f, 5000.0f, mode);
+                                                  float(W) / float(H), 10.0f, infinite ? INFINITY : 5000.0f,
+                                                  reversed ? DepthMode::Reversed : DepthMode::Standard);
         f.view = f.gbuffer.render(cornell.scene, camera, {W, H, true, {}});
         const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
         std::vector<float> texels = depthTexels(depth, W, H); // GL rows: y = 0 at the bottom
@@ -396,8 +411,9 @@ TEST_CASE("Post-process mode: host depth holding NaN, Inf or values outside 0..1
                 const std::size_t i = std::size_t(y) * W + x;
                 const int k = poisonIndex(x, y);
                 poisoned[i] = k >= 0;
-                if (k >= 0) texels[i] = kDepthPoisons[std::size_t(k)];
-                background[i] = k >= 0 ? std::size_t(k) < kAlwaysBackground || reversed : texels[i] == (reversed ? 0.0f : 1.0f);
+                const DepthPoison* poison = k >= 0 ? &kDepthPoisons[std::size_t(k)] : nullptr;
+                if (poison) texels[i] = poison->value;
+                background[i] = poison ? poison->when <= mode : texels[i] == (reversed ? 0.0f : 1.0f);
             }
         poisonDepth(depth, W, H, texels, poisoned);
         // The premise: the texture holds the poisons as given (NaNs may lose their payload).

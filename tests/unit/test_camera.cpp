@@ -57,6 +57,37 @@ TEST_CASE("Depth reconstruction constants invert the float projection", "[unit][
     }
 }
 
+TEST_CASE("The farthest depth lies at kMaxViewDistance where the far plane is beyond it, else at the clear depth",
+          "[unit][camera]") {
+    // Depths beyond farthestDepth are background (isBackgroundDepth): with a far plane past
+    // kMaxViewDistance it must map back to that distance (float rounding of the depth, 2^-24
+    // relative to it, and of the reconstruction: 1e-6 relative), and on the near side of it
+    // every depth stays within it; with a nearer far plane it is the clear depth, which
+    // leaves out nothing else.
+    const LookAt look{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}};
+    for (DepthMode mode : {DepthMode::Standard, DepthMode::StandardZeroToOne, DepthMode::Reversed}) {
+        CAPTURE(static_cast<int>(mode));
+        for (const Camera& c : {Camera::perspective(look, 0.9f, 1.3f, 0.1f, 1000.0f, mode),
+                                Camera::orthographic(look, 2.0f, 1.5f, 0.1f, 1000.0f, mode)}) {
+            const DepthReconstruction r = depthReconstruction(c);
+            CHECK(r.farthestDepth == r.clearDepth);
+        }
+    }
+    const Camera infinite = Camera::perspective(look, 0.9f, 1.3f, 10.0f, INFINITY, DepthMode::Reversed);
+    const Camera hugeOrtho = Camera::orthographic(look, 2.0f, 1.5f, 1e16f, 1e18f, DepthMode::Reversed);
+    const Camera hugeOrthoStandard = Camera::orthographic(look, 2.0f, 1.5f, 1e16f, 1e18f, DepthMode::StandardZeroToOne);
+    for (const Camera& c : {infinite, hugeOrtho, hugeOrthoStandard}) {
+        const DepthReconstruction r = depthReconstruction(c);
+        CAPTURE(r.farthestDepth);
+        CHECK(r.farthestDepth > 0.0f);
+        CHECK(r.farthestDepth < 1.0f);
+        CHECK(-viewPositionFromDepth(c, {0, 0}, r.farthestDepth).z == Approx(kMaxViewDistance).epsilon(1e-6));
+        const float nearer = std::nextafter(r.farthestDepth, r.clearDepth == 0.0f ? 2.0f : -1.0f);
+        CHECK(-viewPositionFromDepth(c, {0, 0}, nearer).z <= kMaxViewDistance * (1.0 + 1e-6));
+    }
+    CHECK(depthReconstruction(infinite).farthestDepth == Approx(10.0 / kMaxViewDistance).epsilon(1e-6));
+}
+
 TEST_CASE("Unsupported projections are refused with a reason", "[unit][camera]") {
     Camera c = Camera::perspective({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f);
     c.projection[2][3] = 1.0f; // left-handed
