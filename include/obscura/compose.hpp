@@ -12,8 +12,8 @@
 //             with L1 given, L_amb and AO are not used; AO never darkens the direct light,
 //             which shadow maps shadow. A host can keep L_amb set and toggle GI.)
 // Missing inputs count as absent: no AO = 1, no L1 = 0. Background pixels (depth at the
-// camera's clear depth) get L = L_dir with either formula: no AO, ambient or indirect term,
-// whatever the albedo there.
+// camera's clear depth, or one no surface has: see HostGBuffer::depth) get L = L_dir with
+// either formula: no AO, ambient or indirect term, whatever the albedo there.
 //
 // Tone mapping of exposure * L: None (clamp), Drago et al. 2003 (logarithmic, adapted to the
 // frame's largest luminance or a given one), or ACES (Narkowicz's fit of the ACES RRT+ODT).
@@ -100,12 +100,12 @@ public:
     //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also
     //! finds the frame's largest luminance, for Drago with an automatic maximum) and
     //! "compose.tonemap". Background pixels (the G-buffer's depth equal to its camera's clear
-    //! depth, or one no surface has: NaN, Inf, outside [0, 1]) get their direct radiance
-    //! only: no AO, ambient or indirect term, whatever the host's albedo there. Throws
-    //! Error{InvalidArgument} for enumerators or settings out of range, without
+    //! depth, or one no surface has: NaN, Inf, outside [0, 1], beyond kMaxViewDistance) get
+    //! their direct radiance only: no AO, ambient or indirect term, whatever the host's albedo
+    //! there. Throws Error{InvalidArgument} for enumerators or settings out of range, without
     //! depth/radiance/albedo, and for inputs of the wrong size, with a base level other than
-    //! 0, or of the wrong kind: depth must be a depth format; radiance, albedo and indirect
-    //! light normalized or float RGB/RGBA, AO normalized or float.
+    //! 0, or of the wrong kind: depth must be a depth format (sampled as depth); radiance,
+    //! albedo and indirect light normalized or float RGB/RGBA, AO normalized or float.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
     //! The combined radiance of the last compose call times its `exposure`, as the tone

@@ -110,9 +110,10 @@ struct HostGBuffer {
     //! GL_DEPTH_COMPONENT). Only `name` is read (here and in the other host textures): the
     //! format and size are GL's, and the view gets them from there. Pixels at the camera's
     //! clear depth are background, and so are those a float format lets hold what no
-    //! rasterizer writes (NaN, +-Inf, below 0 or above 1); subnormal values count as 0 (the
-    //! clear depth with reversed-Z, the near plane otherwise). Every pass leaves background
-    //! pixels out.
+    //! rasterizer writes (NaN, +-Inf, below 0 or above 1), and depths farther than
+    //! kMaxViewDistance (camera.hpp: with an infinite far plane, below near / 2^56);
+    //! subnormal values count as 0 (the clear depth with reversed-Z, the near plane
+    //! otherwise). Every pass leaves background pixels out.
     TextureView depth;
     //! Optional, same size. Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
