@@ -168,7 +168,11 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     // Pixels per world unit at p (perspective: the projection's y scale over the distance).
     const float pixelsPerUnit = 0.5 * float(frameSize().y) * frame.projection[1][1] /
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
-    const float reach = ao.shape.x * pixelsPerUnit; // the radius in G-buffer pixels
+    const float reach = min(ao.shape.x * pixelsPerUnit, kFloatMax); // the radius in G-buffer pixels
+    // Offsets are cut to twice the image's larger side, which any direction leaves the image
+    // by: a float past the int range converts to an undefined int (GLSL 4.50, 5.4.1), and
+    // radii far beyond the scene reach that (and Inf) in pixels.
+    const float farthestOffset = 2.0 * float(max(frameSize().x, frameSize().y));
     const float pError = depthReconstructionError(p, texelFetch(visDepth, fullPixel, 0).r);
     for (int s = int(rayBatchFirst()); s < int(rayBatchEnd()); s += RAY_LANES) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
@@ -187,7 +191,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
             const float sgn = side == 0 ? -1.0 : 1.0;
             float best = -1.0; // cosine of the horizon angle from v; -1: none found
             for (int j = 0; j < ao.counts.y; ++j) {
-                const float offset = reach * (float(j) + jitter) / float(ao.counts.y);
+                const float offset = min(reach * (float(j) + jitter) / float(ao.counts.y), farthestOffset);
                 const ivec2 q = fullPixel + ivec2(round(sgn * dir * max(offset, 1.0)));
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frameSize()))) break; // border: open
                 const float depth = texelFetch(visDepth, q, 0).r;

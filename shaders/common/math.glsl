@@ -38,6 +38,18 @@ vec3 safeNormalize(vec3 v, vec3 fallback) {
     return v * inversesqrt(dot(v, v));
 }
 
+// |v| for any finite v. length() squares the components, and a square overflows float past
+// about 1.8e19: a screen-space march out to a radius that long (the radius's range is
+// (0, inf)) measured its samples as infinitely far, and their rounding tolerance made nothing
+// hidden. Vectors with a component from 2^60 on are scaled by it first; shorter ones take
+// length() as they are, so their results keep every bit. An infinite component gives Inf, as
+// length() does.
+float lengthWithoutOverflow(vec3 v) {
+    const float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    if (m < 1.152921504606847e18) return length(v);
+    return isinf(m) ? m : m * length(v / m);
+}
+
 // v rounded to the nearest half float (ties away from zero), so that storing it into a
 // 16-bit float image is exact: GL leaves that conversion's rounding to the implementation,
 // and llvmpipe's rounds toward zero, which turns 0.99999994 into 0.99951 (a float's last bit

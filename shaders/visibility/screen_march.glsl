@@ -75,7 +75,7 @@ float screenNormalSlack(ScreenRayStart from, vec3 s, vec3 o, float oError, float
     const vec3 toO = o - from.p;
     const float distance = length(toO);
     if (abs(dot(toO, from.n)) > from.normalError * distance + positionErrors) return 0.0;
-    return oError * distance + (from.normalError + oError) * length(s - from.p);
+    return oError * distance + (from.normalError + oError) * lengthWithoutOverflow(s - from.p);
 }
 
 // Whether s, which projects to `pixel`, is hidden behind that pixel's piece of surface:
@@ -103,7 +103,7 @@ bool screenHiddenAt(ivec2 pixel, vec3 s, ScreenRayStart from, float thickness) {
     const float depthErrors = 2.0 * depthReconstructionError(o, depth);
     const float positionErrors = screenPlaneTolerance(max(length(o), length(from.p)), depthErrors);
     const float errors = depthErrors + screenNormalSlack(from, s, o, storedNormalError(normalTexel), positionErrors);
-    return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), length(s)), errors) && inside;
+    return !isBackground(depth) && behind > screenPlaneTolerance(max(length(o), lengthWithoutOverflow(s)), errors) && inside;
 }
 
 // Whether s, a point seen from `from`, is hidden behind the depth buffer (see above).

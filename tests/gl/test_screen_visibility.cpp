@@ -332,6 +332,55 @@ TEST_CASE("Depth peeling gives the back of a closed box and lets rays pass behin
         }
 }
 
+TEST_CASE("Segments longer than 1.8e19 units classify as exact arithmetic does", "[visibility]") {
+    // The radius and the thickness range over (0, inf). Past about 1.8e19 units a sample's
+    // squared length overflows float; screenHiddenAt took |s| for its rounding tolerance, which
+    // became Inf, so nothing was hidden (every ray of this test missed). 1e18 is a control
+    // below the overflow; 1e30 and 1e37 lie above it (a segment's end still finite).
+    // Segments from surface points of the Cornell box, the slab as deep as the reach, so that
+    // the far samples of rays into the image are hidden behind the walls. Random directions
+    // seldom point into the image (a few percent), so half the segments run along the eye's
+    // ray through another surface pixel: their far samples project near that pixel, behind
+    // its surface. The marches must agree with the double-precision mirror but for ties, and
+    // Hi-Z with the texture march.
+    ScreenFixture f("cornell", 64, 48);
+    const test::ScreenMirror mirror(f.ctx, f.view);
+    const std::vector<ScreenSegment> across = f.surfaceSegments(1000, 1.0f, 17), toward = f.surfaceSegments(1000, 1.0f, 19);
+    for (const float reach : {1e18f, 1e30f, 1e37f}) {
+        CAPTURE(reach);
+        std::vector<ScreenSegment> segments = f.surfaceSegments(1000, reach, 23);
+        for (std::size_t i = 0; i < across.size(); ++i) {
+            const glm::vec3 w = glm::normalize(toward[i].from); // the eye is the view-space origin
+            const float length = reach * (0.25f + 0.75f * float(i) / float(across.size()));
+            segments.push_back({across[i].from, across[i].from + w * length});
+        }
+        ScreenTraceSettings s;
+        s.steps = 16;
+        s.thickness = reach;
+        std::size_t off[2] = {0, 0}, tiedRays = 0;
+        std::vector<ScreenHit> marches[3];
+        const ScreenMarch kinds[3] = {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ};
+        for (int m = 0; m < 3; ++m) {
+            s.march = kinds[m];
+            marches[m] = f.visibility.trace(f.view, segments, s);
+        }
+        for (std::size_t i = 0; i < segments.size(); ++i) {
+            bool tied = false;
+            for (int m = 0; m < 2; ++m) off[m] += agreesWithMirror(mirror, segments[i], marches[m][i], s, tied) ? 0 : 1;
+            tiedRays += tied ? 1 : 0;
+            for (const auto& march : marches) CHECK(std::isfinite(march[i].t));
+        }
+        INFO(hitCount(marches[0]) << " of " << segments.size() << " rays hit; off the mirror: view " << off[0]
+                                  << ", texture " << off[1] << "; rays with a tie " << tiedRays);
+        CHECK(hitCount(marches[0]) > segments.size() / 10);
+        CHECK(off[0] == 0);
+        CHECK(off[1] == 0);
+        CHECK(tiedRays < segments.size() / 100);
+        CHECK(differingSamples(marches[1], marches[2]) == 0);
+    }
+    CHECK(test::drainGlErrors().empty());
+}
+
 TEST_CASE("Points off the image or behind the camera are visible and a surface hides only its thickness",
           "[visibility]") {
     // The border policy and the radius check (screen_march.glsl): what the depth buffer does
