@@ -48,8 +48,8 @@ enum class AoMethod {
               //!< on each side and the cosine-weighted integral above them (GTAO-style; exact
               //!< for height fields, darker than AO_r under overhangs: below a disc as high
               //!< as it is wide, 0.09-0.19 on 0.5); `rays` / 2 slices; cosine weighting only;
-              //!< the bent normal integrates each slice's visible arc in closed form; refuses
-              //!< a projection that mirrors x or y
+              //!< the bent normal integrates each slice's visible arc in closed form; a slice's
+              //!< screen direction is mirrored where the projection mirrors x or y (camera.hpp)
     //! "ao.voxel": `rays` segments of length r through `voxels` (first-hit distance), from a
     //! start lifted off the surface's own voxels by a voxel diagonal and the depth's error,
     //! more for a pixel whose normal is only known within a bound (HostGBuffer::normal); a
@@ -163,9 +163,8 @@ public:
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
     //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
-    //! DepthPeeling and PeelingOrConstant), the Voxel method without a grid, or the Horizon
-    //! method with a projection that mirrors x or y (projection[0][0] or [1][1] < 0, see
-    //! camera.hpp). The view stays valid until the next run.
+    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view stays
+    //! valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     //! The last run's refinement; zeros when it ran at full resolution or without one. A run

@@ -7,8 +7,11 @@
 // ClipDepth::ZeroToOne; Obscura sets glClipControl accordingly when it rasterizes.
 // Texture row 0 is the bottom of the view (glClipControl's GL_LOWER_LEFT origin, the GL
 // default): a host that renders with GL_UPPER_LEFT stores its rows the other way round, and
-// its buffers reconstruct mirrored in y unless the projection given here mirrors y too
-// (projection[1][1] < 0), which AoMethod::Horizon refuses.
+// its buffers reconstruct mirrored in y unless the projection given here mirrors y too: its
+// own with row 1 negated (projection[c][1] = -projection[c][1] for every column c), which is
+// what GL_UPPER_LEFT does to y_ndc. Results then come out in the host's rows; tested for
+// every AO method at full and half resolution (tests/gl/test_ao_host.cpp), not yet for
+// indirect light, which uses the same marches and pixel mapping.
 #include "obscura/export.hpp"
 
 #include <glm/glm.hpp>

@@ -166,8 +166,12 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     const vec3 v = viewDirectionTo(p);
     const int slices = max(ao.counts.x / 2, 1);
     // Pixels per world unit at p (perspective: the projection's y scale over the distance).
-    const float pixelsPerUnit = 0.5 * float(frameSize().y) * frame.projection[1][1] /
+    const float pixelsPerUnit = 0.5 * float(frameSize().y) * abs(frame.projection[1][1]) /
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
+    // A screen direction's view-space direction: the same but for the axes the projection
+    // mirrors (p00 or p11 < 0, e.g. a host's for glClipControl(GL_UPPER_LEFT), whose rows run
+    // top down). Times exactly 1 otherwise.
+    const vec2 screenToView = vec2(frame.projection[0][0] < 0.0 ? -1.0 : 1.0, frame.projection[1][1] < 0.0 ? -1.0 : 1.0);
     const float reach = min(ao.shape.x * pixelsPerUnit, kFloatMax); // the radius in G-buffer pixels
     // Offsets are cut to twice the image's larger side, which any direction leaves the image
     // by: a float past the int range converts to an undefined int (GLSL 4.50, 5.4.1), and
@@ -176,10 +180,10 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     const float pError = depthReconstructionError(p, texelFetch(visDepth, fullPixel, 0).r);
     for (int s = int(rayBatchFirst()); s < int(rayBatchEnd()); s += RAY_LANES) {
         const float phi = OBSCURA_PI * (float(s) + rotation.x) / float(slices);
-        const vec2 dir = vec2(cos(phi), sin(phi));
+        const vec2 dir = vec2(cos(phi), sin(phi)), viewDir = dir * screenToView;
         // The slice plane holds v and the screen direction; `axis` is its normal, and
         // cross(v, axis) points from v toward +dir: angles are positive that way.
-        const vec3 axis = safeNormalize(cross(vec3(dir, 0.0), v), vec3(0.0, 0.0, 1.0));
+        const vec3 axis = safeNormalize(cross(vec3(viewDir, 0.0), v), vec3(0.0, 0.0, 1.0));
         const vec3 projected = normal - axis * dot(normal, axis);
         const float weight = length(projected);
         if (!(weight > 0.0)) continue;
@@ -215,10 +219,10 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
         e.count += open;
         // Equal steps of phi turn the slice plane about v by unequal angles psi where v leans
         // off the screen's normal (perspective, off centre): dpsi/dphi = v.z / (1 - (d.v)^2),
-        // d = (dir, 0). Weighted so, the slices integrate over the hemisphere and an open
+        // d = (viewDir, 0). Weighted so, the slices integrate over the hemisphere and an open
         // plane's bent normal is its normal (at 0.067 rad without, 48 x 40 pixels at 50
         // degrees); the AO above keeps its own (documented) slice integral.
-        const float alongDir = dot(dir, v.xy);
+        const float alongDir = dot(viewDir, v.xy);
         const float turn = v.z / max(1.0 - alongDir * alongDir, 1e-6);
         const vec2 bent = aoBentArc(h[0], h[1], g);
         e.bent += turn * weight * (bent.x * v + bent.y * toSide);

@@ -24,15 +24,6 @@
 namespace obscura {
 namespace {
 
-// The horizon method walks its slices in pixels along the view-space directions it integrates,
-// which only agree while the projection keeps x and y's signs (a projection with p00 < 0 or
-// p11 < 0, e.g. one made for glClipControl(GL_UPPER_LEFT), would sample the mirrored slice).
-void requireUnmirrored(const Camera& camera, AoMethod method) {
-    if (method == AoMethod::Horizon && (camera.projection[0][0] < 0.0f || camera.projection[1][1] < 0.0f))
-        throw Error(ErrorCode::InvalidArgument, "AoMethod::Horizon needs a projection that does not mirror x or y "
-                                                "(projection[0][0] > 0 and projection[1][1] > 0)");
-}
-
 using namespace detail;
 
 // The pass names (stable: profiler, debug groups, bench).
@@ -150,7 +141,6 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    requireUnmirrored(g.camera, s.method);
     const bool marches = s.method == AoMethod::RayMarch || s.method == AoMethod::Points;
     const ScreenThickness thickness = marches ? s.thicknessMode : ScreenThickness::Constant;
     const bool peeled = depthLayersFor(thickness) == 2;

@@ -115,11 +115,11 @@ GLuint linkedProgram(const char* vertex, const char* fragment) {
 }
 
 // A host's depth pass: a new depth texture of `format`, cleared to `clear`, and `draw` run into it
-// with `program`, the depth test `func`, and the clip control `depthMode`. Sets the GL state the
-// pass needs explicitly and leaves the defaults, except the viewport, which stays the pass's
-// (test contexts only).
-GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float clear, GLenum func, GLenum depthMode,
-                     const std::function<void()>& draw) {
+// with `program`, the depth test `func`, and the clip control `origin`, `depthMode`. Sets the GL
+// state the pass needs explicitly and leaves the defaults, except the viewport, which stays the
+// pass's (test contexts only).
+GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float clear, GLenum func, GLenum origin,
+                     GLenum depthMode, const std::function<void()>& draw) {
     GLuint target = 0, fbo = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, format, width, height);
@@ -135,7 +135,7 @@ GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthRange(0.0, 1.0);
-    glClipControl(GL_LOWER_LEFT, depthMode);
+    glClipControl(origin, depthMode);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(func);
     glDepthMask(GL_TRUE);
@@ -161,7 +161,7 @@ layout(binding = 0) uniform sampler2D source;
 void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })");
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
-    const GLuint target = hostDepthPass(width, height, format, program, 1.0f, GL_ALWAYS, GL_NEGATIVE_ONE_TO_ONE, [&] {
+    const GLuint target = hostDepthPass(width, height, format, program, 1.0f, GL_ALWAYS, GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE, [&] {
         glBindTextureUnit(0, depth);
         glBindVertexArray(vao);
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -173,7 +173,8 @@ void main() { gl_FragDepth = texelFetch(source, ivec2(gl_FragCoord.xy), 0).r; })
     return target;
 }
 
-GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format) {
+GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format,
+                            GLenum clipOrigin) {
     std::vector<glm::vec3> world; // every mesh's triangles in world space, as a host's vertex shader would see them
     for (const Mesh& mesh : scene.meshes) {
         const MeshData& data = *mesh.data;
@@ -201,7 +202,7 @@ void main() { gl_Position = viewProjection * vec4(position, 1.0); })",
     glEnableVertexArrayAttrib(vao, 0);
     const bool reversed = analyzeProjection(camera).reversedZ;
     const GLuint target = hostDepthPass(
-        width, height, format, program, reversed ? 0.0f : 1.0f, reversed ? GL_GREATER : GL_LESS,
+        width, height, format, program, reversed ? 0.0f : 1.0f, reversed ? GL_GREATER : GL_LESS, clipOrigin,
         camera.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE, [&] {
             glBindVertexArray(vao);
             glDrawArrays(GL_TRIANGLES, 0, GLsizei(world.size()));

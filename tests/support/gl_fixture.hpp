@@ -47,9 +47,11 @@ GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 //! A host's depth pass over `scene` (its meshes; no MeshRefs) seen by `camera`, drawn directly
 //! into a new GL_TEXTURE_2D of `format` by the host's own program: the rasterizer's depth at
 //! the format's precision, not a quantized copy of ours. Clip control, clear value and depth
-//! test follow the camera (reversed-Z: clear 0, GL_GREATER). The caller deletes it; state as
+//! test follow the camera (reversed-Z: clear 0, GL_GREATER); `clipOrigin` GL_UPPER_LEFT
+//! stores the rows top down, as a host does that renders so. The caller deletes it; state as
 //! copyDepthAsHost.
-GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format);
+GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format,
+                            GLenum clipOrigin = GL_LOWER_LEFT);
 
 //! A new host texture of `format` (a float or normalized RGBA one) from `image` (row 0 at the
 //! top): each pixel's rgb through `map(pixel index in row order, rgb)`, alpha 1. The caller
