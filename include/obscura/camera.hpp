@@ -9,9 +9,9 @@
 // default): a host that renders with GL_UPPER_LEFT stores its rows the other way round, and
 // its buffers reconstruct mirrored in y unless the projection given here mirrors y too: its
 // own with row 1 negated (projection[c][1] = -projection[c][1] for every column c), which is
-// what GL_UPPER_LEFT does to y_ndc. Results then come out in the host's rows; tested for
-// every AO method at full and half resolution (tests/gl/test_ao_host.cpp), not yet for
-// indirect light, which uses the same marches and pixel mapping.
+// what GL_UPPER_LEFT does to y_ndc. Results then come out in the host's rows (tested for
+// every AO and indirect-light method at full and half resolution: test_ao_host.cpp,
+// test_indirect_light.cpp).
 #include "obscura/export.hpp"
 
 #include <glm/glm.hpp>

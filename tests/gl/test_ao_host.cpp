@@ -1,7 +1,9 @@
 // Ambient occlusion in post-process mode: on a host's depth of every format and its normals an
 // open plane stays open, and on a host's float depth layers and normals every method and
-// thickness mode gives the G-buffer path's AO bit for bit.
+// thickness mode gives the G-buffer path's AO bit for bit; a host that renders with
+// GL_UPPER_LEFT gets every method's AO in its own rows.
 #include "ao_fixture.hpp"
+#include "mirrored_view.hpp"
 
 #include "obscura/assets.hpp"
 #include "obscura/obscura.hpp"
@@ -179,28 +181,19 @@ TEST_CASE("Post-process mode: a host that renders with GL_UPPER_LEFT and passes 
     // ones. Every method must then see the scene as from the unmirrored camera: row y of its
     // AO is row H - 1 - y of the unmirrored AO but for sampling noise, since each pixel
     // rotates its samples by its own texel of the 64 x 64 noise texture (the two are
-    // different estimates of one value). At full resolution the noise of such a difference
-    // comes from the same scene seen with the image shifted by one pixel (an off-centre
-    // projection), where pixel x estimates what the unmirrored camera's pixel x + 1 sees with
-    // pixel x's noise. At half resolution a reduced pixel stands for the other row of its
-    // 2 x 2 block when mirrored, so the mirrored result is another half-resolution estimate:
-    // it must lie as close to the full-resolution AO as the unmirrored half-resolution one.
-    // Each within 1.25 times its baseline RMS (over 1700 pixels with their own noise an RMS
-    // varies by about 1 / sqrt(2 N), 2 %). The Cornell box is not symmetric top to bottom
-    // (floor, blocks, ceiling light): the horizon method with slices walked in unmirrored
-    // screen directions was 12.7 (full) and 3.4 (half resolution) times its baseline off.
+    // different estimates of one value); checkMirroredLikeBaselines says against what. The
+    // Cornell box is not symmetric top to bottom (floor, blocks, ceiling light): the horizon
+    // method with slices walked in unmirrored screen directions was 12.7 (full) and 3.4 (half
+    // resolution) times its baseline off.
     AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
     const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
                                               float(W) / float(H), 10.0f, 5000.0f);
-    Camera mirrored = camera;
-    for (int column = 0; column < 4; ++column) mirrored.projection[column][1] = -camera.projection[column][1];
-    Camera shiftedCamera = camera;
-    shiftedCamera.projection[2][0] += 2.0f / float(W); // the image moves one pixel left
+    const Camera mirrored = test::mirroredInY(camera);
     f.render(cornell.scene, camera, W, H);
     GBuffer shiftedGBuffer(f.ctx);
-    const GBufferView shifted = shiftedGBuffer.render(cornell.scene, shiftedCamera, {W, H, false, {}});
+    const GBufferView shifted = shiftedGBuffer.render(cornell.scene, test::shiftedOnePixel(camera, W), {W, H, false, {}});
     const Image shiftedPositions = readTexture(f.ctx, shiftedGBuffer.positions(shifted));
     // The host's depth is rasterized with GL_UPPER_LEFT and the unmirrored projection, its
     // normals are the G-buffer's with the mirrored projection (the same view-space normals).
@@ -208,15 +201,20 @@ TEST_CASE("Post-process mode: a host that renders with GL_UPPER_LEFT and passes 
     const GBufferView mirroredOwn = mirroredGBuffer.render(cornell.scene, mirrored, {W, H, false, {}});
     const GLuint depth = test::rasterizeDepthAsHost(cornell.scene, camera, W, H, GL_DEPTH_COMPONENT32F, GL_UPPER_LEFT);
     // GL_UPPER_LEFT negates y_ndc in the viewport transform, so the host's depth is what the
-    // mirrored projection rasterizes. Float rounding aside: llvmpipe interpolates the two in a
-    // different order (322 of the 1920 texels 1 or 2 ulp apart, at most 1.2e-7).
+    // mirrored projection rasterizes, with the same coverage. Float rounding aside: llvmpipe
+    // interpolates the two in a different order (322 of the 1920 texels 1 or 2 ulp apart, at
+    // most 1.2e-7).
     const Image hostDepth = readTexture(f.ctx, {depth, GL_DEPTH_COMPONENT32F, W, H});
     const Image mirroredDepth = readTexture(f.ctx, mirroredOwn.depth);
     double worst = 0.0;
+    std::size_t coverageDiffers = 0;
     for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x)
+        for (int x = 0; x < W; ++x) {
             worst = std::max(worst, std::abs(double(hostDepth.at(x, y, 0)) - double(mirroredDepth.at(x, y, 0))));
+            coverageDiffers += f.geometry(x, y) != (hostDepth.at(x, H - 1 - y, 0) < 1.0f);
+        }
     CHECK(worst <= 4.0 * std::ldexp(1.0, -24)); // 4 ulp of depths in [0.5, 1)
+    CHECK(coverageDiffers == 0);
     HostGBuffer host;
     host.depth = {depth, GL_DEPTH_COMPONENT32F, W, H};
     host.normal = mirroredOwn.normal;
@@ -235,36 +233,11 @@ TEST_CASE("Post-process mode: a host that renders with GL_UPPER_LEFT and passes 
         s.blurRadius = 2;
         const Image half = readTexture(f.ctx, f.ao.run(f.view, s).ao);
         const Image mirroredHalf = readTexture(f.ctx, f.ao.run(adopted, s).ao);
-        // Sums of squared differences from `full`: mirrored full, shifted full, mirrored half,
-        // half; and their pixel counts.
-        double squares[4] = {0, 0, 0, 0}, lowest = 1.0;
-        std::size_t counts[4] = {0, 0, 0, 0}, coverageDiffers = 0;
-        const auto add = [&](int which, double value, double reference) {
-            squares[which] += (value - reference) * (value - reference);
-            ++counts[which];
-        };
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                const bool geometry = f.geometry(x, y);
-                coverageDiffers += geometry != (hostDepth.at(x, H - 1 - y, 0) < 1.0f);
-                if (!geometry) continue;
-                const double u = full.at(x, y, 0);
-                lowest = std::min(lowest, u);
-                add(0, mirroredFull.at(x, H - 1 - y, 0), u);
-                if (x >= 1 && shiftedPositions.at(x - 1, y, 3) > 0.0f) add(1, shiftedFull.at(x - 1, y, 0), u);
-                add(2, mirroredHalf.at(x, H - 1 - y, 0), u);
-                add(3, half.at(x, y, 0), u);
-            }
-        double rms[4];
-        for (int i = 0; i < 4; ++i) rms[i] = std::sqrt(squares[i] / double(std::max<std::size_t>(counts[i], 1)));
-        INFO(counts[0] << " pixels: RMS from full resolution: mirrored " << rms[0] << ", shifted " << rms[1] << " ("
-                       << counts[1] << " pixels); mirrored half " << rms[2] << ", half " << rms[3] << "; lowest AO "
-                       << lowest);
-        CHECK(coverageDiffers == 0);
+        double lowest = 1.0;
+        for (float a : full.pixels) lowest = std::min(lowest, double(a));
         CHECK(lowest < 0.5); // the box's corners and the blocks' feet are occluded
-        CHECK(counts[1] > counts[0] * 9 / 10);
-        CHECK(rms[0] <= 1.25 * rms[1]);
-        CHECK(rms[2] <= 1.25 * rms[3]);
+        test::checkMirroredLikeBaselines(test::mirroredDifferences(f.positions, shiftedPositions, 1, full, mirroredFull,
+                                                                   shiftedFull, half, mirroredHalf));
     }
     glDeleteTextures(1, &depth);
     CHECK(test::drainGlErrors().empty());

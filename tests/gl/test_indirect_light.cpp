@@ -1,9 +1,10 @@
 // One-bounce indirect light: a closed form (a floor lit by an emissive wall), screen space
 // against the hybrid around a hidden occluder, zero where nothing is lit, stability, post-process
-// mode and the inputs it refuses (what rays gather from faces and albedo:
+// mode, a projection mirrored in y, and the inputs it refuses (what rays gather from faces and albedo:
 // test_indirect_light_gather.cpp).
 #include "ao_fixture.hpp"
 #include "gl_fixture.hpp"
+#include "mirrored_view.hpp"
 #include "scene_builders.hpp"
 
 #include "obscura/assets.hpp"
@@ -552,6 +553,52 @@ TEST_CASE("Hybrid indirect light with a radius far past the grid gathers what a 
         CHECK(lit > W * H / 8); // the floor before the wall
         CHECK(std::abs(far - near) <= 0.01 * near);
     }
+}
+
+TEST_CASE("Indirect light with a projection mirrored in y, a GL_UPPER_LEFT host's, is the unmirrored light mirrored",
+          "[gi][host]") {
+    // As for AO (test_ao_host.cpp): with the projection's row 1 negated, the rows run top down
+    // and every method must gather what the unmirrored camera's do, in mirrored rows, as
+    // noisy as checkMirroredLikeBaselines allows. The G-buffer is rendered with the mirrored
+    // projection (its depth is a GL_UPPER_LEFT host's, test_ao_host.cpp; adoption gives the
+    // G-buffer path's light bit for bit, test_host_lighting.cpp), lit by the box's light.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx), shiftedGBuffer(ctx), mirroredGBuffer(ctx);
+    IndirectLight gi(ctx);
+    Voxelizer voxelizer(ctx);
+    const assets::LoadedScene cornell = assets::builtinScene("cornell");
+    constexpr int W = 48, H = 40;
+    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                                              float(W) / float(H), 10.0f, 5000.0f);
+    const GBufferSettings lit{W, H, true, {}};
+    const GBufferView view = gbuffer.render(cornell.scene, camera, lit);
+    const GBufferView shifted = shiftedGBuffer.render(cornell.scene, test::shiftedOnePixel(camera, W), lit);
+    const GBufferView mirrored = mirroredGBuffer.render(cornell.scene, test::mirroredInY(camera), lit);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const Image shiftedPositions = readTexture(ctx, shiftedGBuffer.positions(shifted));
+    const VoxelGrid& voxels = voxelizer.voxelize(cornell.scene, {});
+    for (const GiMethod method : {GiMethod::Screen, GiMethod::Hybrid}) {
+        CAPTURE(static_cast<int>(method));
+        IndirectLightSettings s;
+        s.method = method;
+        s.radius = 300.0f;
+        s.rays = 32;
+        if (method == GiMethod::Hybrid) s.voxels = &voxels;
+        const Image full = readTexture(ctx, gi.run(view, s).radiance);
+        const Image shiftedFull = readTexture(ctx, gi.run(shifted, s).radiance);
+        const Image mirroredFull = readTexture(ctx, gi.run(mirrored, s).radiance);
+        s.resolution = AoResolution::Half;
+        s.blurRadius = 2;
+        const Image half = readTexture(ctx, gi.run(view, s).radiance);
+        const Image mirroredHalf = readTexture(ctx, gi.run(mirrored, s).radiance);
+        int litPixels = 0;
+        for (std::size_t i = 0; i < full.pixels.size(); i += 4) litPixels += full.pixels[i] > 0.0f;
+        CHECK(litPixels > W * H / 4); // nothing gathered would prove nothing
+        test::checkMirroredLikeBaselines(
+            test::mirroredDifferences(positions, shiftedPositions, 3, full, mirroredFull, shiftedFull, half, mirroredHalf));
+    }
+    CHECK(test::drainGlErrors().empty());
 }
 
 TEST_CASE("Indirect light refuses bad settings and buffers without radiance", "[gi][bad-input]") {
