@@ -12,9 +12,10 @@
 
 namespace obscura::test {
 
-//! The projection a GL_UPPER_LEFT host passes: its own with row 1 negated.
-inline Camera mirroredInY(Camera camera) {
-    for (int column = 0; column < 4; ++column) camera.projection[column][1] = -camera.projection[column][1];
+//! The projection with row `axis` negated, which mirrors x (0) or y (1): for y, what a
+//! GL_UPPER_LEFT host passes.
+inline Camera mirrored(Camera camera, int axis) {
+    for (int column = 0; column < 4; ++column) camera.projection[column][axis] = -camera.projection[column][axis];
     return camera;
 }
 
@@ -26,8 +27,9 @@ inline Camera shiftedOnePixel(Camera camera, int width) {
 }
 
 //! RMS differences from `full` (the unmirrored camera at full resolution) over its geometry
-//! pixels (`positions` alpha), over the first `channels` channels: the mirrored result at
-//! full resolution (row H - 1 - y against row y), the shifted one (its x - 1 against x,
+//! pixels (`positions` alpha), over the first `channels` channels: the result mirrored in
+//! `axis` (0: column W - 1 - x against column x, 1: row H - 1 - y against row y) at full
+//! resolution, the shifted one (its x - 1 against x,
 //! where it shows geometry), the mirrored and the unmirrored ones at half resolution.
 struct MirroredDifferences {
     double mirrored = 0.0, shifted = 0.0, mirroredHalf = 0.0, half = 0.0;
@@ -36,7 +38,7 @@ struct MirroredDifferences {
 
 inline MirroredDifferences mirroredDifferences(const Image& positions, const Image& shiftedPositions, int channels,
                                                const Image& full, const Image& mirrored, const Image& shifted,
-                                               const Image& half, const Image& mirroredHalf) {
+                                               const Image& half, const Image& mirroredHalf, int axis = 1) {
     const int w = full.width, h = full.height;
     const auto squared = [&](const Image& a, int ax, int ay, int x, int y) {
         double sum = 0.0;
@@ -52,8 +54,9 @@ inline MirroredDifferences mirroredDifferences(const Image& positions, const Ima
         for (int x = 0; x < w; ++x) {
             if (positions.at(x, y, 3) == 0.0f) continue;
             ++r.pixels;
-            sums[0] += squared(mirrored, x, h - 1 - y, x, y);
-            sums[2] += squared(mirroredHalf, x, h - 1 - y, x, y);
+            const int mx = axis == 0 ? w - 1 - x : x, my = axis == 1 ? h - 1 - y : y;
+            sums[0] += squared(mirrored, mx, my, x, y);
+            sums[2] += squared(mirroredHalf, mx, my, x, y);
             sums[3] += squared(half, x, y, x, y);
             if (x < 1 || shiftedPositions.at(x - 1, y, 3) == 0.0f) continue;
             ++r.shiftedPixels;
@@ -71,7 +74,7 @@ inline MirroredDifferences mirroredDifferences(const Image& positions, const Ima
 //! baselines: within 1.25 times the shifted result's RMS at full resolution (its pixels use
 //! other noise texels, as the mirrored ones do), and at half resolution within 1.25 times the
 //! unmirrored half-resolution result's RMS (mirrored, a reduced pixel stands for the other
-//! row of its 2 x 2 block, so the result is another half-resolution estimate). Over the
+//! row or column of its 2 x 2 block, so the result is another half-resolution estimate). Over the
 //! 1000-2000 pixels of these tests an RMS of independent noise varies by about
 //! 1 / sqrt(2 N), 2 %.
 inline void checkMirroredLikeBaselines(const MirroredDifferences& d) {

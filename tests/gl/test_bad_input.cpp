@@ -294,21 +294,6 @@ TEST_CASE_METHOD(BadInputFixture, "Light and camera parameters outside their ran
     expectError([&] { gbuffer.render(scene, wrongClip, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "ClipDepth");
 }
 
-TEST_CASE_METHOD(BadInputFixture, "The horizon method refuses a projection that mirrors x or y", "[bad-input]") {
-    // It steps along each slice in pixels by the projection's signed scale (a mirrored one, as
-    // made for glClipControl(GL_UPPER_LEFT), would sample the mirrored slice): refused, not wrong.
-    AmbientOcclusion ao(ctx);
-    AmbientOcclusionSettings horizon;
-    horizon.method = AoMethod::Horizon;
-    ao.run(good, horizon); // its shaders and images, made before the count starts
-    for (const int axis : {0, 1}) {
-        GBufferView mirrored = good;
-        mirrored.camera.projection[axis][axis] = -mirrored.camera.projection[axis][axis];
-        CAPTURE(axis);
-        expectError([&] { ao.run(mirrored, horizon); }, ErrorCode::InvalidArgument, "mirror");
-    }
-}
-
 TEST_CASE_METHOD(BadInputFixture, "A G-buffer view's normal error outside 0..0.25 is refused", "[bad-input]") {
     AmbientOcclusion ao(ctx);
     ao.run(good, {}); // its shaders and images, made before the count starts

@@ -574,7 +574,7 @@ TEST_CASE("Indirect light with a projection mirrored in y, a GL_UPPER_LEFT host'
     const GBufferSettings lit{W, H, true, {}};
     const GBufferView view = gbuffer.render(cornell.scene, camera, lit);
     const GBufferView shifted = shiftedGBuffer.render(cornell.scene, test::shiftedOnePixel(camera, W), lit);
-    const GBufferView mirrored = mirroredGBuffer.render(cornell.scene, test::mirroredInY(camera), lit);
+    const GBufferView mirrored = mirroredGBuffer.render(cornell.scene, test::mirrored(camera, 1), lit);
     const Image positions = readTexture(ctx, gbuffer.positions(view));
     const Image shiftedPositions = readTexture(ctx, shiftedGBuffer.positions(shifted));
     const VoxelGrid& voxels = voxelizer.voxelize(cornell.scene, {});
