@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -336,6 +337,59 @@ TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour a
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 10, 10, static_cast<HostBlend>(2)}), Error);
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &color);
+}
+
+TEST_CASE("Drawing into a host framebuffer writes row r of the source to row r of the rectangle whatever the host's "
+          "clip origin", "[compose][host]") {
+    // A GL_UPPER_LEFT host passes its projection mirrored in y (camera.hpp), so Obscura's
+    // results already hold the host's rows: drawToHost must copy them row for row (the
+    // rectangle in glViewport's window coordinates, which clip control does not change), not
+    // flip them through the host's clip origin, and leave that origin as it was. Every texel
+    // of the source differs from every other by at least 1/64 (k / 64, exact in R16F and in
+    // the float target), so a flip or a shift shows. The source is sampled bilinearly at the
+    // interpolated texel centre, whose rounding blends in a trace of the neighbours: up to
+    // 1e-4 is allowed (llvmpipe: 3e-8).
+    Frame f;
+    constexpr int W = 8, H = 6, X = 3, Y = 2;
+    GLuint source = 0, color = 0, fbo = 0;
+    std::vector<float> values(W * H);
+    for (int i = 0; i < W * H; ++i) values[std::size_t(i)] = float(i + 1) / 64.0f;
+    glCreateTextures(GL_TEXTURE_2D, 1, &source);
+    glTextureStorage2D(source, 1, GL_R16F, W, H);
+    glTextureSubImage2D(source, 0, 0, 0, W, H, GL_RED, GL_FLOAT, values.data());
+    glCreateTextures(GL_TEXTURE_2D, 1, &color);
+    glTextureStorage2D(color, 1, GL_RGBA32F, W + X, H + Y);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    for (const GLenum origin : {GLenum(GL_LOWER_LEFT), GLenum(GL_UPPER_LEFT)}) {
+        CAPTURE(origin);
+        const glm::vec4 clear(-1.0f);
+        glClearTexImage(color, 0, GL_RGBA, GL_FLOAT, &clear);
+        glClipControl(origin, GL_NEGATIVE_ONE_TO_ONE);
+        f.composer.drawToHost({source, GL_R16F, W, H}, {fbo, X, Y, W, H});
+        GLint after = 0;
+        glGetIntegerv(GL_CLIP_ORIGIN, &after);
+        CHECK(GLenum(after) == origin);
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        std::vector<float> texels(std::size_t(W + X) * (H + Y) * 4);
+        glGetTextureImage(color, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(float)), texels.data());
+        std::size_t wrong = 0;
+        double worst = 0.0;
+        for (int y = 0; y < H + Y; ++y)
+            for (int x = 0; x < W + X; ++x) {
+                const bool inside = x >= X && y >= Y;
+                const float expected = inside ? values[std::size_t((y - Y) * W + (x - X))] : -1.0f;
+                const double error = std::abs(double(texels[(std::size_t(y) * (W + X) + x) * 4]) - expected);
+                worst = std::max(worst, error);
+                wrong += error > 1e-4;
+            }
+        INFO("largest difference " << worst);
+        CHECK(wrong == 0);
+    }
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &color);
+    glDeleteTextures(1, &source);
+    CHECK(test::drainGlErrors().empty());
 }
 
 namespace {
