@@ -231,19 +231,26 @@ TEST_CASE("Post-process mode: a host that renders with GL_UPPER_LEFT and passes 
             AmbientOcclusionSettings s = test::settingsOf(variant);
             s.radius = 150.0f;
             s.rays = 32;
+            s.bentNormals = true;
             if (variant.method == AoMethod::Voxel) s.voxels = &f.voxelizer.voxelize(cornell.scene, {});
-            const Image full = readTexture(f.ctx, f.ao.run(f.view, s).ao);
-            const Image shiftedFull = readTexture(f.ctx, f.ao.run(shifted, s).ao);
-            const Image mirroredFull = readTexture(f.ctx, f.ao.run(mirroredView, s).ao);
+            // AO and bent normal (view space, which the mirrored projection shares) of each run.
+            const auto run = [&](const GBufferView& view) {
+                const AmbientOcclusionView out = f.ao.run(view, s);
+                return std::pair{readTexture(f.ctx, out.ao), readTexture(f.ctx, out.bentNormal)};
+            };
+            const auto full = run(f.view), shiftedFull = run(shifted), mirroredFull = run(mirroredView);
             s.resolution = AoResolution::Half;
             s.blurRadius = 2;
-            const Image half = readTexture(f.ctx, f.ao.run(f.view, s).ao);
-            const Image mirroredHalf = readTexture(f.ctx, f.ao.run(mirroredView, s).ao);
+            const auto half = run(f.view), mirroredHalf = run(mirroredView);
             double lowest = 1.0;
-            for (float a : full.pixels) lowest = std::min(lowest, double(a));
+            for (float a : full.first.pixels) lowest = std::min(lowest, double(a));
             CHECK(lowest < 0.5); // the box's corners and the blocks' feet are occluded
-            test::checkMirroredLikeBaselines(test::mirroredDifferences(f.positions, shiftedPositions, 1, full, mirroredFull,
-                                                                       shiftedFull, half, mirroredHalf, axis));
+            test::checkMirroredLikeBaselines(test::mirroredDifferences(f.positions, shiftedPositions, 1, full.first,
+                                                                       mirroredFull.first, shiftedFull.first, half.first,
+                                                                       mirroredHalf.first, axis));
+            test::checkMirroredLikeBaselines(test::mirroredDifferences(f.positions, shiftedPositions, 3, full.second,
+                                                                       mirroredFull.second, shiftedFull.second,
+                                                                       half.second, mirroredHalf.second, axis));
         }
     }
     glDeleteTextures(1, &depth);
