@@ -88,7 +88,7 @@ enum class NormalSpace { View, World };
 enum class NormalEncoding {
     Signed,   //!< signed float formats holding n in [-1,1] (GL_RGB(A)16F/32F)
     //! n * 0.5 + 0.5 in a normalized format of at least 4 bits a channel (GL_RGB(A)8,
-    //! GL_RGB10_A2, GL_RGB(A)16)
+    //! GL_RGB10_A2, GL_RGB(A)16); not sRGB, which the sampler would decode
     Unsigned,
 };
 

@@ -102,6 +102,15 @@ void trackNearest(inout Blend b, Target t, Neighbour q) {
     }
 }
 
+// Takes q's value as the anchor the blends' offsets are measured from (see Blend) if it is the
+// first usable neighbour.
+void anchorOnFirstUsable(Neighbour q, inout FILTER_VALUE anchor, inout bool anchored) {
+    if (!anchored && q.guide.w != 0.0) {
+        anchor = q.value;
+        anchored = true;
+    }
+}
+
 // Adds neighbour `corner` to a blend.
 void accumulate(inout Blend b, Target t, ivec2 corner, Neighbour q, FILTER_VALUE anchor) {
     addWeighted(b, neighbourWeight(t, corner, q), q, anchor);
@@ -167,10 +176,7 @@ void main() {
     // 10 guide weights a quad instead of 16. On llvmpipe at 512 x 512 that took the pass to
     // 0.85-0.95 of its time (benchmarks/README.md): an `if` would not, as masked lanes run it.
     const Neighbour q0 = loadNeighbour(base, ivec2(0));
-    if (q0.guide.w != 0.0) {
-        anchor = q0.value;
-        anchored = true;
-    }
+    anchorOnFirstUsable(q0, anchor, anchored);
     accumulate(b00, t00, ivec2(0), q0, anchor);
     accumulate(b10, t10, ivec2(0), q0, anchor);
     accumulate(b01, t01, ivec2(0), q0, anchor);
@@ -178,10 +184,7 @@ void main() {
     for (int i = 1; i < (geometry ? 4 : 0); ++i) {
         const ivec2 corner = ivec2(i & 1, i >> 1);
         const Neighbour q = loadNeighbour(base, corner);
-        if (!anchored && q.guide.w != 0.0) {
-            anchor = q.value;
-            anchored = true;
-        }
+        anchorOnFirstUsable(q, anchor, anchored);
         // The one other pixel it counts for: (1, 0) and (0, 1) their own side's; for (1, 1)
         // none, so its weight is 0 (t10 lies on the lower row, bilinear y 0) and adds 0.
         const bool right = corner.x == 1;
@@ -197,10 +200,7 @@ void main() {
     for (int i = 0; i < (geometry ? 4 : 0); ++i) {
         const ivec2 corner = ivec2(i & 1, i >> 1);
         const Neighbour q = loadNeighbour(base, corner);
-        if (!anchored && q.guide.w != 0.0) { // the first usable neighbour (see Blend)
-            anchor = q.value;
-            anchored = true;
-        }
+        anchorOnFirstUsable(q, anchor, anchored);
         accumulate(b00, t00, corner, q, anchor);
         accumulate(b10, t10, corner, q, anchor);
         accumulate(b01, t01, corner, q, anchor);

@@ -40,7 +40,9 @@ bool screenPixelOfClip(vec4 clip, out ivec2 pixel) {
     pixel = ivec2(-1);
     if (!(clip.w > 0.0)) return false;
     const vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
+    // Inside as a positive test, so that NaN is outside: a clip coordinate can be Inf * 0 or
+    // Inf / Inf where a segment's extent overflows float, and ivec2(NaN) is undefined.
+    if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))) return false;
     pixel = min(ivec2(uv * vec2(frameSize())), frameSize() - 1);
     return true;
 }

@@ -42,10 +42,10 @@ void validateSettings(const ComposeSettings& s) {
 enum class InputKind { Depth, Colour, Rgb };
 
 void requireReadable(ContextImpl& ctx, GLuint name, const TextureInfo& info, const char* what, InputKind kind) {
-    requireBaseLevelZero(ctx, name, what);
-    if (kind == InputKind::Depth) return requireSampledDepth(ctx, name, info, what);
+    requireReadableAs(ctx, name, info, what, kind == InputKind::Depth ? SampledAs::Depth : SampledAs::Colour);
+    if (kind == InputKind::Depth) return;
     const int channels = kind == InputKind::Rgb ? 3 : 1;
-    if (info.depth || info.integer || info.channels < channels)
+    if (info.channels < channels)
         throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
                                                     "; accepted: a normalized or float format with " +
                                                     (channels == 3 ? "RGB or RGBA" : "one or more") + " channels");
@@ -63,23 +63,32 @@ bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, Inp
     return true;
 }
 
-// Whether `framebuffer`'s first draw buffer names an attached image (or, for the default
-// framebuffer, is not GL_NONE). Asked before any state is changed, so that a refusal leaves
-// the host's state as it was under every StatePolicy: GL_DRAW_BUFFER0 can only be queried on
-// the bound draw framebuffer, whose binding is put back at once.
-bool firstDrawBufferWritten(ContextImpl& ctx, GLuint framebuffer) {
+// Why drawing into `framebuffer` would write nothing or undefined values, or "" when it can be
+// drawn: its first draw buffer is GL_NONE or has no image attached, or that image is integer
+// (the output shader writes floats, which GL leaves undefined in an integer buffer). Asked
+// before any state is changed, so that a refusal leaves the host's state as it was under every
+// StatePolicy: GL_DRAW_BUFFER0 can only be queried on the bound draw framebuffer, whose
+// binding is put back at once.
+std::string firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
     GLint bound = 0;
     ctx.gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     GLint firstDrawBuffer = GL_NONE;
     ctx.gl.GetIntegerv(GL_DRAW_BUFFER0, &firstDrawBuffer);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(bound));
-    if (firstDrawBuffer == GL_NONE) return false;
-    if (framebuffer == 0) return true;
-    GLint attached = GL_NONE;
-    ctx.gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(firstDrawBuffer),
-                                                    GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &attached);
-    return attached != GL_NONE;
+    const std::string nothing = "its first draw buffer is GL_NONE or has no image attached, so nothing would be written";
+    if (firstDrawBuffer == GL_NONE) return nothing;
+    if (framebuffer == 0) return "";
+    const auto attachment = [&](GLenum pname) {
+        GLint value = GL_NONE;
+        ctx.gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(firstDrawBuffer), pname, &value);
+        return value;
+    };
+    if (attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_NONE) return nothing;
+    const GLint type = attachment(GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
+    if (type == GL_INT || type == GL_UNSIGNED_INT)
+        return "its first draw buffer is an integer image, into which the float output would write undefined values";
+    return "";
 }
 
 } // namespace
@@ -198,10 +207,8 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         std::snprintf(hex, sizeof hex, "%X", status);
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
-    if (!firstDrawBufferWritten(ctx, target.framebuffer))
-        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) +
-                                                    ": its first draw buffer is GL_NONE or has no image attached, so "
-                                                    "nothing would be written");
+    if (const std::string problem = firstDrawBufferProblem(ctx, target.framebuffer); !problem.empty())
+        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) + ": " + problem);
     StateScope scope(ctx);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
     PassScope pass(ctx, "compose.output");

@@ -109,6 +109,7 @@ Camera Camera::orthographic(const LookAt& lookAt, float halfHeight, float aspect
 }
 
 ProjectionInfo analyzeProjection(const Camera& camera) {
+    detail::requireEnumerator(camera.clipDepth, {ClipDepth::NegativeOneToOne, ClipDepth::ZeroToOne}, "Camera::clipDepth");
     detail::requireFinite(camera.view, "Camera::view");
     detail::requireFinite(camera.projection, "Camera::projection");
     if (!(std::abs(glm::determinant(glm::dmat3(camera.view))) > 0.0))

@@ -123,6 +123,14 @@ void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, co
                     who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
 }
 
+void requireReadableAs(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who, SampledAs kind) {
+    requireBaseLevelZero(ctx, name, who);
+    if (kind == SampledAs::Depth) return requireSampledDepth(ctx, name, info, who);
+    if (info.depth || info.stencil || info.integer)
+        throw Error(ErrorCode::InvalidArgument, who + " has format " + formatName(info.internalFormat) +
+                                                    "; accepted: a normalized or float colour format");
+}
+
 double depthStepOf(ContextImpl& ctx, GLuint depthTexture) {
     return queryTexture2D(ctx, depthTexture, "depth texture").depthStep;
 }

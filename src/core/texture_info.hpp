@@ -40,6 +40,14 @@ void requireBaseLevelZero(ContextImpl& ctx, GLuint name, const std::string& who)
 //! has both (GL_DEPTH_STENCIL_TEXTURE_MODE). Throws Error{InvalidArgument} mentioning `who`.
 void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who);
 
+//! How a pass reads a texture: Depth through a depth sampler's first channel, Colour as
+//! floats (a normalized or float format; sRGB ones decoded, which only colours may be).
+enum class SampledAs { Depth, Colour };
+//! For textures Obscura samples at level 0 as `kind`: requireBaseLevelZero, then for Depth
+//! requireSampledDepth, for Colour a format that is neither depth, stencil nor integer.
+//! Throws Error{InvalidArgument} mentioning `who`.
+void requireReadableAs(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who, SampledAs kind);
+
 std::string formatName(GLenum internalFormat);
 
 } // namespace obscura::detail

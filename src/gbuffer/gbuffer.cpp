@@ -367,6 +367,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     requireSampledDepth(ctx, host.depth.name, depth, "HostGBuffer::depth");
     requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
     requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
+    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned}, "HostGBuffer::normalEncoding");
+    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
     Defines defines;
     float normalError = kHalfNormalError;
     if (host.normal.name != 0) {
@@ -385,8 +387,9 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating && !unsignedFloat;
         // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
         // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
+        // sRGB storage would be decoded by the sampler, bending every normal.
         const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned &&
-                                componentType == GL_UNSIGNED_NORMALIZED && bits >= 1 &&
+                                componentType == GL_UNSIGNED_NORMALIZED && !n.srgb && bits >= 1 &&
                                 adoptedNormalError(NormalEncoding::Unsigned, bits) <= kMaxNormalError;
         if (n.depth || n.channels < 3 || !(signedOk || unsignedOk))
             throw Error(ErrorCode::InvalidArgument,
@@ -394,8 +397,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
                             (host.normalEncoding == NormalEncoding::Signed
                                  ? "a signed float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) "
                                    "with NormalEncoding::Signed"
-                                 : "a normalized unsigned RGB/RGBA format of at least 4 bits a channel (GL_RGB8, "
-                                   "GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"));
+                                 : "a normalized unsigned RGB/RGBA format of at least 4 bits a channel, not sRGB "
+                                   "(GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"));
         normalError = adoptedNormalError(host.normalEncoding, bits);
         if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
         if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
@@ -439,7 +442,7 @@ TextureView GBuffer::positions(const GBufferView& view) {
     auto& ctx = impl_->ctx;
     analyzeProjection(view.camera);
     const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
-    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
+    requireReadableAs(ctx, view.depth.name, depth, "GBufferView::depth", SampledAs::Depth);
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.positions");
     const int w = depth.width, h = depth.height;

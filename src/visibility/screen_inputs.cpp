@@ -16,31 +16,32 @@ void bindNearest(ContextImpl& ctx, int unit, GLuint texture) {
 
 } // namespace
 
-void requireViewSized(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what) {
-    const TextureInfo info = queryTexture2D(ctx, texture.name, "GBufferView::" + what);
+void requireViewInput(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what,
+                      SampledAs kind) {
+    const std::string who = "GBufferView::" + what;
+    const TextureInfo info = queryTexture2D(ctx, texture.name, who);
+    requireReadableAs(ctx, texture.name, info, who, kind);
     if (info.width != checked.width || info.height != checked.height)
-        throw Error(ErrorCode::InvalidArgument, "GBufferView::" + what + " (" + std::to_string(info.width) + "x" +
-                                                    std::to_string(info.height) + ") must have the depth's size (" +
-                                                    std::to_string(checked.width) + "x" + std::to_string(checked.height) + ")");
+        throw Error(ErrorCode::InvalidArgument, who + " (" + std::to_string(info.width) + "x" + std::to_string(info.height) +
+                                                    ") must have the depth's size (" + std::to_string(checked.width) + "x" +
+                                                    std::to_string(checked.height) + ")");
 }
 
 GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool needsBack, const std::string& owner) {
     const TextureInfo depth = queryTexture2D(ctx, view.depth.name, "GBufferView::depth");
-    if (!depth.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::depth is not a depth texture");
+    requireReadableAs(ctx, view.depth.name, depth, "GBufferView::depth", SampledAs::Depth);
     if (!(view.normalError >= 0.0f && view.normalError <= kMaxNormalError))
         throw Error(ErrorCode::InvalidArgument, "GBufferView::normalError must be in [0, kMaxNormalError = 0.25], got " +
                                                     std::to_string(view.normalError));
     GBufferView checked = view;
     checked.width = depth.width;
     checked.height = depth.height;
-    requireViewSized(ctx, view.normal, checked, "normal");
+    requireViewInput(ctx, view.normal, checked, "normal", SampledAs::Colour);
     if (needsBack) {
         if (!view.backDepth)
             throw Error(ErrorCode::InvalidArgument, owner + ": depth peeling needs GBufferView::backDepth, the second "
                                                             "depth layer of GBufferSettings::depthLayers = 2 or HostGBuffer::backDepth");
-        const TextureInfo back = queryTexture2D(ctx, view.backDepth.name, "GBufferView::backDepth");
-        if (!back.depth) throw Error(ErrorCode::InvalidArgument, "GBufferView::backDepth is not a depth texture");
-        requireViewSized(ctx, view.backDepth, checked, "backDepth");
+        requireViewInput(ctx, view.backDepth, checked, "backDepth", SampledAs::Depth);
     }
     return checked;
 }

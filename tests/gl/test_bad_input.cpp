@@ -292,6 +292,94 @@ TEST_CASE_METHOD(BadInputFixture, "Light and camera parameters outside their ran
     Camera wrongClip = Camera::perspective({{0, 2, 2}, {0, 0, 0}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f, DepthMode::Reversed);
     wrongClip.clipDepth = ClipDepth::NegativeOneToOne;
     expectError([&] { gbuffer.render(scene, wrongClip, {16, 16, true, {}}); }, ErrorCode::InvalidArgument, "ClipDepth");
+    // An integer outside the enumerators was taken as NegativeOneToOne by every reader of it.
+    Camera unknownClip = camera;
+    unknownClip.clipDepth = static_cast<ClipDepth>(2);
+    expectError([&] { gbuffer.render(scene, unknownClip, {16, 16, true, {}}); }, ErrorCode::InvalidArgument,
+                "Camera::clipDepth");
+    HostGBuffer host;
+    host.depth = good.depth;
+    expectError([&] { gbuffer.adopt(host, unknownClip); }, ErrorCode::InvalidArgument, "Camera::clipDepth");
+}
+
+TEST_CASE_METHOD(BadInputFixture, "Host normal encodings and spaces outside their enumerators and sRGB normals are refused",
+                 "[bad-input]") {
+    // Before, an unknown space was taken as View and an unknown encoding refused with the
+    // Unsigned formats' advice; sRGB normals passed as Unsigned ones, which the sampler
+    // decodes (0.5 reads as 0.214), bending every normal.
+    const GLuint rgba8 = hostTexture(GL_RGBA8, 16, 16), srgb = hostTexture(GL_SRGB8_ALPHA8, 16, 16);
+    HostGBuffer host;
+    host.depth = good.depth;
+    host.normal = {rgba8, 0, 0, 0};
+    host.normalEncoding = NormalEncoding::Unsigned;
+    CHECK_NOTHROW(gbuffer.adopt(host, camera)); // the control: the same with a plain RGBA8
+    HostGBuffer bad = host;
+    bad.normalSpace = static_cast<NormalSpace>(2);
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normalSpace");
+    bad = host;
+    bad.normalEncoding = static_cast<NormalEncoding>(2);
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normalEncoding");
+    bad = host;
+    bad.normal = {srgb, 0, 0, 0};
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "GL_SRGB8_ALPHA8");
+    glDeleteTextures(1, &rgba8);
+    glDeleteTextures(1, &srgb);
+}
+
+TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after adopt, or built by hand, is refused by "
+                                  "every pass that samples it",
+                 "[bad-input][host]") {
+    // adopt() checks the host's textures, but a GBufferView is plain data and its textures
+    // stay the host's: between adopt and a run the host may switch a depth-stencil texture to
+    // stencil sampling or move its base level, and a view may be built by hand. Compose
+    // refused such inputs; the screen-space passes (AO, indirect light, screen visibility,
+    // screen-space shadows) and positions() read them as they were, undefined values there.
+    const GLuint depthStencil = hostTexture(GL_DEPTH24_STENCIL8, 16, 16);
+    const GLuint mipmapped = [] {
+        GLuint t = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, 2, GL_RGBA16F, 16, 16);
+        return t;
+    }();
+    const GLuint ids = hostTexture(GL_RGBA16UI, 16, 16), colour = hostTexture(GL_RGBA16F, 16, 16);
+    HostGBuffer host;
+    host.depth = {depthStencil, 0, 0, 0};
+    host.albedo = {colour, 0, 0, 0};
+    host.directRadiance = {colour, 0, 0, 0};
+    const GBufferView adopted = gbuffer.adopt(host, camera);
+    AmbientOcclusion ao(ctx);
+    IndirectLight gi(ctx);
+    ScreenVisibility visibility(ctx);
+    const std::vector<ScreenSegment> segment = {{{0, 0, -1}, {0, 0, -2}}};
+    // Warm up, so that the shaders and images of a successful run are not counted as leaks.
+    ao.run(adopted, {});
+    gi.run(adopted, {});
+    visibility.trace(adopted, segment, {});
+    gbuffer.positions(adopted);
+    const auto refusedEverywhere = [&](const GBufferView& view, const std::string& needle, bool positionsToo) {
+        expectError([&] { ao.run(view, {}); }, ErrorCode::InvalidArgument, needle);
+        expectError([&] { gi.run(view, {}); }, ErrorCode::InvalidArgument, needle);
+        expectError([&] { visibility.trace(view, segment, {}); }, ErrorCode::InvalidArgument, needle);
+        if (positionsToo) expectError([&] { gbuffer.positions(view); }, ErrorCode::InvalidArgument, needle);
+    };
+    glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    refusedEverywhere(adopted, "GBufferView::depth samples stencil", true);
+    glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+    CHECK_NOTHROW(ao.run(adopted, {})); // back as adopted: accepted again
+    GBufferView byHand = adopted;
+    byHand.normal = {ids, GL_RGBA16UI, 16, 16};
+    refusedEverywhere(byHand, "GBufferView::normal has format", false);
+    byHand = adopted;
+    byHand.normal = {mipmapped, GL_RGBA16F, 16, 16};
+    glTextureParameteri(mipmapped, GL_TEXTURE_BASE_LEVEL, 1);
+    refusedEverywhere(byHand, "GL_TEXTURE_BASE_LEVEL", false);
+    byHand = adopted;
+    byHand.albedo = {ids, GL_RGBA16UI, 16, 16};
+    expectError([&] { gi.run(byHand, {}); }, ErrorCode::InvalidArgument, "GBufferView::albedo has format");
+    byHand = adopted;
+    byHand.directRadiance = {depthStencil, GL_DEPTH24_STENCIL8, 16, 16};
+    expectError([&] { gi.run(byHand, {}); }, ErrorCode::InvalidArgument, "GBufferView::directRadiance has format");
+    for (GLuint t : {depthStencil, mipmapped, ids, colour}) glDeleteTextures(1, &t);
 }
 
 TEST_CASE_METHOD(BadInputFixture, "A G-buffer view's normal error outside 0..0.25 is refused", "[bad-input]") {

@@ -498,6 +498,29 @@ TEST_CASE("Drawing into a host framebuffer encodes linear sources for sRGB targe
     CHECK_THROWS_AS(f.composer.drawToHost(half.view(GL_R16F, 8, 8), {fbo, 0, 0, W, H, HostBlend::Overwrite,
                                                                      static_cast<HostSourceEncoding>(3)}),
                     Error);
+    // Nor where the first draw buffer is an integer image (an engine's object IDs): the output
+    // shader writes floats, which GL leaves undefined there (GL 4.5, 17.4.3). Refused by
+    // name, both signednesses, and the image keeps what it held.
+    for (const GLenum format : {GLenum(GL_RGBA8UI), GLenum(GL_R32I)}) {
+        CAPTURE(format);
+        GLuint ids = 0, idFbo = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &ids);
+        glTextureStorage2D(ids, 1, format, W, H);
+        const GLint marker[4] = {7, 7, 7, 7};
+        glClearTexImage(ids, 0, format == GL_R32I ? GL_RED_INTEGER : GL_RGBA_INTEGER, GL_INT, marker);
+        glCreateFramebuffers(1, &idFbo);
+        glNamedFramebufferTexture(idFbo, GL_COLOR_ATTACHMENT0, ids, 0);
+        REQUIRE(glCheckNamedFramebufferStatus(idFbo, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+        CHECK_THROWS_WITH(f.composer.drawToHost(half.view(GL_R16F, 8, 8), {idFbo, 0, 0, W, H}),
+                          Catch::Contains("integer image"));
+        std::vector<GLint> kept(std::size_t(W) * H * 4, 0);
+        glGetTextureImage(ids, 0, GL_RGBA_INTEGER, GL_INT, GLsizei(kept.size() * sizeof(GLint)), kept.data());
+        std::size_t changed = 0;
+        for (std::size_t i = 0; i < kept.size(); i += 4) changed += kept[i] != 7;
+        CHECK(changed == 0);
+        glDeleteFramebuffers(1, &idFbo);
+        glDeleteTextures(1, &ids);
+    }
     CHECK(test::drainGlErrors().empty());
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(2, color);

@@ -336,7 +336,9 @@ TEST_CASE("Segments longer than 1.8e19 units classify as exact arithmetic does",
     // The radius and the thickness range over (0, inf). Past about 1.8e19 units a sample's
     // squared length overflows float; screenHiddenAt took |s| for its rounding tolerance, which
     // became Inf, so nothing was hidden (every ray of this test missed). 1e18 is a control
-    // below the overflow; 1e30 and 1e37 lie above it (a segment's end still finite).
+    // below the overflow; 1e30, 1e37 and 3e38 lie above it (a segment's end still finite; at
+    // 3e38 a projected extent p00 d.x overflows to Inf, and Inf * 0 at t = 0 would make a NaN
+    // texture coordinate, which screenPixelOfClip counts as off the image).
     // Segments from surface points of the Cornell box, the slab as deep as the reach, so that
     // the far samples of rays into the image are hidden behind the walls. Random directions
     // seldom point into the image (a few percent), so half the segments run along the eye's
@@ -346,7 +348,7 @@ TEST_CASE("Segments longer than 1.8e19 units classify as exact arithmetic does",
     ScreenFixture f("cornell", 64, 48);
     const test::ScreenMirror mirror(f.ctx, f.view);
     const std::vector<ScreenSegment> across = f.surfaceSegments(1000, 1.0f, 17), toward = f.surfaceSegments(1000, 1.0f, 19);
-    for (const float reach : {1e18f, 1e30f, 1e37f}) {
+    for (const float reach : {1e18f, 1e30f, 1e37f, 3e38f}) {
         CAPTURE(reach);
         std::vector<ScreenSegment> segments = f.surfaceSegments(1000, reach, 23);
         for (std::size_t i = 0; i < across.size(); ++i) {
