@@ -113,6 +113,12 @@ namespace {
 void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     auto& gl = ctx.gl;
     gl.GetIntegerv(GL_CURRENT_PROGRAM, &s.program);
+    // A program the host deleted while current lives only as long as it stays current: GL
+    // deletes it once ours is bound (GL 4.5, 7.3), and binding its name back would raise
+    // GL_INVALID_VALUE and leave ours current. 0 is what the host then gets.
+    GLint deleted = GL_FALSE;
+    if (s.program != 0) gl.GetProgramiv(static_cast<GLuint>(s.program), GL_DELETE_STATUS, &deleted);
+    if (deleted) s.program = 0;
     gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &s.vao);
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.drawFbo);
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s.readFbo);

@@ -531,6 +531,40 @@ TEST_CASE("Debug output: our messages go to our callback and the host's callback
     }
 }
 
+TEST_CASE("Preserve: a program the host deleted while current leaves program 0 current and no GL error",
+          "[state][host-contract]") {
+    // glDeleteProgram on the current program only flags it (GL 4.5, 7.3); it goes when
+    // another is bound, as ours must be. Restoring its name raised GL_INVALID_VALUE in the
+    // host's context and left our last program current.
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    AmbientOcclusion ao(ctx);
+    StateScene scene;
+    const GBufferView view = gbuffer.render(scene.scene, scene.camera, {16, 16, true, {}});
+    ao.run(view, {});
+    const char* cs = "#version 450 core\nlayout(local_size_x = 1) in; void main() {}\n";
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &cs, nullptr);
+    glCompileShader(shader);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDeleteShader(shader);
+    glUseProgram(program);
+    glDeleteProgram(program);
+    GLint flagged = GL_FALSE;
+    glGetProgramiv(program, GL_DELETE_STATUS, &flagged);
+    REQUIRE(flagged == GL_TRUE); // the premise: flagged, still current
+    REQUIRE(test::drainGlErrors().empty());
+    ao.run(view, {});
+    GLint current = -1;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    CHECK(current == 0);
+    CHECK_FALSE(glIsProgram(program)); // deleted, as GL does once it is no longer current
+    CHECK(test::drainGlErrors().empty());
+}
+
 TEST_CASE("An active transform feedback is refused before any GL work", "[state][bad-input]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
