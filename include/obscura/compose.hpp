@@ -115,8 +115,9 @@ public:
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer
     //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
     //! Error{InvalidArgument} for a source whose base level is not 0, for a target that is not
-    //! a complete framebuffer of this context, whose first draw buffer is GL_NONE or has no
-    //! image attached, with an empty rectangle or one wider or taller than
+    //! a complete framebuffer of this context, whose first draw buffer is GL_NONE, has no
+    //! image attached or an integer one (the output is float), with an empty rectangle or one
+    //! wider or taller than
     //! GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims), or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 

@@ -15,7 +15,8 @@
 // the state below on entry and restores it exactly on exit, even when it throws.
 // This is the complete list; tests/gl/test_state.cpp checks every item:
 //   - current program (GL_CURRENT_PROGRAM; one the host deleted while current is deleted by
-//     GL once we bind ours, and 0 is current afterwards), vertex array (GL_VERTEX_ARRAY_BINDING)
+//     GL as soon as we bind another, and 0 is current afterwards), vertex array
+//     (GL_VERTEX_ARRAY_BINDING)
 //   - draw and read framebuffers
 //   - viewport, scissor box and depth range of viewport index 0 (the only index we use)
 //   - enable bits: GL_BLEND (every draw buffer), GL_DEPTH_TEST, GL_STENCIL_TEST,

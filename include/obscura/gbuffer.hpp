@@ -48,6 +48,12 @@ inline constexpr float kHalfNormalError = 1.0f / 1024.0f;
 //! about 14 degrees says little about which side of it a point lies.
 inline constexpr float kMaxNormalError = 0.25f;
 
+//! Plain data: its textures stay their owner's. Every pass checks the ones it samples at
+//! each call, since a host may change them after adopt() (or build a view by hand): depth and
+//! backDepth a depth format sampled as depth (not stencil); normal a signed float or signed
+//! normalized RGB(A) format (read as the vector itself); albedo and directRadiance a
+//! normalized or float RGB(A) format; each with base level 0 and the depth's size.
+//! Error{InvalidArgument} names the texture otherwise.
 struct GBufferView {
     TextureView depth;
     TextureView normal;

@@ -10,6 +10,7 @@
 #include "shaders/compose/compose_bindings.h"
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace obscura {
@@ -36,26 +37,14 @@ void validateSettings(const ComposeSettings& s) {
 }
 
 // What compose reads of an input, besides its size: texelFetch at level 0 through a float
-// sampler. A colour input that is depth, stencil or integer would read undefined values
-// there, a depth-stencil depth in stencil mode too, and a base level other than 0 another
-// level.
-enum class InputKind { Depth, Colour, Rgb };
-
-void requireReadable(ContextImpl& ctx, GLuint name, const TextureInfo& info, const char* what, InputKind kind) {
-    requireReadableAs(ctx, name, info, what, kind == InputKind::Depth ? SampledAs::Depth : SampledAs::Colour);
-    if (kind == InputKind::Depth) return;
-    const int channels = kind == InputKind::Rgb ? 3 : 1;
-    if (info.channels < channels)
-        throw Error(ErrorCode::InvalidArgument, std::string(what) + " has format " + formatName(info.internalFormat) +
-                                                    "; accepted: a normalized or float format with " +
-                                                    (channels == 3 ? "RGB or RGBA" : "one or more") + " channels");
-}
-
+// sampler (requireReadableAs). A colour input that is depth, stencil or integer would read
+// undefined values there, a depth-stencil depth in stencil mode too, and a base level other
+// than 0 another level.
 // An input that is empty (when optional), or readable as `kind` and exactly the G-buffer's size.
-bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, InputKind kind, int width, int height) {
+bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, SampledAs kind, int width, int height) {
     if (!view) return false;
     const TextureInfo info = queryTexture2D(ctx, view.name, what);
-    requireReadable(ctx, view.name, info, what, kind);
+    requireReadableAs(ctx, view.name, info, what, kind);
     if (info.width != width || info.height != height)
         throw Error(ErrorCode::InvalidArgument, std::string(what) + " is " + std::to_string(info.width) + "x" +
                                                     std::to_string(info.height) + ", the G-buffer " + std::to_string(width) +
@@ -63,13 +52,13 @@ bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, Inp
     return true;
 }
 
-// Why drawing into `framebuffer` would write nothing or undefined values, or "" when it can be
-// drawn: its first draw buffer is GL_NONE or has no image attached, or that image is integer
-// (the output shader writes floats, which GL leaves undefined in an integer buffer). Asked
-// before any state is changed, so that a refusal leaves the host's state as it was under every
+// Why drawing into `framebuffer` would write nothing or undefined values, if it would: its
+// first draw buffer is GL_NONE or has no image attached, or that image is integer (the output
+// shader writes floats, which GL leaves undefined in an integer buffer). Asked before any
+// state is changed, so that a refusal leaves the host's state as it was under every
 // StatePolicy: GL_DRAW_BUFFER0 can only be queried on the bound draw framebuffer, whose
 // binding is put back at once.
-std::string firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
+std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
     GLint bound = 0;
     ctx.gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
@@ -78,7 +67,7 @@ std::string firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(bound));
     const std::string nothing = "its first draw buffer is GL_NONE or has no image attached, so nothing would be written";
     if (firstDrawBuffer == GL_NONE) return nothing;
-    if (framebuffer == 0) return "";
+    if (framebuffer == 0) return std::nullopt;
     const auto attachment = [&](GLenum pname) {
         GLint value = GL_NONE;
         ctx.gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(firstDrawBuffer), pname, &value);
@@ -88,7 +77,7 @@ std::string firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
     const GLint type = attachment(GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
     if (type == GL_INT || type == GL_UNSIGNED_INT)
         return "its first draw buffer is an integer image, into which the float output would write undefined values";
-    return "";
+    return std::nullopt;
 }
 
 } // namespace
@@ -119,12 +108,12 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
                                                 "or HostGBuffer::albedo and directRadiance with GBuffer::adopt)");
     const TextureInfo direct = queryTexture2D(ctx, g.directRadiance.name, "GBufferView::directRadiance");
     const int w = direct.width, h = direct.height;
-    requireReadable(ctx, g.directRadiance.name, direct, "GBufferView::directRadiance", InputKind::Rgb);
-    checkInput(ctx, g.albedo, "GBufferView::albedo", InputKind::Rgb, w, h);
-    checkInput(ctx, g.depth, "GBufferView::depth", InputKind::Depth, w, h);
+    requireReadableAs(ctx, g.directRadiance.name, direct, "GBufferView::directRadiance", SampledAs::Rgb);
+    checkInput(ctx, g.albedo, "GBufferView::albedo", SampledAs::Rgb, w, h);
+    checkInput(ctx, g.depth, "GBufferView::depth", SampledAs::Depth, w, h);
     const DepthReconstruction reconstruction = depthReconstruction(g.camera);
-    const bool hasAo = checkInput(ctx, in.ao, "ComposeInputs::ao", InputKind::Colour, w, h);
-    const bool hasIndirect = checkInput(ctx, in.indirect, "ComposeInputs::indirect", InputKind::Rgb, w, h);
+    const bool hasAo = checkInput(ctx, in.ao, "ComposeInputs::ao", SampledAs::Colour, w, h);
+    const bool hasIndirect = checkInput(ctx, in.indirect, "ComposeInputs::indirect", SampledAs::Rgb, w, h);
 
     StateScope scope(ctx);
     shader::ComposeParams p{};
@@ -181,9 +170,7 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     auto& d = *impl_;
     auto& ctx = d.ctx;
     const TextureInfo info = queryTexture2D(ctx, source.name, "drawToHost source");
-    if (info.integer || info.depth)
-        throw Error(ErrorCode::InvalidArgument, "drawToHost: the source must be a float or normalized colour texture");
-    requireBaseLevelZero(ctx, source.name, "drawToHost source");
+    requireReadableAs(ctx, source.name, info, "drawToHost source", SampledAs::Colour);
     requireEnumerator(target.blend, {HostBlend::Overwrite, HostBlend::Multiply}, "HostTarget::blend");
     requireEnumerator(target.encoding, {HostSourceEncoding::Auto, HostSourceEncoding::Linear, HostSourceEncoding::Display},
                       "HostTarget::encoding");
@@ -207,8 +194,8 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         std::snprintf(hex, sizeof hex, "%X", status);
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
-    if (const std::string problem = firstDrawBufferProblem(ctx, target.framebuffer); !problem.empty())
-        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) + ": " + problem);
+    if (const auto problem = firstDrawBufferProblem(ctx, target.framebuffer))
+        throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) + ": " + *problem);
     StateScope scope(ctx);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
     PassScope pass(ctx, "compose.output");

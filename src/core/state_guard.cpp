@@ -114,8 +114,10 @@ void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     auto& gl = ctx.gl;
     gl.GetIntegerv(GL_CURRENT_PROGRAM, &s.program);
     // A program the host deleted while current lives only as long as it stays current: GL
-    // deletes it once ours is bound (GL 4.5, 7.3), and binding its name back would raise
-    // GL_INVALID_VALUE and leave ours current. 0 is what the host then gets.
+    // deletes it as soon as another is bound (0, at once, under either policy; GL 4.5, 7.3),
+    // and binding its name back would raise GL_INVALID_VALUE and leave ours current. 0 is
+    // what the host then gets (also where another context keeps the program alive: its name
+    // is then still valid, but this context had let it go).
     GLint deleted = GL_FALSE;
     if (s.program != 0) gl.GetProgramiv(static_cast<GLuint>(s.program), GL_DELETE_STATUS, &deleted);
     if (deleted) s.program = 0;

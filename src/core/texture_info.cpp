@@ -37,6 +37,14 @@ std::string formatName(GLenum f) {
     case GL_R3_G3_B2: return "GL_R3_G3_B2";
     case GL_RGBA32UI: return "GL_RGBA32UI";
     case GL_R32UI: return "GL_R32UI";
+    case GL_RGBA16UI: return "GL_RGBA16UI";
+    case GL_RGBA8UI: return "GL_RGBA8UI";
+    case GL_RGBA8I: return "GL_RGBA8I";
+    case GL_R32I: return "GL_R32I";
+    case GL_R8UI: return "GL_R8UI";
+    case GL_STENCIL_INDEX8: return "GL_STENCIL_INDEX8";
+    case GL_RGBA8_SNORM: return "GL_RGBA8_SNORM";
+    case GL_RGBA16_SNORM: return "GL_RGBA16_SNORM";
     default: {
         char buf[32];
         std::snprintf(buf, sizeof buf, "0x%04X", f);
@@ -102,6 +110,7 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
     t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
     t.floating = redType == GL_FLOAT;
+    t.signedNormalized = redType == GL_SIGNED_NORMALIZED;
     t.isSigned = redType == GL_INT;
     t.channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
     static constexpr GLenum floatFormats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
@@ -123,12 +132,37 @@ void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& t, co
                     who + " samples stencil: set its GL_DEPTH_STENCIL_TEXTURE_MODE to GL_DEPTH_COMPONENT");
 }
 
+namespace {
+
+bool readableAs(const TextureInfo& info, SampledAs kind) {
+    if (info.depth || info.stencil || info.integer) return false;
+    // The packed float formats have no sign bit: they cannot hold a normal's components.
+    const bool unsignedFloat = info.internalFormat == GL_R11F_G11F_B10F || info.internalFormat == GL_RGB9_E5;
+    switch (kind) {
+    case SampledAs::Colour: return true;
+    case SampledAs::Rgb: return info.channels >= 3;
+    case SampledAs::Normal: return info.channels >= 3 && ((info.floating && !unsignedFloat) || info.signedNormalized);
+    case SampledAs::Depth: break;
+    }
+    return false;
+}
+
+const char* acceptedFormats(SampledAs kind) {
+    switch (kind) {
+    case SampledAs::Rgb: return "a normalized or float RGB or RGBA colour format";
+    case SampledAs::Normal: return "a signed float or signed normalized RGB or RGBA format (GL_RGBA16F, GL_RGBA32F, GL_RGBA8_SNORM)";
+    default: return "a normalized or float colour format";
+    }
+}
+
+} // namespace
+
 void requireReadableAs(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who, SampledAs kind) {
     requireBaseLevelZero(ctx, name, who);
     if (kind == SampledAs::Depth) return requireSampledDepth(ctx, name, info, who);
-    if (info.depth || info.stencil || info.integer)
-        throw Error(ErrorCode::InvalidArgument, who + " has format " + formatName(info.internalFormat) +
-                                                    "; accepted: a normalized or float colour format");
+    if (!readableAs(info, kind))
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " has format " + formatName(info.internalFormat) + "; accepted: " + acceptedFormats(kind));
 }
 
 double depthStepOf(ContextImpl& ctx, GLuint depthTexture) {

@@ -17,6 +17,7 @@ struct TextureInfo {
     bool stencil = false;      //!< depth-stencil, or stencil only (then also `integer`)
     bool integer = false;      //!< *I / *UI formats
     bool floating = false;     //!< float components (GL_TEXTURE_RED_TYPE is GL_FLOAT)
+    bool signedNormalized = false; //!< *_SNORM formats (GL_TEXTURE_RED_TYPE is GL_SIGNED_NORMALIZED)
     bool isSigned = false;     //!< for integer formats
     bool srgb = false;         //!< sRGB-encoded storage (GL_SRGB8, GL_SRGB8_ALPHA8)
     GLenum pixelFormat = 0;    //!< glGetTextureImage format matching `channels`
@@ -40,12 +41,14 @@ void requireBaseLevelZero(ContextImpl& ctx, GLuint name, const std::string& who)
 //! has both (GL_DEPTH_STENCIL_TEXTURE_MODE). Throws Error{InvalidArgument} mentioning `who`.
 void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who);
 
-//! How a pass reads a texture: Depth through a depth sampler's first channel, Colour as
-//! floats (a normalized or float format; sRGB ones decoded, which only colours may be).
-enum class SampledAs { Depth, Colour };
+//! How a pass reads a texture: Depth through a depth sampler's first channel; Colour as
+//! floats from one or more channels (a normalized or float format; sRGB ones decoded, which
+//! only colours may be); Rgb the same from three or more; Normal as signed unit vectors from
+//! three or more channels (a float format with a sign bit, or signed normalized).
+enum class SampledAs { Depth, Colour, Rgb, Normal };
 //! For textures Obscura samples at level 0 as `kind`: requireBaseLevelZero, then for Depth
-//! requireSampledDepth, for Colour a format that is neither depth, stencil nor integer.
-//! Throws Error{InvalidArgument} mentioning `who`.
+//! requireSampledDepth, else a format as `kind` describes. Throws Error{InvalidArgument}
+//! mentioning `who`.
 void requireReadableAs(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who, SampledAs kind);
 
 std::string formatName(GLenum internalFormat);

@@ -111,8 +111,8 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const ScreenThickness thickness = hybrid ? ScreenThickness::Constant : s.thicknessMode;
     const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
-    requireViewInput(ctx, g.albedo, view, "albedo", SampledAs::Colour);
-    requireViewInput(ctx, g.directRadiance, view, "directRadiance", SampledAs::Colour);
+    requireViewInput(ctx, g.albedo, view, "albedo", SampledAs::Rgb);
+    requireViewInput(ctx, g.directRadiance, view, "directRadiance", SampledAs::Rgb);
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 fullSize(view.width, view.height);
     const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);

@@ -36,7 +36,7 @@ GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool ne
     GBufferView checked = view;
     checked.width = depth.width;
     checked.height = depth.height;
-    requireViewInput(ctx, view.normal, checked, "normal", SampledAs::Colour);
+    requireViewInput(ctx, view.normal, checked, "normal", SampledAs::Normal);
     if (needsBack) {
         if (!view.backDepth)
             throw Error(ErrorCode::InvalidArgument, owner + ": depth peeling needs GBufferView::backDepth, the second "

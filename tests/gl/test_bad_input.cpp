@@ -332,8 +332,9 @@ TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after 
     // adopt() checks the host's textures, but a GBufferView is plain data and its textures
     // stay the host's: between adopt and a run the host may switch a depth-stencil texture to
     // stencil sampling or move its base level, and a view may be built by hand. Compose
-    // refused such inputs; the screen-space passes (AO, indirect light, screen visibility,
-    // screen-space shadows) and positions() read them as they were, undefined values there.
+    // refused such inputs; the screen-space passes (AO, indirect light, screen visibility, the
+    // shadow maps' depth range and masks) and positions() read them as they were, undefined
+    // values there.
     const GLuint depthStencil = hostTexture(GL_DEPTH24_STENCIL8, 16, 16);
     const GLuint mipmapped = [] {
         GLuint t = 0;
@@ -342,6 +343,7 @@ TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after 
         return t;
     }();
     const GLuint ids = hostTexture(GL_RGBA16UI, 16, 16), colour = hostTexture(GL_RGBA16F, 16, 16);
+    const GLuint colourUnorm = hostTexture(GL_RGBA8, 16, 16), mono = hostTexture(GL_R16F, 16, 16);
     HostGBuffer host;
     host.depth = {depthStencil, 0, 0, 0};
     host.albedo = {colour, 0, 0, 0};
@@ -350,16 +352,27 @@ TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after 
     AmbientOcclusion ao(ctx);
     IndirectLight gi(ctx);
     ScreenVisibility visibility(ctx);
+    ShadowMaps shadows(ctx);
+    Scene lit = scene;
+    Light sun; // directional: its cascades are fitted to the view's depth range, which reads it
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    lit.lights = {sun};
     const std::vector<ScreenSegment> segment = {{{0, 0, -1}, {0, 0, -2}}};
+    const ShadowMapSettings maps{64, 1, 0.5f};
     // Warm up, so that the shaders and images of a successful run are not counted as leaks.
     ao.run(adopted, {});
     gi.run(adopted, {});
     visibility.trace(adopted, segment, {});
     gbuffer.positions(adopted);
+    shadows.mask(adopted, shadows.render(lit, camera, maps, adopted), 0, {});
     const auto refusedEverywhere = [&](const GBufferView& view, const std::string& needle, bool positionsToo) {
         expectError([&] { ao.run(view, {}); }, ErrorCode::InvalidArgument, needle);
         expectError([&] { gi.run(view, {}); }, ErrorCode::InvalidArgument, needle);
         expectError([&] { visibility.trace(view, segment, {}); }, ErrorCode::InvalidArgument, needle);
+        expectError([&] { shadows.render(lit, camera, maps, view); }, ErrorCode::InvalidArgument, needle);
+        const ShadowMapSet& set = shadows.render(lit, camera, maps); // without the view: accepted
+        expectError([&] { shadows.mask(view, set, 0, {}); }, ErrorCode::InvalidArgument, needle);
         if (positionsToo) expectError([&] { gbuffer.positions(view); }, ErrorCode::InvalidArgument, needle);
     };
     glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
@@ -369,6 +382,10 @@ TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after 
     GBufferView byHand = adopted;
     byHand.normal = {ids, GL_RGBA16UI, 16, 16};
     refusedEverywhere(byHand, "GBufferView::normal has format", false);
+    // Normals are read as signed vectors: an unsigned normalized format (what adopt() decodes
+    // with NormalEncoding::Unsigned into the view's own) reads n * 0.5 + 0.5 as n.
+    byHand.normal = {colourUnorm, GL_RGBA8, 16, 16};
+    refusedEverywhere(byHand, "GBufferView::normal has format GL_RGBA8", false);
     byHand = adopted;
     byHand.normal = {mipmapped, GL_RGBA16F, 16, 16};
     glTextureParameteri(mipmapped, GL_TEXTURE_BASE_LEVEL, 1);
@@ -379,7 +396,9 @@ TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after 
     byHand = adopted;
     byHand.directRadiance = {depthStencil, GL_DEPTH24_STENCIL8, 16, 16};
     expectError([&] { gi.run(byHand, {}); }, ErrorCode::InvalidArgument, "GBufferView::directRadiance has format");
-    for (GLuint t : {depthStencil, mipmapped, ids, colour}) glDeleteTextures(1, &t);
+    byHand.directRadiance = {mono, GL_R16F, 16, 16}; // one channel, where rgb is read (compose refused it)
+    expectError([&] { gi.run(byHand, {}); }, ErrorCode::InvalidArgument, "GBufferView::directRadiance has format GL_R16F");
+    for (GLuint t : {depthStencil, mipmapped, ids, colour, colourUnorm, mono}) glDeleteTextures(1, &t);
 }
 
 TEST_CASE_METHOD(BadInputFixture, "A G-buffer view's normal error outside 0..0.25 is refused", "[bad-input]") {
