@@ -36,11 +36,10 @@ void validateSettings(const ComposeSettings& s) {
     requireInRange(s.gamma, 1.0, 4.0, "ComposeSettings::gamma", "");
 }
 
-// What compose reads of an input, besides its size: texelFetch at level 0 through a float
-// sampler (requireReadableAs). A colour input that is depth, stencil or integer would read
-// undefined values there, a depth-stencil depth in stencil mode too, and a base level other
-// than 0 another level.
 // An input that is empty (when optional), or readable as `kind` and exactly the G-buffer's size.
+// Compose reads each with texelFetch at level 0 through a float sampler (requireReadableAs):
+// a colour input that is depth, stencil or integer would read undefined values there, a
+// depth-stencil depth in stencil mode too, and a base level other than 0 another level.
 bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, SampledAs kind, int width, int height) {
     if (!view) return false;
     const TextureInfo info = queryTexture2D(ctx, view.name, what);

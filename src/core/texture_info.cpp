@@ -110,6 +110,7 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
     t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
     t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
     t.floating = redType == GL_FLOAT;
+    t.signedFloat = t.floating && t.internalFormat != GL_R11F_G11F_B10F && t.internalFormat != GL_RGB9_E5;
     t.signedNormalized = redType == GL_SIGNED_NORMALIZED;
     t.isSigned = redType == GL_INT;
     t.channels = sizes[3] > 0 ? 4 : sizes[2] > 0 ? 3 : sizes[1] > 0 ? 2 : 1;
@@ -136,12 +137,10 @@ namespace {
 
 bool readableAs(const TextureInfo& info, SampledAs kind) {
     if (info.depth || info.stencil || info.integer) return false;
-    // The packed float formats have no sign bit: they cannot hold a normal's components.
-    const bool unsignedFloat = info.internalFormat == GL_R11F_G11F_B10F || info.internalFormat == GL_RGB9_E5;
     switch (kind) {
     case SampledAs::Colour: return true;
     case SampledAs::Rgb: return info.channels >= 3;
-    case SampledAs::Normal: return info.channels >= 3 && ((info.floating && !unsignedFloat) || info.signedNormalized);
+    case SampledAs::Normal: return info.channels >= 3 && (info.signedFloat || info.signedNormalized);
     case SampledAs::Depth: break;
     }
     return false;

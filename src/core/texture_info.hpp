@@ -17,6 +17,9 @@ struct TextureInfo {
     bool stencil = false;      //!< depth-stencil, or stencil only (then also `integer`)
     bool integer = false;      //!< *I / *UI formats
     bool floating = false;     //!< float components (GL_TEXTURE_RED_TYPE is GL_FLOAT)
+    //! float components with a sign bit: not the packed GL_R11F_G11F_B10F and GL_RGB9_E5,
+    //! which cannot hold a normal's negative components
+    bool signedFloat = false;
     bool signedNormalized = false; //!< *_SNORM formats (GL_TEXTURE_RED_TYPE is GL_SIGNED_NORMALIZED)
     bool isSigned = false;     //!< for integer formats
     bool srgb = false;         //!< sRGB-encoded storage (GL_SRGB8, GL_SRGB8_ALPHA8)

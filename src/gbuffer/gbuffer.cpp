@@ -382,9 +382,7 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
             ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, channel, &size);
             bits = channel == GL_TEXTURE_RED_SIZE ? size : std::min(bits, size);
         }
-        // The packed float formats have no sign bit: they cannot hold a normal's components.
-        const bool unsignedFloat = n.internalFormat == GL_R11F_G11F_B10F || n.internalFormat == GL_RGB9_E5;
-        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.floating && !unsignedFloat;
+        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.signedFloat;
         // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
         // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
         // sRGB storage would be decoded by the sampler, bending every normal.
