@@ -26,7 +26,8 @@
 //     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7,
 //     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and GL_CONSERVATIVE_RASTERIZATION_NV
 //     or _INTEL where the extension exists
-//   - blend func and equation (RGB and alpha, every draw buffer), blend color
+//   - blend func and equation (RGB and alpha, every draw buffer; KHR_blend_equation_advanced
+//     equations included), blend color
 //   - color mask (every draw buffer), depth mask, stencil write masks (front and back)
 //   - stencil func, ref, value mask and ops (front and back), depth func, logic op mode
 //   - clip control (origin and depth mode)

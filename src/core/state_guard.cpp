@@ -193,7 +193,10 @@ void restoreGlobal(ContextImpl& ctx, const SavedGlobalState& s) {
         d.blend ? gl.Enablei(GL_BLEND, i) : gl.Disablei(GL_BLEND, i);
         gl.BlendFuncSeparatei(i, static_cast<GLenum>(d.srcRgb), static_cast<GLenum>(d.dstRgb),
                               static_cast<GLenum>(d.srcAlpha), static_cast<GLenum>(d.dstAlpha));
-        gl.BlendEquationSeparatei(i, static_cast<GLenum>(d.eqRgb), static_cast<GLenum>(d.eqAlpha));
+        // An advanced equation (KHR_blend_equation_advanced) is set for RGB and alpha together,
+        // and glBlendEquationSeparatei refuses it.
+        if (d.eqRgb == d.eqAlpha) gl.BlendEquationi(i, static_cast<GLenum>(d.eqRgb));
+        else gl.BlendEquationSeparatei(i, static_cast<GLenum>(d.eqRgb), static_cast<GLenum>(d.eqAlpha));
         gl.ColorMaski(i, d.colorMask[0], d.colorMask[1], d.colorMask[2], d.colorMask[3]);
     }
     gl.BlendColor(s.blendColor[0], s.blendColor[1], s.blendColor[2], s.blendColor[3]);
