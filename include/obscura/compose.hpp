@@ -45,7 +45,9 @@ struct ComposeSettings {
     float exposure = 1.0f;       //!< multiplies the radiance before tone mapping, (0, 1e6]
     ToneMapper toneMapper = ToneMapper::Aces;
     //! Drago: the largest scene luminance L_wmax (after exposure), (0, inf); 0 = the frame's
-    //! own maximum (a reduction pass).
+    //! own maximum (a reduction pass). Either counts as at least 1e-30: a frame is mapped to
+    //! its own maximum however dim (the exposure is applied in float, after the half-float
+    //! radiance(), so a small one costs no precision).
     float dragoMaxLuminance = 0.0f;
     float dragoBias = 0.85f;     //!< Drago's bias b, [0.5, 1]
     float dragoDisplayMax = 100.0f; //!< Drago's L_dmax, cd/m^2 of the display, (0, 1e4]
@@ -108,8 +110,8 @@ public:
     //! albedo and indirect light normalized or float RGB/RGBA, AO normalized or float.
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
-    //! The combined radiance of the last compose call times its `exposure`, as the tone
-    //! mapper receives it (GL_RGBA16F; W/(sr m^2) at exposure 1).
+    //! The combined radiance of the last compose call, before its `exposure`, which the tone
+    //! mapper multiplies it by (GL_RGBA16F, W/(sr m^2)).
     TextureView radiance() const;
 
     //! Draws `source` (any 2D float or normalized texture) into the host's framebuffer

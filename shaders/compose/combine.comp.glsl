@@ -1,5 +1,7 @@
-// The combined radiance per pixel (see CombineFormula), times the exposure, and the largest
-// luminance of the frame for Drago's tone mapping (positive floats order like their bits).
+// The combined radiance per pixel (see CombineFormula) and the largest luminance of the frame
+// for Drago's tone mapping (positive floats order like their bits). The exposure is the tone
+// mapper's: stored after it, a small exposure would push the values into half floats'
+// subnormals (below 6.1e-5), whose steps are 6e-8 wide, and lose them before any mapping.
 // Background pixels keep their direct radiance only: a host's albedo there need not be 0
 // (ours is), and ambient light on the sky would brighten it by rho * L_amb. So do pixels whose
 // depth no surface can have (NaN, outside [0, 1], beyond kMaxViewDistance: isBackgroundDepth),
@@ -30,8 +32,8 @@ void main() {
     vec3 l;
     if (compose.flags.x == COMPOSE_FORMULA_THESIS) l = ambient + compose.ambient.w * l1 + ao * direct;
     else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
-    const vec3 exposed = clampRadiance(l * compose.tone.x);
-    imageStore(radianceOut, pixel, vec4(exposed, 1.0));
+    const vec3 combined = clampRadiance(l);
+    imageStore(radianceOut, pixel, vec4(combined, 1.0));
     // Without its sign bit: max(-0.0, 0.0) may be -0.0, whose bits would beat every positive float.
-    atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(exposed), 0.0)) & 0x7FFFFFFFu);
+    atomicMax(maxLuminanceBits, floatBitsToUint(max(luminanceOf(combined), 0.0)) & 0x7FFFFFFFu);
 }

@@ -85,26 +85,30 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
                         const double kl1 = withIndirect && surface ? s.indirectScale * 0.1 * (c + 1) : 0.0;
                         const double ambient = rho * a * s.ambient[c];
                         // Physical: the indirect light, where given, replaces the ambient term.
-                        const double expected = s.exposure * (formula == CombineFormula::Thesis ? ambient + kl1 + a * l
-                                                              : withIndirect                    ? l + kl1
-                                                                                                : l + ambient);
+                        const double expected = formula == CombineFormula::Thesis ? ambient + kl1 + a * l
+                                                : withIndirect                    ? l + kl1
+                                                                                  : l + ambient;
                         const double error = radiance.at(x, y, c) - expected;
                         CAPTURE(x, y, c, expected, error, rho, l);
-                        // The result is stored as RGBA16F, which may round toward zero: 2^-10 of
-                        // it. Of the inputs, L_dir and the AO are read back as the shader reads
-                        // them, but the indirect light is 0.1 (c + 1) rounded to half floats: 2^-10
-                        // of k L1 <= expected / exposure. Float arithmetic: 1e-6 absolute. The
+                        // radiance() is before the exposure (the tone mapper applies it). It is
+                        // stored as RGBA16F, which may round toward zero: 2^-10 of it. Of the
+                        // inputs, L_dir and the AO are read back as the shader reads them, but
+                        // the indirect light is 0.1 (c + 1) rounded to half floats: 2^-10 of
+                        // k L1 <= expected. Float arithmetic: 2^-20 of it (a few operations). The
                         // albedo is sRGB-encoded 8-bit: GL does not fix how exactly the shader's
                         // and the read-back's decodes agree (llvmpipe's differ by ~0.3 of a step
                         // at code 105): half a code step of rho in the ambient term.
                         const bool ambientUsed = formula == CombineFormula::Thesis || !withIndirect;
-                        const double rhoSlack = ambientUsed ? s.exposure * a * s.ambient[c] * halfSrgbStep(rho) : 0.0;
-                        const double halfRounding = std::ldexp(expected + s.exposure * kl1, -10);
-                        CHECK(std::abs(error) <= halfRounding + rhoSlack + 1e-6);
-                        // RGBA8 after the clamp: the GL converts to one of the two nearest of the 255
-                        // steps (nearest preferred, not required: NVIDIA 580 is off by more than half),
-                        // from a value off as above.
-                        CHECK(std::abs(shown.at(x, y, c) - std::min(expected, 1.0)) <= 1.0 / 255.0 + halfRounding + rhoSlack + 1e-6);
+                        const double rhoSlack = ambientUsed ? a * s.ambient[c] * halfSrgbStep(rho) : 0.0;
+                        const double halfRounding = std::ldexp(expected + kl1, -10);
+                        const double floatSlack = std::ldexp(expected, -20) + 1e-6;
+                        CHECK(std::abs(error) <= halfRounding + rhoSlack + floatSlack);
+                        // RGBA8 after the exposure (one more float product, inside floatSlack)
+                        // and the clamp: the GL converts to one of the two nearest of the 255 steps
+                        // (nearest preferred, not required: NVIDIA 580 is off by more than half),
+                        // from a value off by the exposure times the above.
+                        const double shownSlack = s.exposure * (halfRounding + rhoSlack + floatSlack);
+                        CHECK(std::abs(shown.at(x, y, c) - std::min(s.exposure * expected, 1.0)) <= 1.0 / 255.0 + shownSlack);
                     }
         }
 }
@@ -112,45 +116,59 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
 TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]") {
     Frame f;
     // Drago with the frame's own maximum and its defaults, and with a given maximum (below the
-    // frame's: values above it map past 1 and clamp), another bias and display maximum.
+    // frame's: values above it map past 1 and clamp), another bias and display maximum; and
+    // dim frames, whose largest luminance after the exposure is about 1e-5, 1e-10 and 1e-28
+    // (the Cornell light is ~ 1e2 W/(sr m^2)), which Drago maps to their own maximum as any
+    // other; and the settings' far ends: the largest exposure, bias 1 (exponent 0), the
+    // largest display maximum and a given maximum below the 1e-30 floor, where the terms of
+    // the mapping leave float's range unless kept in it (tonemap.comp.glsl).
     struct Case {
         ToneMapper mapper;
         bool srgb;
-        float gamma = 2.2f, dragoMax = 0.0f, dragoBias = 0.85f, dragoDisplayMax = 100.0f;
+        float gamma = 2.2f, dragoMax = 0.0f, dragoBias = 0.85f, dragoDisplayMax = 100.0f, exposure = 0.05f;
     };
     for (const Case& k : {Case{ToneMapper::Aces, true}, Case{ToneMapper::Aces, false}, Case{ToneMapper::Aces, false, 1.6f},
                           Case{ToneMapper::Drago, true}, Case{ToneMapper::Drago, false},
-                          Case{ToneMapper::Drago, false, 3.0f, 0.5f, 0.7f, 250.0f}, Case{ToneMapper::Drago, true, 2.2f, 2.0f, 0.95f, 40.0f}}) {
-        CAPTURE(static_cast<int>(k.mapper), k.srgb, k.gamma, k.dragoMax, k.dragoBias, k.dragoDisplayMax);
+                          Case{ToneMapper::Drago, false, 3.0f, 0.5f, 0.7f, 250.0f}, Case{ToneMapper::Drago, true, 2.2f, 2.0f, 0.95f, 40.0f},
+                          Case{ToneMapper::Drago, true, 2.2f, 0.0f, 0.85f, 100.0f, 1e-7f},
+                          Case{ToneMapper::Drago, false, 2.2f, 0.0f, 1.0f, 100.0f, 1e-12f},
+                          Case{ToneMapper::Drago, true, 2.2f, 0.0f, 0.85f, 100.0f, 1e-30f},
+                          Case{ToneMapper::Drago, false, 1.0f, 1e-35f, 1.0f, 1e4f, 1e6f}}) {
+        CAPTURE(static_cast<int>(k.mapper), k.srgb, k.gamma, k.dragoMax, k.dragoBias, k.dragoDisplayMax, k.exposure);
         ComposeSettings s;
         s.toneMapper = k.mapper;
         s.srgb = k.srgb;
         s.gamma = k.gamma;
-        s.exposure = 0.05f;
+        s.exposure = k.exposure;
         s.dragoMaxLuminance = k.dragoMax;
         s.dragoBias = k.dragoBias;
         s.dragoDisplayMax = k.dragoDisplayMax;
         const Image shown = readTexture(f.ctx, f.composer.compose({f.view, {}, {}}, s));
         const Image radiance = readTexture(f.ctx, f.composer.radiance());
+        // What the mapper receives: radiance() times the exposure, in float.
+        const auto exposed = [&](int x, int y) {
+            return glm::dvec3(glm::vec3(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)) * k.exposure);
+        };
         double lmax = 0.0;
         for (int y = 0; y < Frame::H; ++y)
-            for (int x = 0; x < Frame::W; ++x)
-                lmax = std::max(lmax, luminance({radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2)}));
+            for (int x = 0; x < Frame::W; ++x) lmax = std::max(lmax, luminance(exposed(x, y)));
         REQUIRE(lmax > 0.0);
         if (k.dragoMax > 0.0f) {
             // The given maxima straddle the frame's own, so that values past it clamp.
             if (k.dragoMax < 1.0f) CHECK(lmax > k.dragoMax);
             else CHECK(lmax < k.dragoMax);
-            lmax = k.dragoMax;
+            lmax = std::max(double(k.dragoMax), 1e-30); // the floor (ComposeSettings::dragoMaxLuminance)
         }
-        // The display's error bound. The mapper reads the radiance as read back here, exactly;
-        // RGBA8 takes one of the two nearest steps (1/255, as in the combine test). A relative
-        // error r of the mapped value moves the display value by at most r times it: the clamp
-        // and the encodings (sRGB, x^(1/gamma) with gamma >= 1) do not amplify relative errors.
-        // The mapping's relative errors: float evaluation, 1e-5 (GLSL's log and pow: a few ulp
-        // each, about ten operations, 2^-23 * 50); Drago's log(x + 1) for x = L and L_max,
-        // whose absolute error is 2^-20 (GLSL's log: 2^-21 absolute on [0.5, 2]; x + 1 rounds
-        // by 2^-24), so 2^-20 / ln(1 + x) relative, large for dark pixels; and with the frame's
+        // The display's error bound. The mapper reads the radiance as read back here, and
+        // multiplies it by the exposure as `exposed` does; RGBA8 takes one of the two nearest
+        // steps (1/255, as in the combine test). A relative error r of the mapped value moves
+        // the display value by at most r times it: the clamp and the encodings (sRGB,
+        // x^(1/gamma) with gamma >= 1) do not amplify relative errors. The mapping's relative
+        // errors: float evaluation, 1e-5 (GLSL's log and pow: a few ulp each, about ten
+        // operations, 2^-23 * 50; ln(1 + x) below 1/16 is a series of a few ulp, see
+        // tonemap.comp.glsl); Drago's ln(1 + x) from 1/16 up, for x = L and L_max, whose
+        // absolute error is 2^-20 (GLSL's log: 2^-21 absolute on [0.5, 2]; x + 1 rounds by
+        // 2^-24), so 2^-20 / ln(1 + x) relative, at most 1.6e-5; and with the frame's
         // own maximum, that maximum: the shader takes it from the values before their
         // half-float store, the test from the stored ones, within 2^-10 of them, and ln L_d
         // moves with ln L_max by at most 1 (the log10 factor) + e / ln 2 (the bias term,
@@ -158,10 +176,10 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
         const bool drago = k.mapper == ToneMapper::Drago;
         const double biasExponent = std::log(double(k.dragoBias)) / std::log(0.5);
         const double maxSlack = drago && k.dragoMax <= 0.0f ? (1.0 + biasExponent / std::log(2.0)) * std::ldexp(1.0, -10) : 0.0;
-        const auto logSlack = [&](double x) { return drago ? std::ldexp(1.0, -20) / std::log1p(x) : 0.0; };
+        const auto logSlack = [&](double x) { return drago && x >= 0.0625 ? std::ldexp(1.0, -20) / std::log1p(x) : 0.0; };
         for (int y = 0; y < Frame::H; ++y)
             for (int x = 0; x < Frame::W; ++x) {
-                const glm::dvec3 l(radiance.at(x, y, 0), radiance.at(x, y, 1), radiance.at(x, y, 2));
+                const glm::dvec3 l = exposed(x, y);
                 const double lw = luminance(l);
                 glm::dvec3 mapped;
                 if (k.mapper == ToneMapper::Aces) {
@@ -169,7 +187,8 @@ TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]
                         mapped[c] = std::clamp(l[c] * (2.51 * l[c] + 0.03) / (l[c] * (2.43 * l[c] + 0.59) + 0.14), 0.0, 1.0);
                 } else {
                     const double bias = k.dragoBias;
-                    const double ld = lw > 0.0 ? (k.dragoDisplayMax * 0.01 / std::log10(lmax + 1.0)) * std::log(lw + 1.0) /
+                    // log1p: a dim frame's L + 1 would round in double too.
+                    const double ld = lw > 0.0 ? (k.dragoDisplayMax * 0.01 * std::log(10.0) / std::log1p(lmax)) * std::log1p(lw) /
                                                      std::log(2.0 + 8.0 * std::pow(lw / lmax, std::log(bias) / std::log(0.5)))
                                                : 0.0;
                     mapped = lw > 0.0 ? l * (ld / lw) : glm::dvec3(0.0);
