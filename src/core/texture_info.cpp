@@ -140,6 +140,7 @@ bool readableAs(const TextureInfo& info, SampledAs kind) {
     switch (kind) {
     case SampledAs::Colour: return true;
     case SampledAs::Rgb: return info.channels >= 3;
+    case SampledAs::FloatRgb: return info.channels >= 3 && info.floating;
     case SampledAs::Normal: return info.channels >= 3 && (info.signedFloat || info.signedNormalized);
     case SampledAs::Depth: break;
     }
@@ -148,7 +149,10 @@ bool readableAs(const TextureInfo& info, SampledAs kind) {
 
 const char* acceptedFormats(SampledAs kind) {
     switch (kind) {
-    case SampledAs::Rgb: return "a normalized or float RGB or RGBA colour format";
+    case SampledAs::Rgb:
+        return "a normalized or float RGB or RGBA colour format (GL_RGB8, GL_RGBA8, GL_SRGB8, GL_SRGB8_ALPHA8, GL_RGB16F, "
+               "GL_RGBA16F, ...)";
+    case SampledAs::FloatRgb: return "a float RGB or RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F)";
     case SampledAs::Normal: return "a signed float or signed normalized RGB or RGBA format (GL_RGBA16F, GL_RGBA32F, GL_RGBA8_SNORM)";
     default: return "a normalized or float colour format";
     }

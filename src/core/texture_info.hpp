@@ -46,9 +46,10 @@ void requireSampledDepth(ContextImpl& ctx, GLuint name, const TextureInfo& info,
 
 //! How a pass reads a texture: Depth through a depth sampler's first channel; Colour as
 //! floats from one or more channels (a normalized or float format; sRGB ones decoded, which
-//! only colours may be); Rgb the same from three or more; Normal as signed unit vectors from
-//! three or more channels (a float format with a sign bit, or signed normalized).
-enum class SampledAs { Depth, Colour, Rgb, Normal };
+//! only colours may be); Rgb the same from three or more; FloatRgb as Rgb from a float format
+//! only (radiance, which normalized formats would bound by 1); Normal as signed unit vectors
+//! from three or more channels (a float format with a sign bit, or signed normalized).
+enum class SampledAs { Depth, Colour, Rgb, FloatRgb, Normal };
 //! For textures Obscura samples at level 0 as `kind`: requireBaseLevelZero, then for Depth
 //! requireSampledDepth, else a format as `kind` describes. Throws Error{InvalidArgument}
 //! mentioning `who`.

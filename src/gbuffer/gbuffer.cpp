@@ -88,12 +88,7 @@ TextureView hostColour(ContextImpl& ctx, const TextureView& texture, const std::
                        bool floatOnly) {
     if (!texture) return {};
     const TextureInfo t = hostTextureBeside(ctx, texture.name, who, depth);
-    if (t.depth || t.integer || t.channels < 3 || (floatOnly && !t.floating))
-        throw Error(ErrorCode::InvalidArgument,
-                    who + " has format " + formatName(t.internalFormat) + "; accepted: " +
-                        (floatOnly ? "a float RGB/RGBA format (GL_R11F_G11F_B10F, GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F)"
-                                   : "a normalized or float RGB/RGBA format (GL_RGB8, GL_RGBA8, GL_SRGB8, GL_SRGB8_ALPHA8, "
-                                     "GL_RGB16F, GL_RGBA16F, ...)"));
+    requireReadableAs(ctx, texture.name, t, who, floatOnly ? SampledAs::FloatRgb : SampledAs::Rgb);
     return {texture.name, t.internalFormat, t.width, t.height};
 }
 
@@ -251,11 +246,7 @@ struct GBuffer::Impl {
     }
 
     void validateHostTexture(GLuint name, const std::string& who) {
-        const TextureInfo t = queryTexture2D(ctx, name, who);
-        requireBaseLevelZero(ctx, name, who);
-        if (t.depth || t.integer)
-            throw Error(ErrorCode::InvalidArgument, who + ": needs a colour format that can be sampled as float, got " +
-                                                        formatName(t.internalFormat));
+        requireReadableAs(ctx, name, queryTexture2D(ctx, name, who), who, SampledAs::Colour);
     }
 };
 
