@@ -46,8 +46,8 @@ struct ComposeSettings {
     ToneMapper toneMapper = ToneMapper::Aces;
     //! Drago: the largest scene luminance L_wmax (after exposure), (0, inf); 0 = the frame's
     //! own maximum (a reduction pass). Either counts as at least 1e-30: a frame is mapped to
-    //! its own maximum however dim (the exposure is applied in float, after the half-float
-    //! radiance(), so a small one costs no precision).
+    //! its own maximum down to 1e-30 after exposure (applied in float, after the half-float
+    //! radiance(), so a small exposure costs no precision).
     float dragoMaxLuminance = 0.0f;
     float dragoBias = 0.85f;     //!< Drago's bias b, [0.5, 1]
     float dragoDisplayMax = 100.0f; //!< Drago's L_dmax, cd/m^2 of the display, (0, 1e4]

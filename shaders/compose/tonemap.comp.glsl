@@ -8,15 +8,15 @@ layout(std430, binding = COMPOSE_LUMINANCE_SSBO) readonly buffer Luminance {
     uint maxLuminanceBits;
 };
 
-// ln(1 + x) for x >= 0 to a few float ulps. GLSL's log has an absolute error of up to 2^-21
-// near 1, which for x = 1e-6 is half the result, and 1 + x drops x below 2^-24 altogether: a
-// dim frame's Drago mapping would be off by tens of percent. Below 1/16 the series to x^6,
-// whose remainder (x^6 / 7 of the result) is under 2^-24; above it log's error is at most
-// 2^-20 of the result. One exit (Mesa 22.3 llvmpipe miscompiles early returns in inlined code,
-// see voxel_traversal.glsl).
-float lnOnePlus(float x) {
-    const float series = x * (1.0 + x * (-1.0 / 2.0 + x * (1.0 / 3.0 + x * (-1.0 / 4.0 + x * (1.0 / 5.0 - x * (1.0 / 6.0))))));
-    return x >= 0.0625 ? log(1.0 + x) : series;
+// ln(1 + x) / x for x >= 0 (1 at 0), so that Drago's L_d / L needs no division by L, which
+// a GPU may flush to 0 where it is subnormal (a tiny exposure). GLSL's log has an absolute
+// error of up to 2^-21 near 1, which for x = 1e-6 is half of ln(1 + x), and 1 + x drops x
+// below 2^-24 altogether: a dim frame's Drago mapping would be off by tens of percent. Below
+// 1/16 the series to x^5 (ln(1 + x) to x^6), whose remainder (x^6 / 7) is under 2^-24, to a
+// few ulp; from 1/16 up log's 2^-20 absolute, at most 1.6e-5 of the result.
+float lnOnePlusOverX(float x) {
+    const float series = 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 3.0 + x * (-1.0 / 4.0 + x * (1.0 / 5.0 - x * (1.0 / 6.0)))));
+    return x >= 0.0625 ? log(1.0 + x) / x : series;
 }
 
 // Drago et al. 2003: L_d = (L_dmax / 100) / log10(L_wmax + 1) * ln(L + 1) /
@@ -26,18 +26,18 @@ vec3 drago(vec3 c) {
     const float lw = luminanceOf(c);
     if (!(lw > 0.0)) return vec3(0.0);
     const float lmeasured = compose.tone.x * uintBitsToFloat(maxLuminanceBits);
-    // A floor far below any frame's maximum, so that a dim frame is still mapped to its own,
-    // which keeps every term finite: L <= 1e6 (exposure) * 65504 (clampRadiance),
-    // so the first factor is at most 230 / 1e-30 and ln(L + 1) at most 25. The ratio L / L_wmax
-    // is kept in [1e-30, 1e30]: a given maximum far below L could take it past float's range
-    // and a dark pixel of a bright frame to 0, and at bias 1 (exponent 0) pow(inf, 0) and
-    // pow(0, 0) are NaN or undefined. Pixels the lower bound changes are below 1e-30 of the
-    // maximum, and display as 0 either way.
+    // A floor far below a frame's maximum, so that a dim frame is still mapped to its own; it
+    // also bounds the first factor, (L_dmax / 100) ln 10 / ln(1 + L_wmax), by 230 / 1e-30,
+    // and with L <= 1e6 (exposure) * 65504 (clampRadiance) ln(1 + L) <= 25, so L_d is
+    // finite. The ratio L / L_wmax is kept in [1e-30, 1e30]: a given maximum far from L could
+    // take it past float's range or to 0, and at bias 1 (exponent 0) pow(inf, 0) and pow(0, 0)
+    // are NaN or undefined. The clamp changes only ln(2 + 8 r^e), for pixels 1e30 times
+    // brighter or darker than the maximum: with the frame's own maximum those display as 0.
     const float lmax = max(compose.tone.y > 0.0 ? compose.tone.y : lmeasured, 1e-30);
     const float exponent = log(compose.tone.z) / log(0.5);
     const float ratio = clamp(lw / lmax, 1e-30, 1e30);
-    const float ld = (compose.tone.w * 0.01 / lnOnePlus(lmax) * log(10.0)) * lnOnePlus(lw) / log(2.0 + 8.0 * pow(ratio, exponent));
-    return c * (ld / lw);
+    const float firstFactor = compose.tone.w * 0.01 * log(10.0) / (lmax * lnOnePlusOverX(lmax));
+    return c * (firstFactor * lnOnePlusOverX(lw) / log(2.0 + 8.0 * pow(ratio, exponent))); // c L_d / L
 }
 
 // Narkowicz 2015's fit of the ACES reference rendering and output transforms.

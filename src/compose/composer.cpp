@@ -9,6 +9,7 @@
 #include "obscura/context.hpp"
 #include "shaders/compose/compose_bindings.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -117,7 +118,9 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     StateScope scope(ctx);
     shader::ComposeParams p{};
     p.ambient = glm::vec4(s.ambient, s.indirectScale);
-    p.tone = glm::vec4(s.exposure, s.dragoMaxLuminance, s.dragoBias, s.dragoDisplayMax);
+    // A given maximum at its floor here: a GPU may flush a subnormal one to 0, "measured".
+    const float dragoMax = s.dragoMaxLuminance > 0.0f ? std::max(s.dragoMaxLuminance, 1e-30f) : 0.0f;
+    p.tone = glm::vec4(s.exposure, dragoMax, s.dragoBias, s.dragoDisplayMax);
     p.display = glm::vec4(s.gamma, reconstruction.clearDepth, reconstruction.farthestDepth, 0.0f);
     p.flags = glm::ivec4(s.formula == CombineFormula::Thesis ? COMPOSE_FORMULA_THESIS : COMPOSE_FORMULA_PHYSICAL,
                          s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO

@@ -101,8 +101,10 @@ public:
                 o.encoding = assets::PngEncoding::Linear; // already display-encoded
                 o.displayOnly = true;
             } else if (name == "radiance") {
+                // W/(sr m^2) as combined; the picture after the exposure, as the tone mapper sees it.
                 o.image = rgbOf(readTexture(ctx_, composer_.radiance()));
                 o.display = o.image;
+                for (float& v : o.display.pixels) v *= settings_.exposure;
             } else {
                 throw Error(ErrorCode::InvalidArgument, "compose has no output \"" + name + "\" (outputs: image, radiance)");
             }
