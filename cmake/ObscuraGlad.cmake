@@ -12,7 +12,10 @@ if(NOT OBSCURA_GLAD_EXECUTABLE)
 endif()
 
 # Extensions we may use where present; everything else is GL 4.5 core.
-set(OBSCURA_GLAD_EXTENSIONS "GL_KHR_debug,GL_NV_conservative_raster,GL_INTEL_conservative_rasterization")
+# Besides KHR_debug, the extensions whose enables the state guard saves and resets
+# (src/core/state_guard.cpp).
+set(OBSCURA_GLAD_EXTENSIONS
+    "GL_KHR_debug,GL_NV_conservative_raster,GL_INTEL_conservative_rasterization,GL_EXT_depth_bounds_test,GL_NV_representative_fragment_test,GL_NV_scissor_exclusive,GL_NV_shading_rate_image")
 
 # obscura_generate_glad(<out_dir> <extra glad c options> ...)
 # Generates <out_dir>/include/glad/gl.h and <out_dir>/src/gl.c.

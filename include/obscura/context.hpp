@@ -24,8 +24,12 @@
 //     GL_PRIMITIVE_RESTART_FIXED_INDEX, GL_DEPTH_CLAMP, GL_FRAMEBUFFER_SRGB,
 //     GL_POLYGON_OFFSET_FILL/LINE/POINT, GL_RASTERIZER_DISCARD, GL_SAMPLE_ALPHA_TO_COVERAGE,
 //     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7,
-//     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and GL_CONSERVATIVE_RASTERIZATION_NV
-//     or _INTEL where the extension exists
+//     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and, where the context has the
+//     extension, GL_CONSERVATIVE_RASTERIZATION_NV or _INTEL, GL_DEPTH_BOUNDS_TEST_EXT,
+//     GL_REPRESENTATIVE_FRAGMENT_TEST_NV, GL_SHADING_RATE_IMAGE_NV and
+//     GL_SCISSOR_TEST_EXCLUSIVE_NV (index 0); their parameters (depth bounds, exclusive
+//     scissor box, shading rate image and palettes) are not touched, as our draws run with
+//     the tests off
 //   - blend func and equation (RGB and alpha, every draw buffer; KHR_blend_equation_advanced
 //     equations included), blend color
 //   - color mask (every draw buffer), depth mask, stencil write masks (front and back)

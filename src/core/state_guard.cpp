@@ -54,10 +54,31 @@ constexpr GLenum kPixelStore[16][2] = {
 
 void setEnabled(GladGLContext& gl, GLenum cap, bool on) { on ? gl.Enable(cap) : gl.Disable(cap); }
 
-// The conservative rasterization enable of the extension the context has, or 0.
-GLenum conservativeRasterCap(const ContextImpl& ctx) {
-    if (!ctx.info.conservativeRaster) return 0;
-    return ctx.gl.NV_conservative_raster ? GL_CONSERVATIVE_RASTERIZATION_NV : GL_CONSERVATIVE_RASTERIZATION_INTEL;
+// Enables that extensions add, saved and reset only where the context has the extension (GL
+// refuses the enum elsewhere). Each changes which pixels our draws write: conservative
+// rasterization adds fragments; the depth bounds test (against the depth already stored: our
+// G-buffer's clear value), the exclusive scissor and the representative fragment test drop
+// some; a shading rate image shades several pixels with one invocation. The exclusive
+// scissor is per viewport: only index 0, the one we draw with, is touched.
+struct ExtensionEnable {
+    int GladGLContext::*present;
+    GLenum cap;
+    bool indexed;
+};
+constexpr ExtensionEnable kExtensionEnables[] = {
+    {&GladGLContext::NV_conservative_raster, GL_CONSERVATIVE_RASTERIZATION_NV, false},
+    {&GladGLContext::INTEL_conservative_rasterization, GL_CONSERVATIVE_RASTERIZATION_INTEL, false},
+    {&GladGLContext::EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT, false},
+    {&GladGLContext::NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV, false},
+    {&GladGLContext::NV_scissor_exclusive, GL_SCISSOR_TEST_EXCLUSIVE_NV, true},
+    {&GladGLContext::NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV, false}};
+constexpr std::size_t kExtensionEnableCount = sizeof(kExtensionEnables) / sizeof(kExtensionEnables[0]);
+
+bool isEnabled(GladGLContext& gl, const ExtensionEnable& e) { return e.indexed ? gl.IsEnabledi(e.cap, 0) : gl.IsEnabled(e.cap); }
+
+void setEnabled(GladGLContext& gl, const ExtensionEnable& e, bool on) {
+    if (e.indexed) on ? gl.Enablei(e.cap, 0) : gl.Disablei(e.cap, 0);
+    else setEnabled(gl, e.cap, on);
 }
 
 void GLAD_API_PTR forwardDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
@@ -99,7 +120,7 @@ struct SavedGlobalState {
     GLfloat offsetFactor = 0, offsetUnits = 0;
     GLint frontFace = 0, cullFaceMode = 0, activeTexture = 0, provokingVertex = 0, clampReadColor = 0;
     GLboolean dither = GL_TRUE;
-    GLboolean conservative = GL_FALSE;
+    bool extensionEnables[kExtensionEnableCount]{}; // kExtensionEnables' where present
     GLint pixelStore[16]{};
     GLint buffers[13]{};
     bool debug = false;
@@ -164,7 +185,8 @@ void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     gl.GetIntegerv(GL_PROVOKING_VERTEX, &s.provokingVertex);
     gl.GetIntegerv(GL_CLAMP_READ_COLOR, &s.clampReadColor);
     s.dither = gl.IsEnabled(GL_DITHER);
-    if (const GLenum cap = conservativeRasterCap(ctx)) s.conservative = gl.IsEnabled(cap);
+    for (std::size_t i = 0; i < kExtensionEnableCount; ++i)
+        if (gl.*kExtensionEnables[i].present) s.extensionEnables[i] = isEnabled(gl, kExtensionEnables[i]);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     for (int i = 0; i < 16; ++i) gl.GetIntegerv(kPixelStore[i][0], &s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.GetIntegerv(kBufferTargets[i][1], &s.buffers[i]);
@@ -219,7 +241,8 @@ void restoreGlobal(ContextImpl& ctx, const SavedGlobalState& s) {
     gl.ProvokingVertex(static_cast<GLenum>(s.provokingVertex));
     gl.ClampColor(GL_CLAMP_READ_COLOR, static_cast<GLenum>(s.clampReadColor));
     setEnabled(gl, GL_DITHER, s.dither);
-    if (const GLenum cap = conservativeRasterCap(ctx)) setEnabled(gl, cap, s.conservative);
+    for (std::size_t i = 0; i < kExtensionEnableCount; ++i)
+        if (gl.*kExtensionEnables[i].present) setEnabled(gl, kExtensionEnables[i], s.extensionEnables[i]);
     for (int i = 0; i < 16; ++i) gl.PixelStorei(kPixelStore[i][0], s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.BindBuffer(kBufferTargets[i][0], static_cast<GLuint>(s.buffers[i]));
     gl.ActiveTexture(static_cast<GLenum>(s.activeTexture));
@@ -260,7 +283,8 @@ void applyBaseline(ContextImpl& ctx) {
     // TRUE would clamp float readbacks (readTexture) to [0,1].
     gl.ClampColor(GL_CLAMP_READ_COLOR, GL_FIXED_ONLY);
     gl.Enable(GL_DITHER);
-    if (const GLenum cap = conservativeRasterCap(ctx)) gl.Disable(cap);
+    for (const ExtensionEnable& e : kExtensionEnables)
+        if (gl.*e.present) setEnabled(gl, e, false);
     for (const auto& p : kPixelStore) gl.PixelStorei(p[0], static_cast<GLint>(p[1]));
     for (const auto& b : kBufferTargets) gl.BindBuffer(b[0], 0);
     gl.ActiveTexture(GL_TEXTURE0);

@@ -81,14 +81,14 @@ TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint d
     return {texture.name, t.internalFormat, t.width, t.height};
 }
 
-// The host's albedo (normalized or float) or radiance (float only: it is not bounded by 1),
-// RGB or RGBA, read in place by the passes that use them; described as GL reports it (the
-// host's TextureView need only name it). Empty stays empty.
+// The host's albedo (SampledAs::Rgb: normalized or float) or radiance (SampledAs::FloatRgb:
+// it is not bounded by 1), RGB or RGBA, read in place by the passes that use them; described
+// as GL reports it (the host's TextureView need only name it). Empty stays empty.
 TextureView hostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
-                       bool floatOnly) {
+                       SampledAs kind) {
     if (!texture) return {};
     const TextureInfo t = hostTextureBeside(ctx, texture.name, who, depth);
-    requireReadableAs(ctx, texture.name, t, who, floatOnly ? SampledAs::FloatRgb : SampledAs::Rgb);
+    requireReadableAs(ctx, texture.name, t, who, kind);
     return {texture.name, t.internalFormat, t.width, t.height};
 }
 
@@ -394,8 +394,8 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     } else {
         defines.push_back("FROM_DEPTH");
     }
-    const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, false);
-    const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, true);
+    const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, SampledAs::Rgb);
+    const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
     const TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
 
     StateScope scope(ctx);

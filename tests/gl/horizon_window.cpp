@@ -271,11 +271,17 @@ ScreenRays::ScreenRays(const Camera& camera, int width, int height)
       size(width, height) {}
 
 std::pair<glm::dvec3, glm::dvec3> ScreenRays::ray(glm::dvec2 s) const {
+    // Two points of the pixel's ray at fixed NDC depths (so affine in s) that lie inside the
+    // view volume whatever the depth mode: [-1, 1] or [0, 1], reversed, an infinite far plane.
     const glm::dvec2 ndc = 2.0 * s / size - 1.0;
-    const glm::dvec4 nearH = inverseProjection * glm::dvec4(ndc, -1.0, 1.0);
-    const glm::dvec4 farH = inverseProjection * glm::dvec4(ndc, 1.0, 1.0);
-    const glm::dvec3 nearPoint = glm::dvec3(nearH) / nearH.w, farPoint = glm::dvec3(farH) / farH.w;
-    return perspective ? std::pair{glm::dvec3(0.0), farPoint} : std::pair{nearPoint, farPoint - nearPoint};
+    const auto at = [&](double z) {
+        const glm::dvec4 h = inverseProjection * glm::dvec4(ndc, z, 1.0);
+        return glm::dvec3(h) / h.w;
+    };
+    const glm::dvec3 a = at(0.25), b = at(0.75);
+    // The direction points away from the camera (view z falls).
+    const glm::dvec3 nearer = a.z > b.z ? a : b, farther = a.z > b.z ? b : a;
+    return perspective ? std::pair{glm::dvec3(0.0), farther} : std::pair{nearer, farther - nearer};
 }
 
 double ScreenRays::inside(glm::dvec2 centre, glm::dvec2 u, double inset) const {

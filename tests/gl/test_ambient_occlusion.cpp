@@ -530,7 +530,10 @@ TEST_CASE("AO settings out of range are refused before any GL work", "[ao][bad-i
              [](AmbientOcclusionSettings& s) { s.method = static_cast<AoMethod>(4); },
              [](AmbientOcclusionSettings& s) { s.falloff = static_cast<ObscuranceFalloff>(-1); },
              [](AmbientOcclusionSettings& s) { s.march = static_cast<ScreenMarch>(3); },
-             [](AmbientOcclusionSettings& s) { s.thicknessMode = static_cast<ScreenThickness>(2); }}) {
+             [](AmbientOcclusionSettings& s) { s.thicknessMode = static_cast<ScreenThickness>(3); },
+             [](AmbientOcclusionSettings& s) { s.thicknessMode = static_cast<ScreenThickness>(-1); },
+             // Valid, but the fixture's G-buffer has one depth layer.
+             [](AmbientOcclusionSettings& s) { s.thicknessMode = ScreenThickness::PeelingOrConstant; }}) {
         AmbientOcclusionSettings s;
         change(s);
         CHECK_THROWS_AS(f.ao.run(f.view, s), Error);

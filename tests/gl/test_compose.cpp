@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 using namespace obscura;
@@ -38,6 +39,8 @@ double halfSrgbStep(double v) {
     return 0.5 / 255.0 * slope;
 }
 
+using CameraOf = std::function<Camera(const assets::CameraSpec&, int width, int height)>;
+
 struct Frame {
     test::GlFixture gl;
     Context ctx{gl.desc()};
@@ -46,10 +49,13 @@ struct Frame {
     GBufferView view;
     Image direct, albedo, positions; // positions' alpha: 0 on background pixels
     static constexpr int W = 32, H = 24;
+    int width, height;
 
-    Frame() {
+    //! The Cornell box at width x height, through its own camera unless `cameraOf` gives one.
+    explicit Frame(int w = W, int h = H, const CameraOf& cameraOf = {}) : width(w), height(h) {
         const assets::LoadedScene cornell = assets::builtinScene("cornell");
-        view = gbuffer.render(cornell.scene, assets::makeCamera(cornell.camera, W, H), {W, H, true, {}});
+        const Camera camera = cameraOf ? cameraOf(cornell.camera, w, h) : assets::makeCamera(cornell.camera, w, h);
+        view = gbuffer.render(cornell.scene, camera, {w, h, true, {}});
         direct = readTexture(ctx, view.directRadiance);
         albedo = readTexture(ctx, view.albedo);
         positions = readTexture(ctx, gbuffer.positions(view));
@@ -58,10 +64,14 @@ struct Frame {
 
 } // namespace
 
-TEST_CASE("The combine formulas match their definitions", "[compose]") {
-    Frame f;
-    const ConstantTexture ao(GL_R16F, Frame::W, Frame::H, glm::vec4(0.5f));
-    const ConstantTexture indirect(GL_RGBA16F, Frame::W, Frame::H, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
+namespace {
+
+// The combine of compose.hpp on frame f, every formula with and without indirect light,
+// against its definition from the frame's own inputs.
+void checkCombineFormulas(Frame& f) {
+    const int W = f.width, H = f.height;
+    const ConstantTexture ao(GL_R16F, W, H, glm::vec4(0.5f));
+    const ConstantTexture indirect(GL_RGBA16F, W, H, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
     for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
         for (bool withIndirect : {true, false}) {
             CAPTURE(formula == CombineFormula::Thesis, withIndirect);
@@ -73,11 +83,13 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
             s.toneMapper = ToneMapper::None;
             s.srgb = false;
             s.gamma = 1.0f;
-            const TextureView l1View = withIndirect ? indirect.view(GL_RGBA16F, Frame::W, Frame::H) : TextureView{};
-            const TextureView display = f.composer.compose({f.view, ao.view(GL_R16F, Frame::W, Frame::H), l1View}, s);
+            const TextureView l1View = withIndirect ? indirect.view(GL_RGBA16F, W, H) : TextureView{};
+            const TextureView display = f.composer.compose({f.view, ao.view(GL_R16F, W, H), l1View}, s);
             const Image shown = readTexture(f.ctx, display), radiance = readTexture(f.ctx, f.composer.radiance());
-            for (int y = 0; y < Frame::H; ++y)
-                for (int x = 0; x < Frame::W; ++x)
+            REQUIRE(shown.width == W);
+            REQUIRE(shown.height == H);
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x)
                     for (int c = 0; c < 3; ++c) {
                         // Background pixels: L_dir alone (no AO, ambient or indirect term).
                         const bool surface = f.positions.at(x, y, 3) > 0.0f;
@@ -111,6 +123,48 @@ TEST_CASE("The combine formulas match their definitions", "[compose]") {
                         CHECK(std::abs(shown.at(x, y, c) - std::min(s.exposure * expected, 1.0)) <= 1.0 / 255.0 + shownSlack);
                     }
         }
+}
+
+} // namespace
+
+TEST_CASE("The combine formulas match their definitions", "[compose]") {
+    Frame f;
+    checkCombineFormulas(f);
+}
+
+TEST_CASE("The combine formulas hold at 1x1 odd and non-square sizes and in orthographic and reversed-Z views",
+          "[compose][stability]") {
+    // The compose pass reads its inputs by pixel and runs over whole groups: a frame smaller
+    // than a group, sizes that leave part of the last group outside, and depth that runs
+    // otherwise (the background test reads depth) must give the same formulas.
+    const CameraOf orthographic = [](const assets::CameraSpec& c, int w, int h) {
+        return Camera::orthographic(c.lookAt, 330.0f, float(w) / float(h), c.nearPlane, c.farPlane, DepthMode::StandardZeroToOne);
+    };
+    const CameraOf reversed = [](const assets::CameraSpec& c, int w, int h) {
+        return Camera::perspective(c.lookAt, glm::radians(c.fovyDegrees), float(w) / float(h), c.nearPlane, INFINITY,
+                                   DepthMode::Reversed);
+    };
+    const CameraOf reversedOrthographic = [](const assets::CameraSpec& c, int w, int h) {
+        return Camera::orthographic(c.lookAt, 400.0f, float(w) / float(h), c.nearPlane, c.farPlane, DepthMode::Reversed);
+    };
+    struct Case {
+        const char* name;
+        int width, height;
+        CameraOf camera;
+    };
+    for (const Case& c : {Case{"1x1", 1, 1, {}}, Case{"odd, orthographic", 7, 5, orthographic},
+                          Case{"non-square, reversed-Z", 9, 16, reversed},
+                          Case{"odd, orthographic reversed, background in view", 13, 11, reversedOrthographic}}) {
+        CAPTURE(c.name);
+        Frame f(c.width, c.height, c.camera);
+        int background = 0;
+        for (int y = 0; y < c.height; ++y)
+            for (int x = 0; x < c.width; ++x) background += f.positions.at(x, y, 3) == 0.0f;
+        CAPTURE(background);
+        CHECK(background < c.width * c.height); // the box in view
+        if (std::string(c.name).find("background") != std::string::npos) CHECK(background > 0);
+        checkCombineFormulas(f);
+    }
 }
 
 TEST_CASE("Tone mappers and display encodings follow their formulas", "[compose]") {

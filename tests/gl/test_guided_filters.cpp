@@ -416,6 +416,66 @@ TEST_CASE("The half and quarter resolution blur and upsampling of AO and bent no
     CHECK(ao.lastRefinement().refined == 0);
 }
 
+// At full resolution the blur's second pass is the last step: what it writes is the output,
+// with no upsampling. Two roundings to half floats (the horizontal and the vertical pass; the
+// bent normal once more where the AO pass stores it), each one ulp as above, and the weights'
+// float error.
+Expected blurredAtFullResolution(const Model& m, const LowImages& blurred) {
+    Expected e;
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x) {
+            const std::size_t i = std::size_t(y) * m.width + x;
+            const bool geometry = m.lowGuide(x, y).z != 0.0;
+            e.value.push_back(blurred.value[i]);
+            e.direction.push_back(glm::vec4(blurred.direction[i], geometry ? 1.0f : 0.0f));
+            e.refinedValue.push_back(glm::vec4(0.0f));
+            e.refinedDirection.push_back(glm::vec4(0.0f));
+            e.refined.push_back(0);
+            e.either.push_back(0);
+        }
+    return e;
+}
+
+TEST_CASE("The full resolution blur of AO bent normals and indirect light computes the documented guided filter",
+          "[filters][ao][gi]") {
+    FilterFixture f;
+    test::overrideShaders(f.ctx, {{"ao/ao.comp.glsl", "const Estimate e = Estimate(sums.a.x, sums.a.yzw, sums.b.x);",
+                                   "const Estimate e = Estimate(1.0 - filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);",
+                                   kHashGlsl},
+                                  {"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * meanRadiance), 1.0)",
+                                   "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)",
+                                   kHashGlsl},
+                                  kNoModulation});
+    f.render();
+    AmbientOcclusion ao(f.ctx);
+    IndirectLight gi(f.ctx);
+    constexpr double kValueTolerance = 2.0 * kUlp + 1e-5, kBentTolerance = 3.0 * kUlp + 1e-5;
+    for (const int taps : {1, 3}) {
+        CAPTURE(taps);
+        AmbientOcclusionSettings s = FilterCase{AoResolution::Full, taps, 0.0f}.settings<AmbientOcclusionSettings>();
+        s.bentNormals = true;
+        const AmbientOcclusionView out = ao.run(f.view, s);
+        const Model m = f.model(1, taps, true, 1.0f);
+        const LowImages low = lowImages(m, glm::vec4(1.0f), [](int x, int y) { return glm::vec4(valueOf(x, y, 0)); },
+                                        [](int x, int y) { return toHalf(directionOf(x, y)); });
+        const Expected expected = blurredAtFullResolution(m, blurPass(m, blurPass(m, low, {1, 0}), {0, 1}));
+        CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), expected, false, 1, kValueTolerance) <= kValueTolerance);
+        CHECK(worstDifference(glRows(readTexture(f.ctx, out.bentNormal)), expected, true, 4, kBentTolerance) <= kBentTolerance);
+        // The blur moves values: a model of no blur is far off.
+        CHECK(worstDifference(glRows(readTexture(f.ctx, out.ao)), blurredAtFullResolution(m, low), false, 1, kValueTolerance) >
+              0.05);
+
+        const Image radiance =
+            glRows(readTexture(f.ctx, gi.run(f.view, FilterCase{AoResolution::Full, taps, 0.0f}.settings<IndirectLightSettings>()).radiance));
+        const Model rgb = f.model(1, taps, false, 0.0f);
+        const LowImages lowRgb = lowImages(
+            rgb, glm::vec4(0.0f), [](int x, int y) { return glm::vec4(valueOf(x, y, 0), valueOf(x, y, 1), valueOf(x, y, 2), 1.0f); },
+            [](int, int) { return glm::vec3(0.0f); });
+        const Expected expectedRgb = blurredAtFullResolution(rgb, blurPass(rgb, blurPass(rgb, lowRgb, {1, 0}), {0, 1}));
+        CHECK(worstDifference(radiance, expectedRgb, false, 4, kValueTolerance) <= kValueTolerance);
+    }
+}
+
 TEST_CASE("A subnormal blur depth sigma gives the guided filters' limit, in which only equal depths count",
           "[filters][ao][stability]") {
     // blurDepthSigma accepts any float in (0, 1]. At the smallest (2^-149), sigma |z| rounds

@@ -297,19 +297,24 @@ TEST_CASE("Horizon AO before a wall seen obliquely matches its slice integral wi
     // Orthographic and perspective with the full slice count; and orthographic with 2 slices,
     // where each pixel's slice offset decides which directions are sampled at all, so the
     // window must use the shader's own.
+    // Then both with reversed depth (perspective with an infinite far plane), whose depth
+    // buffer the shader must read as such: a standard linearization would put the floor
+    // elsewhere and its windows would not hold.
     struct Case {
         bool perspective;
         int slices;
+        DepthMode depth = DepthMode::Standard;
     };
-    for (const Case c : {Case{false, 128}, Case{true, 128}, Case{false, 2}}) {
-        CAPTURE(c.perspective, c.slices);
+    for (const Case c : {Case{false, 128}, Case{true, 128}, Case{false, 2}, Case{false, 128, DepthMode::Reversed},
+                         Case{true, 128, DepthMode::Reversed}}) {
+        CAPTURE(c.perspective, c.slices, static_cast<int>(c.depth));
         horizon::Sampling sampling = view.sampling;
         sampling.slices = c.slices;
         test::AoFixture f;
         const float fovy = 2.0f * std::atan(float(view.halfHeight / view.distance));
         f.render(scene,
-                 c.perspective ? Camera::perspective(look, fovy, 1.0f, 0.5f, 30.0f)
-                               : Camera::orthographic(look, float(view.halfHeight), 1.0f, 0.5f, 30.0f),
+                 c.perspective ? Camera::perspective(look, fovy, 1.0f, 0.5f, c.depth == DepthMode::Reversed ? INFINITY : 30.0f, c.depth)
+                               : Camera::orthographic(look, float(view.halfHeight), 1.0f, 0.5f, 30.0f, c.depth),
                  view.size, view.size);
         AmbientOcclusionSettings s;
         s.method = AoMethod::Horizon;

@@ -103,15 +103,66 @@ double tieShareOf(const ScreenFixture& f, const test::ScreenMirror& mirror, floa
     return (double(ties) + 3.0 * std::sqrt(double(ties)) + 3.0) / double(samples);
 }
 
+
+using CameraOf = std::function<Camera(const assets::CameraSpec&)>;
+
+// The Cornell box's camera as perspective (empty: the scene's own), reversed-Z with an
+// infinite far plane, and orthographic with depth from 0 to 1 and reversed, for a W x H image.
+std::vector<std::pair<const char*, CameraOf>> projectionCases(int W, int H) {
+    const float aspect = float(W) / float(H);
+    return {
+        {"perspective", {}},
+        {"reversed-Z, infinite far", [aspect](const assets::CameraSpec& c) {
+             return Camera::perspective(c.lookAt, glm::radians(c.fovyDegrees), aspect, c.nearPlane, INFINITY, DepthMode::Reversed);
+         }},
+        {"orthographic, zero to one", [aspect](const assets::CameraSpec& c) {
+             return Camera::orthographic(c.lookAt, 330.0f, aspect, c.nearPlane, c.farPlane, DepthMode::StandardZeroToOne);
+         }},
+        {"orthographic, reversed", [aspect](const assets::CameraSpec& c) {
+             return Camera::orthographic(c.lookAt, 330.0f, aspect, c.nearPlane, c.farPlane, DepthMode::Reversed);
+         }},
+    };
+}
+
+// Both marches must find the first hidden sample that the double-precision mirror of
+// screenHiddenAt finds, except where a sample lies within the marches' derived float
+// rounding of a decision (screen_mirror.cpp: a tie). So they can differ only on rays with a
+// tie; a systematic error (a wrong pixel or depth) would differ on tens of percent.
+void checkViewAndTextureAgree(ScreenFixture& f, const test::ScreenMirror& mirror,
+                              const std::vector<ScreenSegment>& segments, ScreenThickness mode, float thickness) {
+    ScreenTraceSettings s;
+    s.steps = 24;
+    s.thicknessMode = mode;
+    s.thickness = thickness;
+    s.march = ScreenMarch::View;
+    const auto view = f.visibility.trace(f.view, segments, s);
+    s.march = ScreenMarch::Texture;
+    const auto texture = f.visibility.trace(f.view, segments, s);
+    std::size_t viewOff = 0, textureOff = 0, tiedRays = 0;
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        bool tied = false;
+        viewOff += agreesWithMirror(mirror, segments[i], view[i], s, tied) ? 0 : 1;
+        textureOff += agreesWithMirror(mirror, segments[i], texture[i], s, tied) ? 0 : 1;
+        tiedRays += tied ? 1 : 0;
+    }
+    const std::size_t hits = hitCount(view), differing = differingSamples(view, texture);
+    INFO("mode " << int(mode) << ", thickness " << thickness << ": " << hits << " of " << segments.size()
+                 << " rays hit; first hidden sample differs on " << differing << "; rays with a tie " << tiedRays
+                 << "; off the mirror: view " << viewOff << ", texture " << textureOff);
+    CHECK(hits > segments.size() / 10);
+    CHECK(viewOff == 0);
+    CHECK(textureOff == 0);
+    CHECK(differing <= tiedRays);
+    // The ties' margins are a few ulp; a mirror that called most samples ties would pass the
+    // checks above and say nothing.
+    CHECK(tiedRays < segments.size() / 100);
+}
 } // namespace
 
 TEST_CASE("Texture-space and view-space marching classify every sample as exact arithmetic does, but for rounding ties",
           "[visibility]") {
-    // Both marches must find the first hidden sample that the double-precision mirror of
-    // screenHiddenAt finds, except where a sample lies within the marches' derived float
-    // rounding of a decision (screen_mirror.cpp: a tie). So they can differ only on rays
-    // with a tie; a systematic error (a wrong pixel or depth) would differ on tens of percent.
-    // Each thickness mode, with a thin slab (where the modes differ most) and a thick one.
+    // checkViewAndTextureAgree for each thickness mode, with a thin slab (where the modes
+    // differ most) and a thick one.
     const std::pair<ScreenThickness, float> modes[] = {{ScreenThickness::Constant, 0.05f},
                                                        {ScreenThickness::Constant, 10.0f},
                                                        {ScreenThickness::DepthPeeling, 0.05f},
@@ -122,34 +173,25 @@ TEST_CASE("Texture-space and view-space marching classify every sample as exact 
         const float reach = std::string(sceneName) == "cornell" ? 300.0f : 2.0f;
         const std::vector<ScreenSegment> segments = f.surfaceSegments(4000, reach, 7);
         for (const auto& [mode, share] : modes) {
-            const float thickness = share * reach;
-            ScreenTraceSettings s;
-            s.steps = 24;
-            s.thicknessMode = mode;
-            s.thickness = thickness;
-            s.march = ScreenMarch::View;
-            const auto view = f.visibility.trace(f.view, segments, s);
-            s.march = ScreenMarch::Texture;
-            const auto texture = f.visibility.trace(f.view, segments, s);
-            std::size_t viewOff = 0, textureOff = 0, tiedRays = 0;
-            for (std::size_t i = 0; i < segments.size(); ++i) {
-                bool tied = false;
-                viewOff += agreesWithMirror(mirror, segments[i], view[i], s, tied) ? 0 : 1;
-                textureOff += agreesWithMirror(mirror, segments[i], texture[i], s, tied) ? 0 : 1;
-                tiedRays += tied ? 1 : 0;
-            }
-            const std::size_t hits = hitCount(view), differing = differingSamples(view, texture);
-            INFO(sceneName << ", mode " << int(mode) << ", thickness " << thickness << ": " << hits << " of " << segments.size()
-                           << " rays hit; first hidden sample differs on " << differing << "; rays with a tie "
-                           << tiedRays << "; off the mirror: view " << viewOff << ", texture " << textureOff);
-            CHECK(hits > segments.size() / 10);
-            CHECK(viewOff == 0);
-            CHECK(textureOff == 0);
-            CHECK(differing <= tiedRays);
-            // The ties' margins are a few ulp; a mirror that called most samples ties would
-            // pass the checks above and say nothing.
-            CHECK(tiedRays < segments.size() / 100);
+            CAPTURE(sceneName);
+            checkViewAndTextureAgree(f, mirror, segments, mode, share * reach);
         }
+    }
+}
+
+TEST_CASE("Texture-space and view-space marching classify alike with reversed and orthographic projections",
+          "[visibility]") {
+    // The same checks as above in the projections whose depth runs otherwise (reversed, an
+    // infinite far plane) or whose rays are parallel: the marches derive pixel and view z from
+    // the projection differently (screenRayOf's clip-space line against view-space points).
+    constexpr int W = 80, H = 64;
+    for (const auto& [name, cameraOf] : projectionCases(W, H)) {
+        if (!cameraOf) continue; // the default perspective: the test above
+        CAPTURE(name);
+        ScreenFixture f("cornell", W, H, 1, cameraOf);
+        const test::ScreenMirror mirror(f.ctx, f.view);
+        const std::vector<ScreenSegment> segments = f.surfaceSegments(4000, 300.0f, 7);
+        for (const float thickness : {15.0f, 3000.0f}) checkViewAndTextureAgree(f, mirror, segments, ScreenThickness::Constant, thickness);
     }
 }
 
@@ -158,20 +200,7 @@ TEST_CASE("Hi-Z finds exactly the first hidden sample of the texture-space march
     // pixel's piece of surface from the depth (perspective) or along parallel rays
     // (orthographic), whichever way depth runs (reversed, infinite far plane).
     constexpr int W = 80, H = 64;
-    const std::pair<const char*, std::function<Camera(const assets::CameraSpec&)>> projections[] = {
-        {"perspective", {}},
-        {"reversed-Z, infinite far", [](const assets::CameraSpec& c) {
-             return Camera::perspective(c.lookAt, glm::radians(c.fovyDegrees), float(W) / H, c.nearPlane, INFINITY,
-                                        DepthMode::Reversed);
-         }},
-        {"orthographic, zero to one", [](const assets::CameraSpec& c) {
-             return Camera::orthographic(c.lookAt, 330.0f, float(W) / H, c.nearPlane, c.farPlane, DepthMode::StandardZeroToOne);
-         }},
-        {"orthographic, reversed", [](const assets::CameraSpec& c) {
-             return Camera::orthographic(c.lookAt, 330.0f, float(W) / H, c.nearPlane, c.farPlane, DepthMode::Reversed);
-         }},
-    };
-    for (const auto& [name, cameraOf] : projections) {
+    for (const auto& [name, cameraOf] : projectionCases(W, H)) {
         CAPTURE(name);
         ScreenFixture f("cornell", W, H, 1, cameraOf);
         std::vector<ScreenSegment> segments = f.surfaceSegments(3000, 600.0f, 11);

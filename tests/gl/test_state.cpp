@@ -110,6 +110,23 @@ void setUnusualState(const HostObjects& h) {
     // An advanced equation (KHR_blend_equation_advanced; llvmpipe has it) can only be set for
     // RGB and alpha together: glBlendEquationSeparatei refuses it (GL_INVALID_ENUM).
     if (hasGlExtension("GL_KHR_blend_equation_advanced")) glBlendEquationi(1, kMultiplyKhr);
+    // Extensions' enables on Obscura's list, where the context has them (llvmpipe has none, an
+    // NVIDIA driver all but INTEL's). Each set so that it would change what our draws write:
+    // depth bounds that the G-buffer's cleared depth (1) lies outside, an exclusive scissor
+    // over every pixel of viewport 0.
+    if (GLAD_GL_NV_conservative_raster) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+    if (GLAD_GL_INTEL_conservative_rasterization) glEnable(GL_CONSERVATIVE_RASTERIZATION_INTEL);
+    if (GLAD_GL_EXT_depth_bounds_test) {
+        glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
+        glDepthBoundsEXT(0.2, 0.3);
+    }
+    if (GLAD_GL_NV_representative_fragment_test) glEnable(GL_REPRESENTATIVE_FRAGMENT_TEST_NV);
+    if (GLAD_GL_NV_scissor_exclusive) {
+        glScissorExclusiveNV(0, 0, 4096, 4096);
+        glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 0);
+        glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 1);
+    }
+    if (GLAD_GL_NV_shading_rate_image) glEnable(GL_SHADING_RATE_IMAGE_NV);
     glBlendColor(0.1f, 0.2f, 0.3f, 0.4f);
     glColorMaski(0, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
     glColorMaski(1, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
@@ -394,11 +411,11 @@ bool onObscuraList(const std::string& key) {
         "stencil clear value", "line width", "point size", "primitive restart index",
         "patch vertices", "fragment shader derivative hint", "enabled multisample", "enabled line smooth",
         "enabled sample shading", "enabled cube map seamless", "enabled debug output", "debug callback",
-        "debug group stack depth"};
+        "debug group stack depth", "depth bounds", "exclusive scissor box"};
     for (const char* n : notListed)
         if (key.rfind(n, 0) == 0) return false;
     if (key == "transform feedback") return false; // the object binding; its generic buffer binding is listed
-    for (const char* indexed : {"viewport[", "scissor box[", "depth range[", "enabled scissor["})
+    for (const char* indexed : {"viewport[", "scissor box[", "depth range[", "enabled scissor[", "enabled exclusive scissor["})
         if (key.rfind(indexed, 0) == 0) return key.find("[0]") != std::string::npos;
     return true;
 }

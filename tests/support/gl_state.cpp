@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <tuple>
 
 namespace obscura::test {
 namespace {
@@ -50,6 +51,10 @@ GlState captureGlState() {
         glGetDoublei_v(GL_DEPTH_RANGE, i, dr);
         r.state["depth range[" + std::to_string(i) + "]"] = {dr[0], dr[1]};
         r.state["enabled scissor[" + std::to_string(i) + "]"] = {double(glIsEnabledi(GL_SCISSOR_TEST, i))};
+        if (GLAD_GL_NV_scissor_exclusive) {
+            r.state["enabled exclusive scissor[" + std::to_string(i) + "]"] = {double(glIsEnabledi(GL_SCISSOR_TEST_EXCLUSIVE_NV, i))};
+            r.indexedInt("exclusive scissor box", GL_SCISSOR_BOX_EXCLUSIVE_NV, i, 4);
+        }
     }
     const std::pair<const char*, GLenum> caps[] = {
         {"depth test", GL_DEPTH_TEST}, {"stencil test", GL_STENCIL_TEST}, {"cull face", GL_CULL_FACE},
@@ -68,6 +73,16 @@ GlState captureGlState() {
         {"clip distance 4", GL_CLIP_DISTANCE4}, {"clip distance 5", GL_CLIP_DISTANCE5},
         {"clip distance 6", GL_CLIP_DISTANCE6}, {"clip distance 7", GL_CLIP_DISTANCE7}};
     for (const auto& [name, cap] : caps) r.enabled(name, cap);
+    // Extensions' enables, where the context has them (glad sets the flags at load).
+    const std::tuple<const char*, int, GLenum> extensionCaps[] = {
+        {"conservative raster nv", GLAD_GL_NV_conservative_raster, GL_CONSERVATIVE_RASTERIZATION_NV},
+        {"conservative raster intel", GLAD_GL_INTEL_conservative_rasterization, GL_CONSERVATIVE_RASTERIZATION_INTEL},
+        {"depth bounds test", GLAD_GL_EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT},
+        {"representative fragment test", GLAD_GL_NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV},
+        {"shading rate image", GLAD_GL_NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV}};
+    for (const auto& [name, present, cap] : extensionCaps)
+        if (present) r.enabled(name, cap);
+    if (GLAD_GL_EXT_depth_bounds_test) r.floats("depth bounds", GL_DEPTH_BOUNDS_EXT, 2);
     GLint drawBuffers = 0;
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
     for (GLuint i = 0; i < static_cast<GLuint>(drawBuffers); ++i) {
