@@ -1,6 +1,9 @@
 // The examples' ImGui panel (IntegratorControls::drawPanel) sets the values the flags set:
 // Dear ImGui driven with mouse input and no window or renderer (it needs neither to lay out
 // and handle widgets), clicked along the panel's frames to find each widget, as a user would.
+// Written against Debian 12's Dear ImGui 1.86 and three of its internals (imgui_internal.h):
+// a combo's popup window is named ##Combo_00, ImGuiWindow::Active says it is open, and
+// ImGuiWindow::ItemWidthDefault is the frames' width. Another ImGui may need them updated.
 #include "integrator_controls.hpp"
 
 #include <catch2/catch.hpp>
@@ -126,7 +129,8 @@ bool took(const std::map<std::string, std::vector<float>>& seen, const std::stri
 
 } // namespace
 
-TEST_CASE("The examples' ImGui panel switches method, rays, steps, radius, resolution and blur", "[examples]") {
+TEST_CASE("The examples' ImGui panel switches method, rays, steps, radius, resolution, blur and thickness",
+          "[examples]") {
     // Clicking a slider's frame at its right end sets its maximum, at its left end its minimum.
     const auto right = scan([](Panel& p, const Layout& l, float y) { p.click(ImVec2(l.frameRight - 2.0f, y)); });
     CHECK(took(right, "rays", 1024.0f));
@@ -140,6 +144,8 @@ TEST_CASE("The examples' ImGui panel switches method, rays, steps, radius, resol
     const auto dragged = scan([](Panel& p, const Layout& l, float y) { p.drag(ImVec2(l.frameLeft + 60.0f, y), 40.0f); });
     REQUIRE(dragged.count("radius") == 1);
     for (float r : dragged.at("radius")) CHECK(r > defaults().radius);
+    REQUIRE(dragged.count("thickness") == 1); // the slab's drag
+    for (float t : dragged.at("thickness")) CHECK(t > defaults().thickness);
     // A combo opens a list below it; clicking its second entry picks it (ImGui names a
     // combo's popup ##Combo_00).
     const auto picked = scan([](Panel& p, const Layout& l, float y) {
@@ -154,4 +160,5 @@ TEST_CASE("The examples' ImGui panel switches method, rays, steps, radius, resol
     });
     CHECK(took(picked, "method", 1.0f));
     CHECK(took(picked, "resolution", 1.0f));
+    CHECK(took(picked, "thickness mode", 1.0f));
 }

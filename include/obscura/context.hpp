@@ -26,10 +26,13 @@
 //     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7,
 //     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and, where the context has the
 //     extension, GL_CONSERVATIVE_RASTERIZATION_NV or _INTEL, GL_DEPTH_BOUNDS_TEST_EXT,
-//     GL_REPRESENTATIVE_FRAGMENT_TEST_NV, GL_SHADING_RATE_IMAGE_NV and
-//     GL_SCISSOR_TEST_EXCLUSIVE_NV (index 0); their parameters (depth bounds, exclusive
+//     GL_REPRESENTATIVE_FRAGMENT_TEST_NV, and GL_SHADING_RATE_IMAGE_NV and
+//     GL_SCISSOR_TEST_EXCLUSIVE_NV (both index 0); their parameters (depth bounds, exclusive
 //     scissor box, shading rate image and palettes) are not touched, as our draws run with
-//     the tests off
+//     the tests off. Other extensions' state that could reshape a draw is neither saved nor
+//     reset (for example EXT_window_rectangles, INTEL_blackhole_render,
+//     NV_viewport_swizzle, NV_clip_space_w_scaling, NV_sample_locations): a host that sets
+//     it must reset it before calling us
 //   - blend func and equation (RGB and alpha, every draw buffer; KHR_blend_equation_advanced
 //     equations included), blend color
 //   - color mask (every draw buffer), depth mask, stencil write masks (front and back)

@@ -55,11 +55,13 @@ constexpr GLenum kPixelStore[16][2] = {
 void setEnabled(GladGLContext& gl, GLenum cap, bool on) { on ? gl.Enable(cap) : gl.Disable(cap); }
 
 // Enables that extensions add, saved and reset only where the context has the extension (GL
-// refuses the enum elsewhere). Each changes which pixels our draws write: conservative
+// refuses the enum elsewhere). Each can change which pixels our draws write: conservative
 // rasterization adds fragments; the depth bounds test (against the depth already stored: our
-// G-buffer's clear value), the exclusive scissor and the representative fragment test drop
-// some; a shading rate image shades several pixels with one invocation. The exclusive
-// scissor is per viewport: only index 0, the one we draw with, is touched.
+// G-buffer's clear value) and the exclusive scissor drop some; a shading rate image shades
+// several pixels with one invocation, or none. The representative fragment test drops
+// fragments only of shaders with early_fragment_tests (none of ours today); it is reset so
+// that one added later cannot lose pixels. The exclusive scissor and the shading rate image
+// are per viewport: only index 0, the one we draw with, is touched.
 struct ExtensionEnable {
     int GladGLContext::*present;
     GLenum cap;
@@ -71,7 +73,7 @@ constexpr ExtensionEnable kExtensionEnables[] = {
     {&GladGLContext::EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT, false},
     {&GladGLContext::NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV, false},
     {&GladGLContext::NV_scissor_exclusive, GL_SCISSOR_TEST_EXCLUSIVE_NV, true},
-    {&GladGLContext::NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV, false}};
+    {&GladGLContext::NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV, true}};
 constexpr std::size_t kExtensionEnableCount = sizeof(kExtensionEnables) / sizeof(kExtensionEnables[0]);
 
 bool isEnabled(GladGLContext& gl, const ExtensionEnable& e) { return e.indexed ? gl.IsEnabledi(e.cap, 0) : gl.IsEnabled(e.cap); }

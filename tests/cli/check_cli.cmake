@@ -79,9 +79,10 @@ foreach(technique ao.raymarch ao.voxel)
                         "mean ${far_Avg} (${far_NanCount} NaN, ${far_InfCount} Inf)")
   endif()
 endforeach()
-# The example's --camera (eye, target, up, vertical field of view in degrees): the Cornell
-# box's own camera spelled out gives the same image; moved to 300 mm before the open side,
-# where the view holds the box's corners and blocks larger, another.
+# The obscura CLI's --camera, as in the issue's example command (eye, target, up, vertical
+# field of view in degrees): the Cornell box's own camera spelled out gives the same image;
+# moved to 300 mm before the open side, where the view holds the box's corners and blocks
+# larger, another.
 ao_image_stats(scene ao.raymarch 100)
 ao_image_stats(own ao.raymarch 100 --camera 278,273,-800,278,273,0,0,1,0,39.3077)
 if(NOT own_Avg STREQUAL scene_Avg OR NOT own_Min STREQUAL scene_Min)

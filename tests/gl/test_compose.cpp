@@ -151,10 +151,11 @@ TEST_CASE("The combine formulas hold at 1x1 odd and non-square sizes and in orth
         const char* name;
         int width, height;
         CameraOf camera;
+        bool backgroundInView = false;
     };
     for (const Case& c : {Case{"1x1", 1, 1, {}}, Case{"odd, orthographic", 7, 5, orthographic},
                           Case{"non-square, reversed-Z", 9, 16, reversed},
-                          Case{"odd, orthographic reversed, background in view", 13, 11, reversedOrthographic}}) {
+                          Case{"odd, orthographic reversed, background in view", 13, 11, reversedOrthographic, true}}) {
         CAPTURE(c.name);
         Frame f(c.width, c.height, c.camera);
         int background = 0;
@@ -162,7 +163,7 @@ TEST_CASE("The combine formulas hold at 1x1 odd and non-square sizes and in orth
             for (int x = 0; x < c.width; ++x) background += f.positions.at(x, y, 3) == 0.0f;
         CAPTURE(background);
         CHECK(background < c.width * c.height); // the box in view
-        if (std::string(c.name).find("background") != std::string::npos) CHECK(background > 0);
+        if (c.backgroundInView) CHECK(background > 0);
         checkCombineFormulas(f);
     }
 }

@@ -345,7 +345,8 @@ TEST_CASE("Horizon AO before a wall seen obliquely matches its slice integral wi
         CHECK(tally.checked > 4000);
         CHECK(tally.occluded > 3000);
         // 1 - AO is up to about 0.5 here; the windows measured +-0.0072 (orthographic),
-        // +-0.0065 (perspective) and +-0.0076 (2 slices). Each a shader change then undone,
+        // +-0.0065 (perspective) and +-0.0076 (2 slices), before the reversed-depth views were
+        // added (their widths are in the summary above; the 0.02 bound covers them). Each a shader change then undone,
         // checks of the two 128-slice views that fail: the weight of every slice taken as 1
         // (0.64 to 1 here), 6093; the radius in pixels 10 % short, 5285; slice angles over
         // [0, pi / 2) only, 935; hits beyond 0.97 r dropped, 746. Of the 2-slice view only: the

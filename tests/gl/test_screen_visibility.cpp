@@ -103,7 +103,6 @@ double tieShareOf(const ScreenFixture& f, const test::ScreenMirror& mirror, floa
     return (double(ties) + 3.0 * std::sqrt(double(ties)) + 3.0) / double(samples);
 }
 
-
 using CameraOf = std::function<Camera(const assets::CameraSpec&)>;
 
 // The Cornell box's camera as perspective (empty: the scene's own), reversed-Z with an
@@ -172,10 +171,8 @@ TEST_CASE("Texture-space and view-space marching classify every sample as exact 
         const test::ScreenMirror mirror(f.ctx, f.view);
         const float reach = std::string(sceneName) == "cornell" ? 300.0f : 2.0f;
         const std::vector<ScreenSegment> segments = f.surfaceSegments(4000, reach, 7);
-        for (const auto& [mode, share] : modes) {
-            CAPTURE(sceneName);
-            checkViewAndTextureAgree(f, mirror, segments, mode, share * reach);
-        }
+        CAPTURE(sceneName);
+        for (const auto& [mode, share] : modes) checkViewAndTextureAgree(f, mirror, segments, mode, share * reach);
     }
 }
 
@@ -184,14 +181,19 @@ TEST_CASE("Texture-space and view-space marching classify alike with reversed an
     // The same checks as above in the projections whose depth runs otherwise (reversed, an
     // infinite far plane) or whose rays are parallel: the marches derive pixel and view z from
     // the projection differently (screenRayOf's clip-space line against view-space points).
+    // Two depth layers, so that the peeling modes read a second layer in these depth modes too.
     constexpr int W = 80, H = 64;
+    const std::pair<ScreenThickness, float> modes[] = {{ScreenThickness::Constant, 15.0f},
+                                                       {ScreenThickness::Constant, 3000.0f},
+                                                       {ScreenThickness::DepthPeeling, 15.0f},
+                                                       {ScreenThickness::PeelingOrConstant, 15.0f}};
     for (const auto& [name, cameraOf] : projectionCases(W, H)) {
         if (!cameraOf) continue; // the default perspective: the test above
         CAPTURE(name);
-        ScreenFixture f("cornell", W, H, 1, cameraOf);
+        ScreenFixture f("cornell", W, H, 2, cameraOf);
         const test::ScreenMirror mirror(f.ctx, f.view);
         const std::vector<ScreenSegment> segments = f.surfaceSegments(4000, 300.0f, 7);
-        for (const float thickness : {15.0f, 3000.0f}) checkViewAndTextureAgree(f, mirror, segments, ScreenThickness::Constant, thickness);
+        for (const auto& [mode, thickness] : modes) checkViewAndTextureAgree(f, mirror, segments, mode, thickness);
     }
 }
 

@@ -111,9 +111,11 @@ void setUnusualState(const HostObjects& h) {
     // RGB and alpha together: glBlendEquationSeparatei refuses it (GL_INVALID_ENUM).
     if (hasGlExtension("GL_KHR_blend_equation_advanced")) glBlendEquationi(1, kMultiplyKhr);
     // Extensions' enables on Obscura's list, where the context has them (llvmpipe has none, an
-    // NVIDIA driver all but INTEL's). Each set so that it would change what our draws write:
-    // depth bounds that the G-buffer's cleared depth (1) lies outside, an exclusive scissor
-    // over every pixel of viewport 0.
+    // NVIDIA driver all but INTEL's). Each that can is set so that it would change what our
+    // draws write: depth bounds that the G-buffer's cleared depth (1) lies outside, an
+    // exclusive scissor over every pixel of viewport 0, a shading rate palette whose entry 0
+    // (an unbound shading rate image's) runs no invocations. The representative fragment test
+    // acts only on early_fragment_tests shaders, which we do not have: it checks the reset.
     if (GLAD_GL_NV_conservative_raster) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
     if (GLAD_GL_INTEL_conservative_rasterization) glEnable(GL_CONSERVATIVE_RASTERIZATION_INTEL);
     if (GLAD_GL_EXT_depth_bounds_test) {
@@ -126,7 +128,12 @@ void setUnusualState(const HostObjects& h) {
         glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 0);
         glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 1);
     }
-    if (GLAD_GL_NV_shading_rate_image) glEnable(GL_SHADING_RATE_IMAGE_NV);
+    if (GLAD_GL_NV_shading_rate_image) {
+        const GLenum noInvocations = GL_SHADING_RATE_NO_INVOCATIONS_NV;
+        glShadingRateImagePaletteNV(0, 0, 1, &noInvocations);
+        glEnablei(GL_SHADING_RATE_IMAGE_NV, 0);
+        glEnablei(GL_SHADING_RATE_IMAGE_NV, 1);
+    }
     glBlendColor(0.1f, 0.2f, 0.3f, 0.4f);
     glColorMaski(0, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
     glColorMaski(1, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
@@ -415,7 +422,8 @@ bool onObscuraList(const std::string& key) {
     for (const char* n : notListed)
         if (key.rfind(n, 0) == 0) return false;
     if (key == "transform feedback") return false; // the object binding; its generic buffer binding is listed
-    for (const char* indexed : {"viewport[", "scissor box[", "depth range[", "enabled scissor[", "enabled exclusive scissor["})
+    for (const char* indexed : {"viewport[", "scissor box[", "depth range[", "enabled scissor[", "enabled exclusive scissor[",
+                                "enabled shading rate image["})
         if (key.rfind(indexed, 0) == 0) return key.find("[0]") != std::string::npos;
     return true;
 }

@@ -55,6 +55,8 @@ GlState captureGlState() {
             r.state["enabled exclusive scissor[" + std::to_string(i) + "]"] = {double(glIsEnabledi(GL_SCISSOR_TEST_EXCLUSIVE_NV, i))};
             r.indexedInt("exclusive scissor box", GL_SCISSOR_BOX_EXCLUSIVE_NV, i, 4);
         }
+        if (GLAD_GL_NV_shading_rate_image)
+            r.state["enabled shading rate image[" + std::to_string(i) + "]"] = {double(glIsEnabledi(GL_SHADING_RATE_IMAGE_NV, i))};
     }
     const std::pair<const char*, GLenum> caps[] = {
         {"depth test", GL_DEPTH_TEST}, {"stencil test", GL_STENCIL_TEST}, {"cull face", GL_CULL_FACE},
@@ -78,8 +80,7 @@ GlState captureGlState() {
         {"conservative raster nv", GLAD_GL_NV_conservative_raster, GL_CONSERVATIVE_RASTERIZATION_NV},
         {"conservative raster intel", GLAD_GL_INTEL_conservative_rasterization, GL_CONSERVATIVE_RASTERIZATION_INTEL},
         {"depth bounds test", GLAD_GL_EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT},
-        {"representative fragment test", GLAD_GL_NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV},
-        {"shading rate image", GLAD_GL_NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV}};
+        {"representative fragment test", GLAD_GL_NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV}};
     for (const auto& [name, present, cap] : extensionCaps)
         if (present) r.enabled(name, cap);
     if (GLAD_GL_EXT_depth_bounds_test) r.floats("depth bounds", GL_DEPTH_BOUNDS_EXT, 2);
