@@ -12,10 +12,10 @@ if(NOT OBSCURA_GLAD_EXECUTABLE)
 endif()
 
 # Extensions we may use where present; everything else is GL 4.5 core.
-# Besides KHR_debug, the extensions whose enables the state guard saves and resets
+# Besides KHR_debug, the extensions whose state the state guard saves and resets
 # (src/core/state_guard.cpp).
 set(OBSCURA_GLAD_EXTENSIONS
-    "GL_KHR_debug,GL_NV_conservative_raster,GL_INTEL_conservative_rasterization,GL_EXT_depth_bounds_test,GL_NV_representative_fragment_test,GL_NV_scissor_exclusive,GL_NV_shading_rate_image")
+    "GL_KHR_debug,GL_NV_conservative_raster,GL_INTEL_conservative_rasterization,GL_EXT_depth_bounds_test,GL_NV_representative_fragment_test,GL_NV_scissor_exclusive,GL_NV_shading_rate_image,GL_INTEL_blackhole_render,GL_NV_clip_space_w_scaling,GL_EXT_window_rectangles,GL_NV_viewport_swizzle")
 
 # obscura_generate_glad(<out_dir> <extra glad c options> ...)
 # Generates <out_dir>/include/glad/gl.h and <out_dir>/src/gl.c.

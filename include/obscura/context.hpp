@@ -26,13 +26,14 @@
 //     GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK, GL_PROGRAM_POINT_SIZE, GL_CLIP_DISTANCE0..7,
 //     GL_POLYGON_SMOOTH, GL_DITHER (initial value: enabled), and, where the context has the
 //     extension, GL_CONSERVATIVE_RASTERIZATION_NV or _INTEL, GL_DEPTH_BOUNDS_TEST_EXT,
-//     GL_REPRESENTATIVE_FRAGMENT_TEST_NV, and GL_SHADING_RATE_IMAGE_NV and
+//     GL_REPRESENTATIVE_FRAGMENT_TEST_NV, GL_BLACKHOLE_RENDER_INTEL,
+//     GL_VIEWPORT_POSITION_W_SCALE_NV, and GL_SHADING_RATE_IMAGE_NV and
 //     GL_SCISSOR_TEST_EXCLUSIVE_NV (both index 0); their parameters (depth bounds, exclusive
-//     scissor box, shading rate image and palettes) are not touched, as our draws run with
-//     the tests off. Other extensions' state that could reshape a draw is neither saved nor
-//     reset (for example EXT_window_rectangles, INTEL_blackhole_render,
-//     NV_viewport_swizzle, NV_clip_space_w_scaling, NV_sample_locations): a host that sets
-//     it must reset it before calling us
+//     scissor box, shading rate image and palettes, W scaling coefficients) are not touched,
+//     as our draws run with the tests off
+//   - where the context has the extension, the window rectangles (EXT_window_rectangles:
+//     mode and rectangles; initial value: exclusive, none) and the viewport swizzle of index
+//     0 (NV_viewport_swizzle; initial value: the identity)
 //   - blend func and equation (RGB and alpha, every draw buffer; KHR_blend_equation_advanced
 //     equations included), blend color
 //   - color mask (every draw buffer), depth mask, stencil write masks (front and back)
@@ -57,7 +58,10 @@
 //     GL_DEBUG_OUTPUT and GL_DEBUG_OUTPUT_SYNCHRONOUS
 // Nothing outside this list is changed (clear values, hints, point size and line width,
 // other viewport indices, the draw buffers of framebuffers we do not own are never touched).
-// Object state of host objects is never modified either.
+// Object state of host objects is never modified either. Other extensions' state that could
+// reshape a draw is neither saved nor reset: a host that sets it must reset it before calling
+// us. NV_sample_locations' state belongs to each framebuffer: ours keep the default
+// locations, and a host FBO we draw into keeps the host's.
 //
 // Memory barriers: Obscura reads the host's textures (depth, normals, albedo, radiance)
 // through texture fetches. A host that wrote them with image stores or from a compute

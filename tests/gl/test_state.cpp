@@ -3,11 +3,13 @@
 // works correctly whatever state the host left behind.
 #include "gl_fixture.hpp"
 #include "gl_state.hpp"
+#include "host_extension_state.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -110,30 +112,7 @@ void setUnusualState(const HostObjects& h) {
     // An advanced equation (KHR_blend_equation_advanced; llvmpipe has it) can only be set for
     // RGB and alpha together: glBlendEquationSeparatei refuses it (GL_INVALID_ENUM).
     if (hasGlExtension("GL_KHR_blend_equation_advanced")) glBlendEquationi(1, kMultiplyKhr);
-    // Extensions' enables on Obscura's list, where the context has them (llvmpipe has none, an
-    // NVIDIA driver all but INTEL's). Each that can is set so that it would change what our
-    // draws write: depth bounds that the G-buffer's cleared depth (1) lies outside, an
-    // exclusive scissor over every pixel of viewport 0, a shading rate palette whose entry 0
-    // (an unbound shading rate image's) runs no invocations. The representative fragment test
-    // acts only on early_fragment_tests shaders, which we do not have: it checks the reset.
-    if (GLAD_GL_NV_conservative_raster) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
-    if (GLAD_GL_INTEL_conservative_rasterization) glEnable(GL_CONSERVATIVE_RASTERIZATION_INTEL);
-    if (GLAD_GL_EXT_depth_bounds_test) {
-        glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-        glDepthBoundsEXT(0.2, 0.3);
-    }
-    if (GLAD_GL_NV_representative_fragment_test) glEnable(GL_REPRESENTATIVE_FRAGMENT_TEST_NV);
-    if (GLAD_GL_NV_scissor_exclusive) {
-        glScissorExclusiveNV(0, 0, 4096, 4096);
-        glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 0);
-        glEnablei(GL_SCISSOR_TEST_EXCLUSIVE_NV, 1);
-    }
-    if (GLAD_GL_NV_shading_rate_image) {
-        const GLenum noInvocations = GL_SHADING_RATE_NO_INVOCATIONS_NV;
-        glShadingRateImagePaletteNV(0, 0, 1, &noInvocations);
-        glEnablei(GL_SHADING_RATE_IMAGE_NV, 0);
-        glEnablei(GL_SHADING_RATE_IMAGE_NV, 1);
-    }
+    test::setUnusualExtensionState();
     glBlendColor(0.1f, 0.2f, 0.3f, 0.4f);
     glColorMaski(0, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
     glColorMaski(1, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
@@ -418,12 +397,12 @@ bool onObscuraList(const std::string& key) {
         "stencil clear value", "line width", "point size", "primitive restart index",
         "patch vertices", "fragment shader derivative hint", "enabled multisample", "enabled line smooth",
         "enabled sample shading", "enabled cube map seamless", "enabled debug output", "debug callback",
-        "debug group stack depth", "depth bounds", "exclusive scissor box"};
+        "debug group stack depth", "depth bounds", "exclusive scissor box", "viewport w scale["};
     for (const char* n : notListed)
         if (key.rfind(n, 0) == 0) return false;
     if (key == "transform feedback") return false; // the object binding; its generic buffer binding is listed
     for (const char* indexed : {"viewport[", "scissor box[", "depth range[", "enabled scissor[", "enabled exclusive scissor[",
-                                "enabled shading rate image["})
+                                "enabled shading rate image[", "viewport swizzle "})
         if (key.rfind(indexed, 0) == 0) return key.find("[0]") != std::string::npos;
     return true;
 }
@@ -441,6 +420,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
         if (m.type == GL_DEBUG_TYPE_ERROR) messages.push_back(m.text);
     };
     StateScene scene;
+    if (!withDebugCallback) std::printf("state guard: extensions here with saved state: %s\n", test::guardedExtensionsPresent().c_str());
     setUnusualState(host);
     // The host times the whole sequence with its own GL_TIME_ELAPSED query.
     glBeginQuery(GL_TIME_ELAPSED, host.timeQuery);

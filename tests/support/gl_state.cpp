@@ -57,6 +57,23 @@ GlState captureGlState() {
         }
         if (GLAD_GL_NV_shading_rate_image)
             r.state["enabled shading rate image[" + std::to_string(i) + "]"] = {double(glIsEnabledi(GL_SHADING_RATE_IMAGE_NV, i))};
+        if (GLAD_GL_NV_viewport_swizzle)
+            for (const auto& [name, query] : {std::pair{"x", GL_VIEWPORT_SWIZZLE_X_NV}, std::pair{"y", GL_VIEWPORT_SWIZZLE_Y_NV},
+                                              std::pair{"z", GL_VIEWPORT_SWIZZLE_Z_NV}, std::pair{"w", GL_VIEWPORT_SWIZZLE_W_NV}})
+                r.indexedInt(std::string("viewport swizzle ") + name, query, i, 1);
+        if (GLAD_GL_NV_clip_space_w_scaling) {
+            GLfloat coefficients[2];
+            glGetFloati_v(GL_VIEWPORT_POSITION_W_SCALE_X_COEFF_NV, i, &coefficients[0]);
+            glGetFloati_v(GL_VIEWPORT_POSITION_W_SCALE_Y_COEFF_NV, i, &coefficients[1]);
+            r.state["viewport w scale[" + std::to_string(i) + "]"] = {coefficients[0], coefficients[1]};
+        }
+    }
+    if (GLAD_GL_EXT_window_rectangles) {
+        r.ints("window rectangle mode", GL_WINDOW_RECTANGLE_MODE_EXT);
+        GLint count = 0;
+        glGetIntegerv(GL_NUM_WINDOW_RECTANGLES_EXT, &count);
+        r.state["window rectangles"] = {double(count)};
+        for (GLuint i = 0; i < static_cast<GLuint>(count); ++i) r.indexedInt("window rectangle", GL_WINDOW_RECTANGLE_EXT, i, 4);
     }
     const std::pair<const char*, GLenum> caps[] = {
         {"depth test", GL_DEPTH_TEST}, {"stencil test", GL_STENCIL_TEST}, {"cull face", GL_CULL_FACE},
@@ -80,7 +97,9 @@ GlState captureGlState() {
         {"conservative raster nv", GLAD_GL_NV_conservative_raster, GL_CONSERVATIVE_RASTERIZATION_NV},
         {"conservative raster intel", GLAD_GL_INTEL_conservative_rasterization, GL_CONSERVATIVE_RASTERIZATION_INTEL},
         {"depth bounds test", GLAD_GL_EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT},
-        {"representative fragment test", GLAD_GL_NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV}};
+        {"representative fragment test", GLAD_GL_NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV},
+        {"blackhole render", GLAD_GL_INTEL_blackhole_render, GL_BLACKHOLE_RENDER_INTEL},
+        {"viewport w scale", GLAD_GL_NV_clip_space_w_scaling, GL_VIEWPORT_POSITION_W_SCALE_NV}};
     for (const auto& [name, present, cap] : extensionCaps)
         if (present) r.enabled(name, cap);
     if (GLAD_GL_EXT_depth_bounds_test) r.floats("depth bounds", GL_DEPTH_BOUNDS_EXT, 2);
