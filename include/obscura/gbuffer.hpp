@@ -109,6 +109,13 @@ enum class NormalEncoding {
 //! HostGBuffer::normal). Throws Error{InvalidArgument} for bits outside [1, 32].
 OBSCURA_API float adoptedNormalError(NormalEncoding encoding, int bits);
 
+//! A rectangle of texels, GL's origin: (x, y) is its lower-left texel, counted from the
+//! texture's first column and row (the bottom one, as rendered with GL_LOWER_LEFT).
+struct HostRect {
+    int x = 0, y = 0;             //!< texels, >= 0
+    int width = 0, height = 0;    //!< texels, >= 1 (HostGBuffer::region: both 0 for the whole texture)
+};
+
 //! The host's own buffers, for post-process use.
 struct HostGBuffer {
     //! Required. GL_TEXTURE_2D, single-sampled, GL_DEPTH_COMPONENT16/24/32/32F or
@@ -161,6 +168,16 @@ struct HostGBuffer {
     //! best: a coarser one may round the back in front of the first layer, and such a pixel
     //! has no depth behind it.
     TextureView backDepth;
+    //! The part of the textures above that is the view, for a host that renders into part
+    //! of larger targets (dynamic resolution, split screen). Every given texture is read at
+    //! the same rectangle, which must lie within them; the camera is the one the host
+    //! rendered that rectangle with, and the view is region.width x region.height pixels.
+    //! The default (all 0): the whole textures, read in place. A rectangle smaller than the
+    //! textures is copied out of each given texture into one of ours of the same format and
+    //! swizzle (glCopyImageSubData, pass "gbuffer.region"), and the view's textures are
+    //! those copies: they cost that memory (memoryBytes()) and the copy on every adopt(),
+    //! and hold what the host's held at the call.
+    HostRect region;
 };
 
 class OBSCURA_API GBuffer {
@@ -176,10 +193,12 @@ public:
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
     //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,
-    //! albedo, radiance and back depth are used in place; normals are converted to the
+    //! albedo, radiance and back depth are used in place (or their region's copies); normals are converted to the
     //! view-space contract above, or reconstructed from depth when absent (pass
-    //! "gbuffer.normals"). Throws Error{InvalidArgument} for a wrong target, format, sample
-    //! count or size, and for a backDepth that names the depth texture.
+    //! "gbuffer.normals"), and HostGBuffer::region is copied out where it is not the whole
+    //! textures. Throws Error{InvalidArgument} for a wrong target, format, sample count or
+    //! size, a region outside the depth texture, and for a backDepth that names the depth
+    //! texture.
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world

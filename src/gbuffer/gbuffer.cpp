@@ -7,6 +7,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
+#include "gbuffer/host_region.hpp"
 #include "shadows/shadow_lookup.hpp"
 #include "core/mesh_cache.hpp"
 #include "obscura/context.hpp"
@@ -110,7 +111,34 @@ struct GBuffer::Impl {
     Sampler materialSampler;     //!< our uploaded images, mipmapped
     Sampler hostMaterialSampler; //!< host textures: no mipmaps assumed (an incomplete chain would sample black)
     SizedTexture adoptedNormal; //!< adopt() output
+    //! adopt()'s copies of HostGBuffer::region: depth, normal, albedo, radiance, back depth
+    RegionCopy regionDepth, regionNormal, regionAlbedo, regionRadiance, regionBackDepth;
     SizedTexture positions;     //!< positions() output
+
+    // Each given texture's `region`, copied into ours; the views name the copies after.
+    void copyRegion(const HostRect& region, TextureView& hostDepth, TextureView& hostNormal, TextureView& hostAlbedo,
+                    TextureView& hostRadiance, TextureView& hostBack) {
+        PassScope pass(ctx, "gbuffer.region");
+        const auto copyInto = [&](RegionCopy& copy, TextureView& view, GLenum format, const char* label) {
+            if (!view) return copy.release();
+            view = {copy.copy(ctx, view.name, format, region, label), format, region.width, region.height};
+        };
+        const GLenum normalFormat = hostNormal ? queryTexture2D(ctx, hostNormal.name, "HostGBuffer::normal").internalFormat : GL_NONE;
+        copyInto(regionDepth, hostDepth, hostDepth.internalFormat, "gbuffer.region_depth");
+        copyInto(regionNormal, hostNormal, normalFormat, "gbuffer.region_normal");
+        copyInto(regionAlbedo, hostAlbedo, hostAlbedo.internalFormat, "gbuffer.region_albedo");
+        copyInto(regionRadiance, hostRadiance, hostRadiance.internalFormat, "gbuffer.region_radiance");
+        copyInto(regionBackDepth, hostBack, hostBack.internalFormat, "gbuffer.region_back_depth");
+    }
+
+    void releaseRegionCopies() noexcept {
+        for (RegionCopy* c : {&regionDepth, &regionNormal, &regionAlbedo, &regionRadiance, &regionBackDepth}) c->release();
+    }
+
+    std::size_t regionCopyBytes() const noexcept {
+        return regionDepth.bytes() + regionNormal.bytes() + regionAlbedo.bytes() + regionRadiance.bytes() +
+               regionBackDepth.bytes();
+    }
 
     void ensureTargets(int w, int h) {
         if (fbo && w == width && h == height) return;
@@ -394,28 +422,32 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     } else {
         defines.push_back("FROM_DEPTH");
     }
-    const TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, SampledAs::Rgb);
-    const TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
-    const TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
+    TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, SampledAs::Rgb);
+    TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
+    TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
+    const HostRect region = resolveRegion(host.region, depth);
 
     StateScope scope(ctx);
+    TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height}, normalIn = host.normal;
+    if (coversWhole(region, depth)) impl_->releaseRegionCopies();
+    else impl_->copyRegion(region, depthIn, normalIn, albedo, directRadiance, backDepth);
     PassScope pass(ctx, "gbuffer.normals");
-    const int w = depth.width, h = depth.height;
+    const int w = region.width, h = region.height;
     const GLuint normal = impl_->adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
     const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
     ctx.gl.UseProgram(program);
-    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, host.depth.name), normalError);
-    ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, host.depth.name);
+    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, depthIn.name), normalError);
+    ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, depthIn.name);
     ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
-    if (host.normal.name != 0) {
-        ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, host.normal.name);
+    if (normalIn.name != 0) {
+        ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, normalIn.name);
         ctx.state.bindSampler(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, ctx.nearestClampSampler());
     }
     ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatchOverImage(ctx, w, h);
 
     GBufferView v;
-    v.depth = {host.depth.name, depth.internalFormat, w, h};
+    v.depth = {depthIn.name, depth.internalFormat, w, h};
     v.normal = {normal, GL_RGBA16F, w, h};
     v.normalError = normalError;
     v.albedo = albedo;
@@ -453,7 +485,7 @@ std::size_t GBuffer::memoryBytes() const {
                  (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
     if (i.backDepth) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * bytesPerTexel(GL_DEPTH_COMPONENT32F);
     total += i.lightCapacity * sizeof(shader::LightData);
-    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes();
+    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes() + i.regionCopyBytes();
     return total;
 }
 

@@ -1,0 +1,74 @@
+#include "gbuffer/host_region.hpp"
+
+#include "core/context_impl.hpp"
+#include "obscura/error.hpp"
+
+#include <string>
+
+namespace obscura::detail {
+namespace {
+
+std::string describe(const HostRect& r) {
+    return "(x " + std::to_string(r.x) + ", y " + std::to_string(r.y) + ", " + std::to_string(r.width) + "x" +
+           std::to_string(r.height) + ")";
+}
+
+// Bytes a texel of level 0 holds by GL's own channel sizes.
+std::size_t texelBytes(ContextImpl& ctx, GLuint texture) {
+    GLint bits = 0;
+    for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE,
+                                 GL_TEXTURE_DEPTH_SIZE, GL_TEXTURE_STENCIL_SIZE}) {
+        GLint size = 0;
+        ctx.gl.GetTextureLevelParameteriv(texture, 0, channel, &size);
+        bits += size;
+    }
+    return static_cast<std::size_t>(bits + 7) / 8;
+}
+
+} // namespace
+
+HostRect resolveRegion(const HostRect& region, const TextureInfo& depth) {
+    if (region.x == 0 && region.y == 0 && region.width == 0 && region.height == 0)
+        return {0, 0, depth.width, depth.height};
+    // In 64 bits: x + width must not wrap for a region far past the texture.
+    const long long right = static_cast<long long>(region.x) + region.width;
+    const long long top = static_cast<long long>(region.y) + region.height;
+    if (region.x < 0 || region.y < 0 || region.width < 1 || region.height < 1 || right > depth.width || top > depth.height)
+        throw Error(ErrorCode::InvalidArgument,
+                    "HostGBuffer::region " + describe(region) + " must lie within the depth texture (" +
+                        std::to_string(depth.width) + "x" + std::to_string(depth.height) +
+                        "): x, y >= 0, width, height >= 1, x + width <= its width, y + height <= its height; "
+                        "all four 0 for the whole texture");
+    return region;
+}
+
+bool coversWhole(const HostRect& region, const TextureInfo& depth) {
+    return region.x == 0 && region.y == 0 && region.width == depth.width && region.height == depth.height;
+}
+
+GLuint RegionCopy::copy(ContextImpl& ctx, GLuint source, GLenum format, const HostRect& region, std::string_view label) {
+    auto& gl = ctx.gl;
+    if (!texture_ || format_ != format || width_ != region.width || height_ != region.height) {
+        texture_ = createTexture2D(ctx, format, region.width, region.height, 1, label);
+        format_ = format;
+        width_ = region.width;
+        height_ = region.height;
+        bytes_ = texelBytes(ctx, texture_.get()) * static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    }
+    // The swizzle is the texture's, not the sampler's: our samplers would not restore it.
+    GLint swizzle[4] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+    gl.GetTextureParameteriv(source, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+    gl.TextureParameteriv(texture_.get(), GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+    gl.CopyImageSubData(source, GL_TEXTURE_2D, 0, region.x, region.y, 0, texture_.get(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                        region.width, region.height, 1);
+    return texture_.get();
+}
+
+void RegionCopy::release() noexcept {
+    texture_.reset();
+    format_ = GL_NONE;
+    width_ = height_ = 0;
+    bytes_ = 0;
+}
+
+} // namespace obscura::detail

@@ -1,0 +1,202 @@
+// HostGBuffer::region: a host that renders into part of larger targets hands over the
+// rectangle it rendered, and every pass sees exactly what it would have seen had the host
+// rendered into textures of that rectangle's size.
+#include "gl_fixture.hpp"
+#include "obscura/obscura.hpp"
+#include "scene_builders.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <climits>
+#include <tuple>
+#include <string>
+#include <vector>
+
+using namespace obscura;
+using test::AnalyticQuad;
+
+namespace {
+
+constexpr int W = 37, H = 29;              // odd, non-square: the view
+constexpr int Pad = 11, PadY = 6;          // the host's targets are (W + Pad) x (H + PadY)
+constexpr HostRect kRegion{5, 4, W, H};    // where the view lies in them
+
+// The host's larger targets: every texel set to `fill`, then the view's texels (which our own
+// G-buffer rendered at W x H) copied into kRegion. Around the region lie values that would
+// change every result near the view's borders, were they read.
+struct HostTargets {
+    GLuint depth = 0, normal = 0, albedo = 0, radiance = 0, back = 0;
+
+    HostTargets(const GBufferView& view) {
+        depth = place(view.depth.name, GL_DEPTH_COMPONENT32F, {0.37f, 0, 0, 0});
+        normal = place(view.normal.name, GL_RGBA16F, {0.0f, 0.0f, 1.0f, 1.0f});
+        albedo = place(view.albedo.name, GL_SRGB8_ALPHA8, {1.0f, 0.0f, 1.0f, 1.0f});
+        radiance = place(view.directRadiance.name, GL_RGBA16F, {50.0f, 50.0f, 50.0f, 1.0f});
+        back = place(view.backDepth.name, GL_DEPTH_COMPONENT32F, {0.01f, 0, 0, 0});
+    }
+    ~HostTargets() {
+        for (GLuint t : {depth, normal, albedo, radiance, back}) glDeleteTextures(1, &t);
+    }
+    HostTargets(const HostTargets&) = delete;
+    HostTargets& operator=(const HostTargets&) = delete;
+
+    static GLuint place(GLuint source, GLenum format, glm::vec4 fill) {
+        GLuint t = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, 1, format, W + Pad, H + PadY);
+        const bool isDepth = format == GL_DEPTH_COMPONENT32F;
+        glClearTexImage(t, 0, isDepth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, &fill);
+        glCopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, t, GL_TEXTURE_2D, 0, kRegion.x, kRegion.y, 0, W, H, 1);
+        return t;
+    }
+};
+
+HostGBuffer wholeView(const GBufferView& v, bool all) {
+    HostGBuffer in;
+    in.depth = v.depth;
+    if (!all) return in;
+    in.normal = v.normal;
+    in.albedo = v.albedo;
+    in.directRadiance = v.directRadiance;
+    in.backDepth = v.backDepth;
+    return in;
+}
+
+HostGBuffer regionView(const HostTargets& t, bool all) {
+    HostGBuffer in;
+    in.depth = {t.depth};
+    in.region = kRegion;
+    if (!all) return in;
+    in.normal = {t.normal};
+    in.albedo = {t.albedo};
+    in.directRadiance = {t.radiance};
+    in.backDepth = {t.back};
+    return in;
+}
+
+// Identical images, value for value: the copies are bit-exact, and every pass computes a
+// pixel from the view's texels and its own coordinates only.
+void requireSame(Context& ctx, const TextureView& a, const TextureView& b, const std::string& what) {
+    INFO(what);
+    REQUIRE(a);
+    REQUIRE(b);
+    REQUIRE(a.width == W);
+    REQUIRE(b.width == W);
+    REQUIRE(b.height == H);
+    const Image ia = readTexture(ctx, a), ib = readTexture(ctx, b);
+    REQUIRE(ia.pixels.size() == ib.pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < ia.pixels.size(); ++i)
+        if (!(ia.pixels[i] == ib.pixels[i])) ++differing;
+    CHECK(differing == 0);
+}
+
+} // namespace
+
+TEST_CASE("A host region is adopted as the view of that rectangle", "[gbuffer][host]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    const Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 50.0f,
+                                              DepthMode::Reversed);
+    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
+    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
+    Scene scene = test::quadScene({floor, wall});
+    Light light;
+    light.position = {0.5f, 1.5f, 1.0f};
+    light.intensity = 3.0f;
+    scene.lights.push_back(light);
+    GBuffer ours(ctx), whole(ctx), region(ctx);
+    GBufferSettings gs{W, H, true, {}};
+    gs.depthLayers = 2;
+    const GBufferView rendered = ours.render(scene, camera, gs);
+    const HostTargets host(rendered);
+    const bool all = GENERATE(false, true); // depth alone (normals from depth), or every buffer
+    CAPTURE(all);
+
+    const GBufferView a = whole.adopt(wholeView(rendered, all), camera);
+    const GBufferView b = region.adopt(regionView(host, all), camera);
+    CHECK(b.width == W);
+    CHECK(b.height == H);
+    for (const auto& [name, ta, tb] : {std::tuple{"depth", a.depth, b.depth}, std::tuple{"normal", a.normal, b.normal}})
+        requireSame(ctx, ta, tb, name);
+    if (all)
+        for (const auto& [name, ta, tb] : {std::tuple{"albedo", a.albedo, b.albedo},
+                                            std::tuple{"direct radiance", a.directRadiance, b.directRadiance},
+                                            std::tuple{"back depth", a.backDepth, b.backDepth}})
+            requireSame(ctx, ta, tb, name);
+    // The copies' memory beside what adopting in place holds (the same normals and frame
+    // block), by their formats' sizes: 4 bytes of depth; with every buffer also 8 of RGBA16F
+    // normals, 4 of sRGB albedo, 8 of RGBA16F radiance and 4 of back depth.
+    CHECK(region.memoryBytes() == whole.memoryBytes() + std::size_t(W) * H * (all ? 28 : 4));
+
+    SECTION("the integrators see the same pixels") {
+        AmbientOcclusion aoA(ctx), aoB(ctx);
+        AmbientOcclusionSettings s;
+        s.radius = 1.5f;
+        s.rays = 8;
+        s.steps = 8;
+        s.bentNormals = true;
+        if (all) s.thicknessMode = ScreenThickness::DepthPeeling;
+        const AmbientOcclusionView ra = aoA.run(a, s), rb = aoB.run(b, s);
+        requireSame(ctx, ra.ao, rb.ao, "ao");
+        requireSame(ctx, ra.bentNormal, rb.bentNormal, "bent normal");
+        if (all) {
+            IndirectLight giA(ctx), giB(ctx);
+            IndirectLightSettings g;
+            g.radius = 1.5f;
+            g.rays = 8;
+            g.steps = 8;
+            requireSame(ctx, giA.run(a, g).radiance, giB.run(b, g).radiance, "indirect radiance");
+        }
+    }
+    SECTION("the whole texture as a region, or none, is read in place and frees the copies") {
+        HostGBuffer in = regionView(host, all);
+        in.region = GENERATE(HostRect{0, 0, W + Pad, H + PadY}, HostRect{});
+        const GBufferView inPlace = region.adopt(in, camera);
+        CHECK(inPlace.depth.name == host.depth);
+        CHECK(inPlace.width == W + Pad);
+        CHECK(inPlace.height == H + PadY);
+        if (all) CHECK(inPlace.albedo.name == host.albedo);
+        GBuffer fresh(ctx);
+        fresh.adopt(in, camera);
+        CHECK(region.memoryBytes() == fresh.memoryBytes());
+    }
+    SECTION("a copy keeps the host texture's swizzle") {
+        const GLint bgra[4] = {GL_BLUE, GL_GREEN, GL_RED, GL_ALPHA};
+        glTextureParameteriv(host.depth, GL_TEXTURE_SWIZZLE_RGBA, bgra);
+        const GBufferView swizzled = region.adopt(regionView(host, all), camera);
+        GLint got[4] = {};
+        glGetTextureParameteriv(swizzled.depth.name, GL_TEXTURE_SWIZZLE_RGBA, got);
+        CHECK(std::vector<GLint>(got, got + 4) == std::vector<GLint>(bgra, bgra + 4));
+    }
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("A host region outside the depth texture is refused before any GL work", "[gbuffer][host][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), adopter(ctx);
+    const Camera camera = Camera::perspective({{0, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 20.0f);
+    GBufferSettings gs{W, H, false, {}};
+    gs.depthLayers = 2;
+    const GBufferView rendered = ours.render(test::quadScene({{{{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}}}), camera, gs);
+    const HostTargets host(rendered);
+    const int tw = W + Pad, th = H + PadY;
+    const HostRect bad = GENERATE_COPY(HostRect{-1, 0, 4, 4}, HostRect{0, -1, 4, 4}, HostRect{0, 0, 0, 4},
+                                       HostRect{0, 0, 4, 0}, HostRect{0, 0, -3, 4}, HostRect{1, 0, tw, th},
+                                       HostRect{0, 1, tw, th}, HostRect{tw, 0, 1, 1}, HostRect{INT_MAX, 0, INT_MAX, 1},
+                                       HostRect{0, INT_MAX, 1, INT_MAX}, HostRect{3, 2, 0, 0});
+    CAPTURE(bad.x, bad.y, bad.width, bad.height);
+    HostGBuffer in = regionView(host, true);
+    in.region = bad;
+    const std::size_t memory = adopter.memoryBytes();
+    try {
+        adopter.adopt(in, camera);
+        FAIL("adopt accepted the region");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::InvalidArgument);
+        CHECK(std::string(e.what()).find("HostGBuffer::region") != std::string::npos);
+    }
+    CHECK(adopter.memoryBytes() == memory); // nothing allocated
+    CHECK(test::drainGlErrors().empty());
+}
