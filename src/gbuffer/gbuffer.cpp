@@ -426,6 +426,13 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
     TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
     const HostRect region = resolveRegion(host.region, depth);
+    if (!coversWhole(region, depth)) {
+        requireCopyable(ctx, host.depth.name, depth.internalFormat, "HostGBuffer::depth");
+        if (host.normal) requireCopyable(ctx, host.normal.name, queryTexture2D(ctx, host.normal.name, "HostGBuffer::normal").internalFormat, "HostGBuffer::normal");
+        if (albedo) requireCopyable(ctx, albedo.name, albedo.internalFormat, "HostGBuffer::albedo");
+        if (directRadiance) requireCopyable(ctx, directRadiance.name, directRadiance.internalFormat, "HostGBuffer::directRadiance");
+        if (backDepth) requireCopyable(ctx, backDepth.name, backDepth.internalFormat, "HostGBuffer::backDepth");
+    }
 
     StateScope scope(ctx);
     TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height}, normalIn = host.normal;

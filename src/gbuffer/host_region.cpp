@@ -42,6 +42,23 @@ HostRect resolveRegion(const HostRect& region, const TextureInfo& depth) {
     return region;
 }
 
+void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, const std::string& who) {
+    switch (internalFormat) {
+    case GL_RED: case GL_RG: case GL_RGB: case GL_RGBA: case GL_DEPTH_COMPONENT: case GL_DEPTH_STENCIL:
+        throw Error(ErrorCode::InvalidArgument, who + " has an unsized format (" + formatName(internalFormat) +
+                                                    "): HostGBuffer::region copies it, and GL copies only sized ones");
+    default: break;
+    }
+    GLint immutable = GL_FALSE, minFilter = GL_NEAREST;
+    ctx.gl.GetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    ctx.gl.GetTextureParameteriv(texture, GL_TEXTURE_MIN_FILTER, &minFilter);
+    if (!immutable && minFilter != GL_NEAREST && minFilter != GL_LINEAR)
+        throw Error(ErrorCode::InvalidArgument,
+                    who + " is mutable with a mipmap min filter: HostGBuffer::region copies it, and GL refuses to copy "
+                          "a texture that filter makes incomplete. Set GL_TEXTURE_MIN_FILTER to GL_NEAREST or "
+                          "GL_LINEAR, or allocate it with glTexStorage2D");
+}
+
 bool coversWhole(const HostRect& region, const TextureInfo& depth) {
     return region.x == 0 && region.y == 0 && region.width == depth.width && region.height == depth.height;
 }

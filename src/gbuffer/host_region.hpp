@@ -6,6 +6,7 @@
 #include "obscura/gbuffer.hpp"
 
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 namespace obscura::detail {
@@ -16,6 +17,12 @@ struct ContextImpl;
 //! itself once it lies within the depth texture. Throws Error{InvalidArgument} naming
 //! HostGBuffer::region otherwise.
 HostRect resolveRegion(const HostRect& region, const TextureInfo& depth);
+
+//! Refuses (Error{InvalidArgument} naming `who`) a host texture that glCopyImageSubData
+//! would refuse: one in an unsized format, or mutable (glTexImage2D) with a min filter that
+//! samples mipmaps, which GL counts as incomplete when only level 0 is there. Read in place,
+//! such textures are fine: our samplers do not use mipmaps.
+void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, const std::string& who);
 
 //! True where `region` is the whole of a texture of `depth`'s size: read in place.
 bool coversWhole(const HostRect& region, const TextureInfo& depth);

@@ -200,3 +200,40 @@ TEST_CASE("A host region outside the depth texture is refused before any GL work
     CHECK(adopter.memoryBytes() == memory); // nothing allocated
     CHECK(test::drainGlErrors().empty());
 }
+
+TEST_CASE("A host region needs textures GL can copy; in place they need not be", "[gbuffer][host][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), adopter(ctx);
+    const Camera camera = Camera::perspective({{0, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 20.0f);
+    const GBufferView rendered = ours.render(test::quadScene({{{{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}}}), camera,
+                                             {W + Pad, H + PadY, false, {}});
+    // A mutable level-0 texture (glTexImage2D) keeps the default min filter,
+    // GL_NEAREST_MIPMAP_LINEAR, under which GL counts it incomplete and refuses to copy it.
+    GLuint albedo = 0;
+    glGenTextures(1, &albedo);
+    glBindTexture(GL_TEXTURE_2D, albedo);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W + Pad, H + PadY, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    HostGBuffer in;
+    in.depth = rendered.depth;
+    in.albedo = {albedo};
+    CHECK(adopter.adopt(in, camera).albedo.name == albedo); // in place: our samplers use no mipmaps
+    in.region = kRegion;
+    const std::size_t memory = adopter.memoryBytes();
+    try {
+        adopter.adopt(in, camera);
+        FAIL("adopt accepted an incomplete texture to copy");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::InvalidArgument);
+        CHECK_THAT(e.what(), Catch::Contains("HostGBuffer::albedo") && Catch::Contains("GL_TEXTURE_MIN_FILTER"));
+    }
+    CHECK(adopter.memoryBytes() == memory);
+    CHECK(test::drainGlErrors().empty());
+    glTextureParameteri(albedo, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    const GBufferView copied = adopter.adopt(in, camera);
+    CHECK(copied.albedo.name != albedo);
+    CHECK(copied.width == W);
+    CHECK(test::drainGlErrors().empty());
+    glDeleteTextures(1, &albedo);
+}
