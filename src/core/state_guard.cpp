@@ -95,15 +95,14 @@ struct WindowRectangles {
     std::vector<GLint> boxes; // x, y, width, height per rectangle in use
 };
 
-WindowRectangles savedWindowRectangles(GladGLContext& gl) {
-    WindowRectangles w;
+// Fills `w` in place: the saved state is reused call after call, so its storage is too.
+void saveWindowRectangles(GladGLContext& gl, WindowRectangles& w) {
     GLint count = 0;
     gl.GetIntegerv(GL_WINDOW_RECTANGLE_MODE_EXT, &w.mode);
     gl.GetIntegerv(GL_NUM_WINDOW_RECTANGLES_EXT, &count);
     w.boxes.resize(4 * static_cast<std::size_t>(count));
     for (std::size_t i = 0; i < w.boxes.size() / 4; ++i)
         gl.GetIntegeri_v(GL_WINDOW_RECTANGLE_EXT, static_cast<GLuint>(i), &w.boxes[4 * i]);
-    return w;
 }
 
 void applyWindowRectangles(GladGLContext& gl, const WindowRectangles& w) {
@@ -231,7 +230,7 @@ void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     s.dither = gl.IsEnabled(GL_DITHER);
     for (std::size_t i = 0; i < kExtensionEnableCount; ++i)
         if (gl.*kExtensionEnables[i].present) s.extensionEnables[i] = isEnabled(gl, kExtensionEnables[i]);
-    if (gl.EXT_window_rectangles) s.windowRectangles = savedWindowRectangles(gl);
+    if (gl.EXT_window_rectangles) saveWindowRectangles(gl, s.windowRectangles);
     if (gl.NV_viewport_swizzle)
         for (int i = 0; i < 4; ++i) gl.GetIntegeri_v(kViewportSwizzleQueries[i], 0, &s.viewportSwizzle[i]);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);

@@ -123,9 +123,8 @@ struct GBuffer::Impl {
             if (!view) return copy.release();
             view = {copy.copy(ctx, view.name, format, region, label), format, region.width, region.height};
         };
-        const GLenum normalFormat = hostNormal ? queryTexture2D(ctx, hostNormal.name, "HostGBuffer::normal").internalFormat : GL_NONE;
         copyInto(regionDepth, hostDepth, hostDepth.internalFormat, "gbuffer.region_depth");
-        copyInto(regionNormal, hostNormal, normalFormat, "gbuffer.region_normal");
+        copyInto(regionNormal, hostNormal, hostNormal.internalFormat, "gbuffer.region_normal");
         copyInto(regionAlbedo, hostAlbedo, hostAlbedo.internalFormat, "gbuffer.region_albedo");
         copyInto(regionRadiance, hostRadiance, hostRadiance.internalFormat, "gbuffer.region_radiance");
         copyInto(regionBackDepth, hostBack, hostBack.internalFormat, "gbuffer.region_back_depth");
@@ -390,8 +389,10 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
     Defines defines;
     float normalError = kHalfNormalError;
+    TextureView normalIn{};
     if (host.normal.name != 0) {
         const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
+        normalIn = {host.normal.name, n.internalFormat, n.width, n.height};
         GLint componentType = 0;
         ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
         // The coarsest of the three channels bounds the error (GL_R3_G3_B2's blue has 2 bits).
@@ -428,14 +429,14 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     const HostRect region = resolveRegion(host.region, depth);
     if (!coversWhole(region, depth)) {
         requireCopyable(ctx, host.depth.name, depth.internalFormat, "HostGBuffer::depth");
-        if (host.normal) requireCopyable(ctx, host.normal.name, queryTexture2D(ctx, host.normal.name, "HostGBuffer::normal").internalFormat, "HostGBuffer::normal");
+        if (normalIn) requireCopyable(ctx, normalIn.name, normalIn.internalFormat, "HostGBuffer::normal");
         if (albedo) requireCopyable(ctx, albedo.name, albedo.internalFormat, "HostGBuffer::albedo");
         if (directRadiance) requireCopyable(ctx, directRadiance.name, directRadiance.internalFormat, "HostGBuffer::directRadiance");
         if (backDepth) requireCopyable(ctx, backDepth.name, backDepth.internalFormat, "HostGBuffer::backDepth");
     }
 
     StateScope scope(ctx);
-    TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height}, normalIn = host.normal;
+    TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height};
     if (coversWhole(region, depth)) impl_->releaseRegionCopies();
     else impl_->copyRegion(region, depthIn, normalIn, albedo, directRadiance, backDepth);
     PassScope pass(ctx, "gbuffer.normals");

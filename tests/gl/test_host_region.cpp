@@ -81,6 +81,7 @@ void requireSame(Context& ctx, const TextureView& a, const TextureView& b, const
     REQUIRE(a);
     REQUIRE(b);
     REQUIRE(a.width == W);
+    REQUIRE(a.height == H);
     REQUIRE(b.width == W);
     REQUIRE(b.height == H);
     const Image ia = readTexture(ctx, a), ib = readTexture(ctx, b);
@@ -89,6 +90,15 @@ void requireSame(Context& ctx, const TextureView& a, const TextureView& b, const
     for (std::size_t i = 0; i < ia.pixels.size(); ++i)
         if (!(ia.pixels[i] == ib.pixels[i])) ++differing;
     CHECK(differing == 0);
+}
+
+// A floor seen from above at `width` x `height`, rendered by `gbuffer`: the host's frame in
+// the refusal tests.
+const Camera kFloorCamera = Camera::perspective({{0, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 20.0f);
+GBufferView floorView(GBuffer& gbuffer, int width, int height, int depthLayers) {
+    GBufferSettings gs{width, height, false, {}};
+    gs.depthLayers = depthLayers;
+    return gbuffer.render(test::quadScene({{{{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}}}), kFloorCamera, gs);
 }
 
 } // namespace
@@ -176,11 +186,8 @@ TEST_CASE("A host region outside the depth texture is refused before any GL work
     test::GlFixture gl;
     Context ctx(gl.desc());
     GBuffer ours(ctx), adopter(ctx);
-    const Camera camera = Camera::perspective({{0, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 20.0f);
-    GBufferSettings gs{W, H, false, {}};
-    gs.depthLayers = 2;
-    const GBufferView rendered = ours.render(test::quadScene({{{{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}}}), camera, gs);
-    const HostTargets host(rendered);
+    const Camera& camera = kFloorCamera;
+    const HostTargets host(floorView(ours, W, H, 2));
     const int tw = W + Pad, th = H + PadY;
     const HostRect bad = GENERATE_COPY(HostRect{-1, 0, 4, 4}, HostRect{0, -1, 4, 4}, HostRect{0, 0, 0, 4},
                                        HostRect{0, 0, 4, 0}, HostRect{0, 0, -3, 4}, HostRect{1, 0, tw, th},
@@ -188,8 +195,10 @@ TEST_CASE("A host region outside the depth texture is refused before any GL work
                                        HostRect{0, INT_MAX, 1, INT_MAX}, HostRect{3, 2, 0, 0});
     CAPTURE(bad.x, bad.y, bad.width, bad.height);
     HostGBuffer in = regionView(host, true);
-    in.region = bad;
+    // A good region first: its copies must outlive the refused call, unchanged.
+    const GBufferView good = adopter.adopt(in, camera);
     const std::size_t memory = adopter.memoryBytes();
+    in.region = bad;
     try {
         adopter.adopt(in, camera);
         FAIL("adopt accepted the region");
@@ -197,7 +206,10 @@ TEST_CASE("A host region outside the depth texture is refused before any GL work
         CHECK(e.code() == ErrorCode::InvalidArgument);
         CHECK(std::string(e.what()).find("HostGBuffer::region") != std::string::npos);
     }
-    CHECK(adopter.memoryBytes() == memory); // nothing allocated
+    CHECK(adopter.memoryBytes() == memory);
+    GLint width = 0;
+    glGetTextureLevelParameteriv(good.depth.name, 0, GL_TEXTURE_WIDTH, &width);
+    CHECK(width == W); // the good region's copy, still there
     CHECK(test::drainGlErrors().empty());
 }
 
@@ -205,9 +217,8 @@ TEST_CASE("A host region needs textures GL can copy; in place they need not be",
     test::GlFixture gl;
     Context ctx(gl.desc());
     GBuffer ours(ctx), adopter(ctx);
-    const Camera camera = Camera::perspective({{0, 1, 3}, {0, 0, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 20.0f);
-    const GBufferView rendered = ours.render(test::quadScene({{{{{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}}}}}), camera,
-                                             {W + Pad, H + PadY, false, {}});
+    const Camera& camera = kFloorCamera;
+    const GBufferView rendered = floorView(ours, W + Pad, H + PadY, 1);
     // A mutable level-0 texture (glTexImage2D) keeps the default min filter,
     // GL_NEAREST_MIPMAP_LINEAR, under which GL counts it incomplete and refuses to copy it.
     GLuint albedo = 0;
