@@ -197,8 +197,9 @@ public:
     //! view-space contract above, or reconstructed from depth when absent (pass
     //! "gbuffer.normals"), and HostGBuffer::region is copied out where it is not the whole
     //! textures. Throws Error{InvalidArgument} for a wrong target, format, sample count or
-    //! size, a region outside the depth texture, and for a backDepth that names the depth
-    //! texture.
+    //! size, a region outside the depth texture, a backDepth that names the depth texture,
+    //! and for a texture of a view this GBuffer's adopt() returned (its normals or a region's
+    //! copy, which this call would overwrite or free; another GBuffer may adopt it).
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world

@@ -3,6 +3,7 @@
 #include "core/context_impl.hpp"
 #include "obscura/error.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace obscura::detail {
@@ -23,6 +24,29 @@ std::size_t texelBytes(ContextImpl& ctx, GLuint texture) {
         bits += size;
     }
     return static_cast<std::size_t>(bits + 7) / 8;
+}
+
+// Whether a mutable texture's own min filter, which samples mipmaps, finds every level it
+// needs (GL 4.5, 8.17): levels 1 to min(log2 of the larger side, GL_TEXTURE_MAX_LEVEL) of
+// the halved sizes and level 0's format. Base level 0 is adopt()'s rule already.
+bool mipmapComplete(ContextImpl& ctx, GLuint texture) {
+    const auto level = [&](int i, GLenum what) {
+        GLint v = 0;
+        ctx.gl.GetTextureLevelParameteriv(texture, i, what, &v);
+        return v;
+    };
+    GLint maxLevel = 0;
+    ctx.gl.GetTextureParameteriv(texture, GL_TEXTURE_MAX_LEVEL, &maxLevel);
+    const int width = level(0, GL_TEXTURE_WIDTH), height = level(0, GL_TEXTURE_HEIGHT);
+    const int format = level(0, GL_TEXTURE_INTERNAL_FORMAT);
+    int last = 0;
+    while ((std::max(width, height) >> (last + 1)) > 0) ++last; // floor(log2(larger side))
+    last = std::min(last, maxLevel);
+    for (int i = 1; i <= last; ++i)
+        if (level(i, GL_TEXTURE_WIDTH) != std::max(1, width >> i) || level(i, GL_TEXTURE_HEIGHT) != std::max(1, height >> i) ||
+            level(i, GL_TEXTURE_INTERNAL_FORMAT) != format)
+            return false;
+    return true;
 }
 
 } // namespace
@@ -52,11 +76,12 @@ void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, co
     GLint immutable = GL_FALSE, minFilter = GL_NEAREST;
     ctx.gl.GetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
     ctx.gl.GetTextureParameteriv(texture, GL_TEXTURE_MIN_FILTER, &minFilter);
-    if (!immutable && minFilter != GL_NEAREST && minFilter != GL_LINEAR)
+    if (!immutable && minFilter != GL_NEAREST && minFilter != GL_LINEAR && !mipmapComplete(ctx, texture))
         throw Error(ErrorCode::InvalidArgument,
-                    who + " is mutable with a mipmap min filter: HostGBuffer::region copies it, and GL refuses to copy "
-                          "a texture that filter makes incomplete. Set GL_TEXTURE_MIN_FILTER to GL_NEAREST or "
-                          "GL_LINEAR, or allocate it with glTexStorage2D");
+                    who + " is mutable with a mipmap min filter and lacks mipmap levels that filter needs: "
+                          "HostGBuffer::region copies it, and GL refuses to copy an incomplete texture. Set "
+                          "GL_TEXTURE_MIN_FILTER to GL_NEAREST or GL_LINEAR (or GL_TEXTURE_MAX_LEVEL to 0), "
+                          "give it every level, or allocate it with glTexStorage2D");
 }
 
 bool coversWhole(const HostRect& region, const TextureInfo& depth) {

@@ -20,8 +20,9 @@ HostRect resolveRegion(const HostRect& region, const TextureInfo& depth);
 
 //! Refuses (Error{InvalidArgument} naming `who`) a host texture that glCopyImageSubData
 //! would refuse: one in an unsized format, or mutable (glTexImage2D) with a min filter that
-//! samples mipmaps, which GL counts as incomplete when only level 0 is there. Read in place,
-//! such textures are fine: our samplers do not use mipmaps.
+//! samples mipmaps and without the levels it needs (GL counts it incomplete; a level-0-only
+//! texture under the default filter is one). Read in place, such textures are fine: our
+//! samplers do not use mipmaps.
 void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, const std::string& who);
 
 //! True where `region` is the whole of a texture of `depth`'s size: read in place.
@@ -34,6 +35,8 @@ public:
     GLuint copy(ContextImpl& ctx, GLuint source, GLenum format, const HostRect& region, std::string_view label);
     //! Frees the copy (a view without a region, or without this texture, needs none).
     void release() noexcept;
+    //! The copy's name; 0 when there is none.
+    GLuint name() const noexcept { return texture_.get(); }
     //! The copy's size by GL's channel sizes (drivers may pad, e.g. 24-bit depth to 32).
     std::size_t bytes() const noexcept { return bytes_; }
 

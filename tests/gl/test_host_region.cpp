@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <climits>
 #include <tuple>
 #include <string>
@@ -179,6 +180,36 @@ TEST_CASE("A host region is adopted as the view of that rectangle", "[gbuffer][h
         glGetTextureParameteriv(swizzled.depth.name, GL_TEXTURE_SWIZZLE_RGBA, got);
         CHECK(std::vector<GLint>(got, got + 4) == std::vector<GLint>(bgra, bgra + 4));
     }
+    SECTION("what passes sample through a copy is the host's swizzled texel") {
+        if (!all) return; // the albedo is what indirect light samples through its swizzle
+        IndirectLightSettings g;
+        g.radius = 1.5f;
+        g.rays = 8;
+        g.steps = 8;
+        IndirectLight plain(ctx);
+        const Image unswizzled = readTexture(ctx, plain.run(a, g).radiance);
+        // Green from nothing: the floor's and wall's grey albedo turns magenta.
+        const GLint noGreen[4] = {GL_RED, GL_ZERO, GL_BLUE, GL_ALPHA};
+        glTextureParameteriv(rendered.albedo.name, GL_TEXTURE_SWIZZLE_RGBA, noGreen);
+        glTextureParameteriv(host.albedo, GL_TEXTURE_SWIZZLE_RGBA, noGreen);
+        const GBufferView inPlace = whole.adopt(wholeView(rendered, true), camera);
+        const GBufferView copied = region.adopt(regionView(host, true), camera);
+        IndirectLight giA(ctx), giB(ctx);
+        const TextureView ra = giA.run(inPlace, g).radiance, rb = giB.run(copied, g).radiance;
+        requireSame(ctx, ra, rb, "indirect radiance, albedo swizzled");
+        // The swizzle matters: the light off the albedo had green, and has none through it.
+        const Image swizzled = readTexture(ctx, ra);
+        REQUIRE(swizzled.channels >= 3);
+        REQUIRE(unswizzled.pixels.size() == swizzled.pixels.size());
+        std::size_t green = 0, greenLeft = 0;
+        for (std::size_t i = 1; i < swizzled.pixels.size(); i += std::size_t(swizzled.channels)) {
+            if (unswizzled.pixels[i] > 0.0f) ++green;
+            if (swizzled.pixels[i] != 0.0f) ++greenLeft;
+        }
+        CHECK(green > 0);
+        CHECK(greenLeft == 0);
+        glTextureParameteri(rendered.albedo.name, GL_TEXTURE_SWIZZLE_G, GL_GREEN);
+    }
     CHECK(test::drainGlErrors().empty());
 }
 
@@ -210,6 +241,44 @@ TEST_CASE("A host region outside the depth texture is refused before any GL work
     GLint width = 0;
     glGetTextureLevelParameteriv(good.depth.name, 0, GL_TEXTURE_WIDTH, &width);
     CHECK(width == W); // the good region's copy, still there
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("A view adopt() returned is refused as the same GBuffer's host texture", "[gbuffer][host][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), adopter(ctx), other(ctx);
+    const Camera& camera = kFloorCamera;
+    const GBufferView rendered = floorView(ours, W, H, 2);
+    const HostTargets host(rendered);
+    // The region's copies (depth, albedo, radiance, back depth) and the converted normals,
+    // all W x H like `rendered`, so that only the ownership check can refuse them.
+    const GBufferView returned = adopter.adopt(regionView(host, true), camera);
+    const std::size_t memory = adopter.memoryBytes();
+    const auto [who, pick] = GENERATE(table<std::string, int>(
+        {{"depth", 0}, {"normal", 1}, {"albedo", 2}, {"directRadiance", 3}, {"backDepth", 4}}));
+    CAPTURE(who);
+    HostGBuffer in;
+    in.depth = pick == 0 ? returned.depth : rendered.depth;
+    if (pick == 1) in.normal = returned.normal;
+    if (pick == 2) in.albedo = returned.albedo;
+    if (pick == 3) in.directRadiance = returned.directRadiance;
+    if (pick == 4) in.backDepth = returned.backDepth;
+    try {
+        adopter.adopt(in, camera);
+        FAIL("adopt accepted its own view's texture");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::InvalidArgument);
+        CHECK_THAT(e.what(), Catch::Contains("HostGBuffer::" + who + " is a texture of a view this GBuffer"));
+    }
+    CHECK(adopter.memoryBytes() == memory);
+    GLint width = 0;
+    glGetTextureLevelParameteriv(returned.depth.name, 0, GL_TEXTURE_WIDTH, &width);
+    CHECK(width == W); // the copy is still there
+    // Another GBuffer reads it in place.
+    const GBufferView adopted = other.adopt(in, camera);
+    CHECK(adopted.width == W);
+    CHECK(adopted.depth.name == in.depth.name);
     CHECK(test::drainGlErrors().empty());
 }
 
@@ -245,6 +314,54 @@ TEST_CASE("A host region needs textures GL can copy; in place they need not be",
     const GBufferView copied = adopter.adopt(in, camera);
     CHECK(copied.albedo.name != albedo);
     CHECK(copied.width == W);
+    CHECK(test::drainGlErrors().empty());
+    glDeleteTextures(1, &albedo);
+}
+
+TEST_CASE("A mutable host texture with a mipmap filter is copied where its levels make it complete",
+          "[gbuffer][host][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), adopter(ctx);
+    const Camera& camera = kFloorCamera;
+    const GBufferView rendered = floorView(ours, W + Pad, H + PadY, 1);
+    // 48 x 35 under the default GL_NEAREST_MIPMAP_LINEAR needs levels 1-5 (24x17 ... 1x1).
+    enum class Levels { All, MaxLevelZero, MaxLevelTwo, FirstTwo, WrongFormat };
+    const Levels levels = GENERATE(Levels::All, Levels::MaxLevelZero, Levels::MaxLevelTwo, Levels::FirstTwo, Levels::WrongFormat);
+    const bool complete = levels == Levels::All || levels == Levels::MaxLevelZero || levels == Levels::MaxLevelTwo;
+    CAPTURE(int(levels));
+    GLuint albedo = 0;
+    glGenTextures(1, &albedo);
+    glBindTexture(GL_TEXTURE_2D, albedo);
+    const int last = levels == Levels::FirstTwo ? 1 : levels == Levels::MaxLevelZero ? 0 : 5;
+    for (int i = 0; i <= last; ++i) {
+        const GLenum format = levels == Levels::WrongFormat && i == 3 ? GL_RGBA16 : GL_RGBA8;
+        glTexImage2D(GL_TEXTURE_2D, i, format, std::max(1, (W + Pad) >> i), std::max(1, (H + PadY) >> i), 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, nullptr);
+    }
+    if (levels == Levels::MaxLevelZero) glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (levels == Levels::MaxLevelTwo) glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 2);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    HostGBuffer in;
+    in.depth = rendered.depth;
+    in.albedo = {albedo};
+    in.region = kRegion;
+    if (complete) {
+        const GBufferView copied = adopter.adopt(in, camera);
+        CHECK(copied.albedo.name != albedo);
+        CHECK(copied.width == W);
+    } else {
+        CHECK_THROWS_WITH(adopter.adopt(in, camera), Catch::Contains("HostGBuffer::albedo") &&
+                                                         Catch::Contains("lacks mipmap levels"));
+        CHECK(test::drainGlErrors().empty());
+        // GL itself refuses this copy: the rule above is GL's, not a stricter one.
+        GLuint scratch = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &scratch);
+        glTextureStorage2D(scratch, 1, GL_RGBA8, W, H);
+        glCopyImageSubData(albedo, GL_TEXTURE_2D, 0, kRegion.x, kRegion.y, 0, scratch, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1);
+        CHECK(test::drainGlErrors() == std::vector<unsigned>{GL_INVALID_OPERATION});
+        glDeleteTextures(1, &scratch);
+    }
     CHECK(test::drainGlErrors().empty());
     glDeleteTextures(1, &albedo);
 }
