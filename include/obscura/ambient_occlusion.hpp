@@ -163,8 +163,9 @@ public:
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
     //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
-    //! DepthPeeling and PeelingOrConstant), or the Voxel method without a grid. The view stays
-    //! valid until the next run.
+    //! DepthPeeling and PeelingOrConstant), the Voxel method without a grid, or a G-buffer
+    //! texture it reads that is one of this object's own outputs (a bent normal fed back as
+    //! the normal: alternate two objects). The view stays valid until the next run.
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     //! The last run's refinement; zeros when it ran at full resolution or without one. A run

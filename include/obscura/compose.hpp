@@ -107,7 +107,9 @@ public:
     //! there. Throws Error{InvalidArgument} for enumerators or settings out of range, without
     //! depth/radiance/albedo, and for inputs of the wrong size, with a base level other than
     //! 0, or of the wrong kind: depth must be a depth format (sampled as depth); radiance,
-    //! albedo and indirect light normalized or float RGB/RGBA, AO normalized or float.
+    //! albedo and indirect light normalized or float RGB/RGBA, AO normalized or float; and for
+    //! an input that is this Composer's own output (radiance() fed back as the direct
+    //! radiance: alternate two Composers).
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
 
     //! The combined radiance of the last compose call, before its `exposure`, which the tone
@@ -118,8 +120,8 @@ public:
     //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
     //! Error{InvalidArgument} for a source whose base level is not 0, for a target that is not
     //! a complete framebuffer of this context, whose first draw buffer is GL_NONE, has no
-    //! image attached or an integer one (the output is float), with an empty rectangle or one
-    //! wider or taller than
+    //! image attached, an integer one (the output is float) or the source's own level 0 (a
+    //! feedback loop), with an empty rectangle or one wider or taller than
     //! GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims), or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 

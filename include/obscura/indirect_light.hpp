@@ -89,7 +89,9 @@ public:
     //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
     //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct
     //! radiance (adopted host buffers have them only where the host gave them), without
-    //! backDepth for DepthPeeling and PeelingOrConstant, or the hybrid method without a grid.
+    //! backDepth for DepthPeeling and PeelingOrConstant, the hybrid method without a grid, or
+    //! a G-buffer texture it reads that is one of this object's own outputs (the last
+    //! radiance fed back as direct radiance, for more bounces: alternate two objects).
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
     //! The last run's refinement (RefinementCount, ambient_occlusion.hpp); zeros when it ran

@@ -145,6 +145,10 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     const ScreenThickness thickness = marches ? s.thicknessMode : ScreenThickness::Constant;
     const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
+    requireNotOwnOutput({{"GBufferView::depth", view.depth.name},
+                         {"GBufferView::normal", view.normal.name},
+                         {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u}},
+                        {d.ao.get(), d.bent.get(), d.guide.get(), d.fullAo.get(), d.fullBent.get()}, "AmbientOcclusion");
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
 

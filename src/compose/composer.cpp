@@ -54,11 +54,12 @@ bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, Sam
 
 // Why drawing into `framebuffer` would write nothing or undefined values, if it would: its
 // first draw buffer is GL_NONE or has no image attached, or that image is integer (the output
-// shader writes floats, which GL leaves undefined in an integer buffer). Asked before any
+// shader writes floats, which GL leaves undefined in an integer buffer) or `source`'s level 0
+// (a feedback loop). Asked before any
 // state is changed, so that a refusal leaves the host's state as it was under every
 // StatePolicy: GL_DRAW_BUFFER0 can only be queried on the bound draw framebuffer, whose
 // binding is put back at once.
-std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
+std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer, GLuint source) {
     GLint bound = 0;
     ctx.gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
@@ -77,6 +78,13 @@ std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint frame
     const GLint type = attachment(GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
     if (type == GL_INT || type == GL_UNSIGNED_INT)
         return "its first draw buffer is an integer image, into which the float output would write undefined values";
+    // The source's level 0 is what the draw samples: drawn into, GL leaves the result undefined
+    // (a feedback loop, GL 4.5 9.3.1), since a fragment reads texels others write.
+    if (attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_TEXTURE &&
+        static_cast<GLuint>(attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME)) == source &&
+        attachment(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) == 0)
+        return "its first draw buffer is level 0 of the source texture " + std::to_string(source) +
+               ", which the draw would read while writing it (a feedback loop GL leaves undefined): draw a copy";
     return std::nullopt;
 }
 
@@ -114,6 +122,12 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     const DepthReconstruction reconstruction = depthReconstruction(g.camera);
     const bool hasAo = checkInput(ctx, in.ao, "ComposeInputs::ao", SampledAs::Colour, w, h);
     const bool hasIndirect = checkInput(ctx, in.indirect, "ComposeInputs::indirect", SampledAs::Rgb, w, h);
+    requireNotOwnOutput({{"GBufferView::depth", g.depth.name},
+                         {"GBufferView::albedo", g.albedo.name},
+                         {"GBufferView::directRadiance", g.directRadiance.name},
+                         {"ComposeInputs::ao", in.ao.name},
+                         {"ComposeInputs::indirect", in.indirect.name}},
+                        {d.radiance.get(), d.display.get()}, "Composer");
 
     StateScope scope(ctx);
     shader::ComposeParams p{};
@@ -196,7 +210,7 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         std::snprintf(hex, sizeof hex, "%X", status);
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
-    if (const auto problem = firstDrawBufferProblem(ctx, target.framebuffer))
+    if (const auto problem = firstDrawBufferProblem(ctx, target.framebuffer, source.name))
         throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) + ": " + *problem);
     StateScope scope(ctx);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);

@@ -67,4 +67,25 @@ inline void requireImageSize(int width, int height, int maxSize, const std::stri
                                                     std::to_string(width) + "x" + std::to_string(height));
 }
 
+//! An input texture by what the API calls it, for requireNotOwnOutput.
+struct NamedInput {
+    const char* what; //!< e.g. "GBufferView::normal"
+    unsigned name;    //!< GL texture name; 0: not given
+};
+
+//! Refuses an input that is one of `module`'s own output textures (`outputs`; 0s ignored):
+//! its passes would read the texture while they write it, or reallocate it at a new size,
+//! and GL leaves such a feedback undefined (a pass reads other pixels than it writes). A
+//! host feeding a result back alternates two objects of the module instead.
+inline void requireNotOwnOutput(std::initializer_list<NamedInput> inputs, std::initializer_list<unsigned> outputs,
+                                const std::string& module) {
+    for (const NamedInput& input : inputs)
+        for (const unsigned output : outputs)
+            if (input.name != 0 && input.name == output)
+                throw Error(ErrorCode::InvalidArgument,
+                            std::string(input.what) + " (texture " + std::to_string(input.name) + ") is this " + module +
+                                "'s own output, which the call writes while reading it: read a copy, or alternate two " +
+                                module + " objects, each reading the other's last output");
+}
+
 } // namespace obscura::detail

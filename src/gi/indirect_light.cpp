@@ -113,6 +113,12 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
     requireViewInput(ctx, g.albedo, view, "albedo", SampledAs::Rgb);
     requireViewInput(ctx, g.directRadiance, view, "directRadiance", SampledAs::Rgb);
+    requireNotOwnOutput({{"GBufferView::depth", view.depth.name},
+                         {"GBufferView::normal", view.normal.name},
+                         {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u},
+                         {"GBufferView::albedo", g.albedo.name},
+                         {"GBufferView::directRadiance", g.directRadiance.name}},
+                        {d.radiance.get(), d.guide.get(), d.full.get()}, "IndirectLight");
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 fullSize(view.width, view.height);
     const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);

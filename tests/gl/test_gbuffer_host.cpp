@@ -11,7 +11,6 @@
 #include <vector>
 
 using namespace obscura;
-using test::AnalyticQuad;
 using test::kHalfRelative;
 
 TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]") {
@@ -21,9 +20,7 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
     constexpr int W = 48, H = 40;
     const Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, 1.2f, 0.1f, 50.0f,
                                               DepthMode::Reversed);
-    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
-    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
-    const GBufferView rendered = ours.render(test::quadScene({floor, wall}), camera, {W, H, false, {}});
+    const GBufferView rendered = ours.render(test::cornerScene(false), camera, {W, H, false, {}});
     const Image expected = readTexture(ctx, rendered.normal);
 
     SECTION("normals reconstructed from depth alone") {

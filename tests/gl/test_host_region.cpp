@@ -14,7 +14,6 @@
 #include <vector>
 
 using namespace obscura;
-using test::AnalyticQuad;
 
 namespace {
 
@@ -109,13 +108,7 @@ TEST_CASE("A host region is adopted as the view of that rectangle", "[gbuffer][h
     Context ctx(gl.desc());
     const Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 50.0f,
                                               DepthMode::Reversed);
-    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
-    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
-    Scene scene = test::quadScene({floor, wall});
-    Light light;
-    light.position = {0.5f, 1.5f, 1.0f};
-    light.intensity = 3.0f;
-    scene.lights.push_back(light);
+    const Scene scene = test::cornerScene(true);
     GBuffer ours(ctx), whole(ctx), region(ctx);
     GBufferSettings gs{W, H, true, {}};
     gs.depthLayers = 2;

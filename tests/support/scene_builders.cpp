@@ -104,6 +104,19 @@ Scene floorScene(double half) {
     return quadScene({{{glm::dvec3(-half, 0, -half), {-half, 0, half}, {half, 0, half}, {half, 0, -half}}}});
 }
 
+Scene cornerScene(bool lit) {
+    const AnalyticQuad floor{{{{-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}}}};
+    const AnalyticQuad wall{{{{-3, 0, -1}, {3, 0, -1}, {3, 2, -1}, {-3, 2, -1}}}};
+    Scene scene = quadScene({floor, wall});
+    if (lit) {
+        Light light;
+        light.position = {0.5f, 1.5f, 1.0f};
+        light.intensity = 3.0f;
+        scene.lights.push_back(light);
+    }
+    return scene;
+}
+
 Scene withSun(Scene scene) {
     Light sun;
     sun.type = LightType::Directional;

@@ -28,6 +28,10 @@ struct AnalyticQuad {
 Scene quadScene(const std::vector<AnalyticQuad>& quads, glm::vec3 albedo = glm::vec3(0.5f));
 //! A floor square of half side `half` at y = 0, facing up (quadScene's material).
 Scene floorScene(double half = 50.0);
+//! A floor [-3, 3]^2 at y = 0 and a wall 2 high across it at z = -1, facing +z
+//! (quadScene's material); `lit`: with a point light at (0.5, 1.5, 1), intensity 3. The
+//! host-integration tests' corner, seen from (1, 2, 4).
+Scene cornerScene(bool lit);
 //! `scene` with a sun added: a directional light from above, (0.3, -1, 0.2), intensity 3
 //! (the indirect-light tests' lit open plane).
 Scene withSun(Scene scene);

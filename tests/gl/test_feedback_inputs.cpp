@@ -1,0 +1,157 @@
+// A module's own output handed back to it as an input (feedback: the last indirect light as
+// the next direct radiance, a bent normal as the normal, a drawn texture into itself) would
+// be read while the call writes it, which GL leaves undefined. Each call refuses it before
+// any GL work and names the input; a second object of the module, which writes elsewhere,
+// takes it.
+#include "gl_fixture.hpp"
+#include "obscura/obscura.hpp"
+#include "scene_builders.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+using namespace obscura;
+
+namespace {
+
+constexpr int W = 24, H = 20;
+
+// The corner under its light: every module has light and occlusion to compute.
+struct LitCorner {
+    test::GlFixture gl;
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    Camera camera = Camera::perspective({{1, 2, 4}, {0, 0.5f, 0}, {0, 1, 0}}, 1.0f, float(W) / H, 0.1f, 50.0f);
+    GBufferView view;
+
+    LitCorner() { view = gbuffer.render(test::cornerScene(true), camera, {W, H, true, {}}); }
+};
+
+// `call` must throw InvalidArgument naming `input` as `module`'s own output, and leave no GL
+// error behind.
+void requireRefusedAsOwnOutput(const std::function<void()>& call, const std::string& input, const std::string& module) {
+    try {
+        call();
+        FAIL("the call read its own output");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::InvalidArgument);
+        CHECK_THAT(e.what(), Catch::Contains(input) && Catch::Contains("is this " + module + "'s own output"));
+    }
+    CHECK(test::drainGlErrors().empty());
+}
+
+// Every texel finite: what the second object computed from the fed-back texture.
+void requireFinite(Context& ctx, const TextureView& texture) {
+    const Image image = readTexture(ctx, texture);
+    REQUIRE_FALSE(image.pixels.empty());
+    std::size_t bad = 0;
+    for (const float v : image.pixels)
+        if (!std::isfinite(v)) ++bad;
+    CHECK(bad == 0);
+}
+
+} // namespace
+
+TEST_CASE("Indirect light refuses its own last radiance as direct radiance; a second object takes it",
+          "[gi][bad-input]") {
+    LitCorner f;
+    IndirectLight gi(f.ctx), other(f.ctx);
+    IndirectLightSettings s;
+    s.radius = 1.5f;
+    s.rays = 4;
+    s.steps = 4;
+    s.resolution = GENERATE(AoResolution::Full, AoResolution::Half); // the output is another texture at half
+    CAPTURE(int(s.resolution));
+    const IndirectLightView first = gi.run(f.view, s);
+    const std::size_t memory = gi.memoryBytes();
+    GBufferView fed = f.view;
+    fed.directRadiance = first.radiance;
+    requireRefusedAsOwnOutput([&] { gi.run(fed, s); }, "GBufferView::directRadiance", "IndirectLight");
+    GBufferView asAlbedo = f.view;
+    asAlbedo.albedo = first.radiance;
+    requireRefusedAsOwnOutput([&] { gi.run(asAlbedo, s); }, "GBufferView::albedo", "IndirectLight");
+    CHECK(gi.memoryBytes() == memory);
+    // Two objects alternate: the second bounce reads the first's light.
+    requireFinite(f.ctx, other.run(fed, s).radiance);
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("Ambient occlusion refuses its own bent normals as the normal; a second object takes them",
+          "[ao][bad-input]") {
+    LitCorner f;
+    AmbientOcclusion ao(f.ctx), other(f.ctx);
+    AmbientOcclusionSettings s;
+    s.radius = 1.0f;
+    s.rays = 4;
+    s.steps = 4;
+    s.bentNormals = true;
+    s.resolution = GENERATE(AoResolution::Full, AoResolution::Half);
+    CAPTURE(int(s.resolution));
+    const AmbientOcclusionView first = ao.run(f.view, s);
+    REQUIRE(first.bentNormal);
+    const std::size_t memory = ao.memoryBytes();
+    GBufferView fed = f.view;
+    fed.normal = first.bentNormal;
+    requireRefusedAsOwnOutput([&] { ao.run(fed, s); }, "GBufferView::normal", "AmbientOcclusion");
+    CHECK(ao.memoryBytes() == memory);
+    requireFinite(f.ctx, other.run(fed, s).ao);
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("The composer refuses its own radiance as an input; a second composer takes it", "[compose][bad-input]") {
+    LitCorner f;
+    Composer composer(f.ctx), other(f.ctx);
+    const ComposeSettings s;
+    ComposeInputs in;
+    in.gbuffer = f.view;
+    composer.compose(in, s);
+    const std::size_t memory = composer.memoryBytes();
+    ComposeInputs asDirect = in;
+    asDirect.gbuffer.directRadiance = composer.radiance();
+    requireRefusedAsOwnOutput([&] { composer.compose(asDirect, s); }, "GBufferView::directRadiance", "Composer");
+    ComposeInputs asIndirect = in;
+    asIndirect.indirect = composer.radiance();
+    requireRefusedAsOwnOutput([&] { composer.compose(asIndirect, s); }, "ComposeInputs::indirect", "Composer");
+    CHECK(composer.memoryBytes() == memory);
+    requireFinite(f.ctx, other.compose(asIndirect, s));
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("drawToHost refuses to draw a texture into a framebuffer that has it as its first draw buffer",
+          "[compose][host][bad-input]") {
+    LitCorner f;
+    Composer composer(f.ctx);
+    GLuint texture = 0, fbo = 0, elsewhere = 0, target = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA8, W, H);
+    glCreateTextures(GL_TEXTURE_2D, 1, &elsewhere);
+    glTextureStorage2D(elsewhere, 1, GL_RGBA8, W, H);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
+    glCreateFramebuffers(1, &target);
+    glNamedFramebufferTexture(target, GL_COLOR_ATTACHMENT0, elsewhere, 0);
+    const TextureView source{texture, GL_RGBA8, W, H};
+    try {
+        composer.drawToHost(source, {fbo, 0, 0, W, H});
+        FAIL("drawToHost drew a texture into itself");
+    } catch (const Error& e) {
+        CHECK(e.code() == ErrorCode::InvalidArgument);
+        CHECK_THAT(e.what(), Catch::Contains("level 0 of the source texture") && Catch::Contains("feedback loop"));
+    }
+    CHECK(test::drainGlErrors().empty());
+    // Into another framebuffer it is drawn: the value arrives.
+    const glm::vec4 grey(0.25f, 0.5f, 0.75f, 1.0f);
+    glClearTexImage(texture, 0, GL_RGBA, GL_FLOAT, &grey);
+    composer.drawToHost(source, {target, 0, 0, W, H, HostBlend::Overwrite, HostSourceEncoding::Display});
+    const Image drawn = readTexture(f.ctx, {elsewhere, GL_RGBA8, W, H});
+    REQUIRE(drawn.channels == 4);
+    CHECK(drawn.pixels[1] == Approx(0.5f).margin(1.0 / 255));
+    CHECK(test::drainGlErrors().empty());
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteFramebuffers(1, &target);
+    glDeleteTextures(1, &texture);
+    glDeleteTextures(1, &elsewhere);
+}
