@@ -120,8 +120,9 @@ public:
     //! (pass "compose.output"). Leaves the host's GL state as it was (StatePolicy). Throws
     //! Error{InvalidArgument} for a source whose base level is not 0, for a target that is not
     //! a complete framebuffer of this context, whose first draw buffer is GL_NONE, has no
-    //! image attached, an integer one (the output is float) or the source's own level 0 (a
-    //! feedback loop), with an empty rectangle or one wider or taller than
+    //! image attached or an integer one (the output is float), that has the source's level 0
+    //! at any colour attachment (a feedback loop), with an empty rectangle or one wider or
+    //! taller than
     //! GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims), or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 

@@ -145,11 +145,15 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     const ScreenThickness thickness = marches ? s.thicknessMode : ScreenThickness::Constant;
     const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
+    const int scale = static_cast<int>(s.resolution);
+    // What this run writes (or reallocates): an earlier run's other outputs may be read.
+    const bool reduced = scale > 1;
     requireNotOwnOutput({{"GBufferView::depth", view.depth.name},
                          {"GBufferView::normal", view.normal.name},
                          {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u}},
-                        {d.ao.get(), d.bent.get(), d.guide.get(), d.fullAo.get(), d.fullBent.get()}, "AmbientOcclusion");
-    const int scale = static_cast<int>(s.resolution);
+                        {d.ao.get(), filtered(s) ? d.guide.get() : 0u, s.bentNormals ? d.bent.get() : 0u,
+                         reduced ? d.fullAo.get() : 0u, reduced && s.bentNormals ? d.fullBent.get() : 0u},
+                        "AmbientOcclusion");
     const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
 
     d.refinedLastRun = false;

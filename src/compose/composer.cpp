@@ -54,12 +54,11 @@ bool checkInput(ContextImpl& ctx, const TextureView& view, const char* what, Sam
 
 // Why drawing into `framebuffer` would write nothing or undefined values, if it would: its
 // first draw buffer is GL_NONE or has no image attached, or that image is integer (the output
-// shader writes floats, which GL leaves undefined in an integer buffer) or `source`'s level 0
-// (a feedback loop). Asked before any
+// shader writes floats, which GL leaves undefined in an integer buffer). Asked before any
 // state is changed, so that a refusal leaves the host's state as it was under every
 // StatePolicy: GL_DRAW_BUFFER0 can only be queried on the bound draw framebuffer, whose
 // binding is put back at once.
-std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer, GLuint source) {
+std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint framebuffer) {
     GLint bound = 0;
     ctx.gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
@@ -78,13 +77,28 @@ std::optional<std::string> firstDrawBufferProblem(ContextImpl& ctx, GLuint frame
     const GLint type = attachment(GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
     if (type == GL_INT || type == GL_UNSIGNED_INT)
         return "its first draw buffer is an integer image, into which the float output would write undefined values";
-    // The source's level 0 is what the draw samples: drawn into, GL leaves the result undefined
-    // (a feedback loop, GL 4.5 9.3.1), since a fragment reads texels others write.
-    if (attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_TEXTURE &&
-        static_cast<GLuint>(attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME)) == source &&
-        attachment(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) == 0)
-        return "its first draw buffer is level 0 of the source texture " + std::to_string(source) +
-               ", which the draw would read while writing it (a feedback loop GL leaves undefined): draw a copy";
+    return std::nullopt;
+}
+
+// The colour attachment of `framebuffer` that is level 0 of `source`, if one is. The draw
+// samples that level (base level 0, a sampler without mipmaps), and GL 4.5 (9.3.1) leaves a
+// draw undefined while a level it samples is attached at any attachment point, drawn to or
+// not: a feedback loop.
+std::optional<int> attachmentSampling(ContextImpl& ctx, GLuint framebuffer, GLuint source) {
+    if (framebuffer == 0) return std::nullopt;
+    GLint attachments = 0;
+    ctx.gl.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attachments);
+    for (int i = 0; i < attachments; ++i) {
+        const auto attachment = [&](GLenum pname) {
+            GLint value = GL_NONE;
+            ctx.gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, GL_COLOR_ATTACHMENT0 + GLenum(i), pname, &value);
+            return value;
+        };
+        if (attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_TEXTURE &&
+            static_cast<GLuint>(attachment(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME)) == source &&
+            attachment(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL) == 0)
+            return i;
+    }
     return std::nullopt;
 }
 
@@ -210,8 +224,14 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                         std::snprintf(hex, sizeof hex, "%X", status);
                                                         return std::string(hex);
                                                     }() + "; a surfaceless context has no default framebuffer)");
-    if (const auto problem = firstDrawBufferProblem(ctx, target.framebuffer, source.name))
+    if (const auto problem = firstDrawBufferProblem(ctx, target.framebuffer))
         throw Error(ErrorCode::InvalidArgument, "HostTarget::framebuffer " + std::to_string(target.framebuffer) + ": " + *problem);
+    if (const auto i = attachmentSampling(ctx, target.framebuffer, source.name))
+        throw Error(ErrorCode::InvalidArgument,
+                    "HostTarget::framebuffer " + std::to_string(target.framebuffer) + " has level 0 of the source texture " +
+                        std::to_string(source.name) + " at GL_COLOR_ATTACHMENT" + std::to_string(*i) +
+                        ", which the draw samples: a feedback loop GL leaves undefined, attachment drawn to or not. "
+                        "Draw a copy of it, or detach it");
     StateScope scope(ctx);
     ctx.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer);
     PassScope pass(ctx, "compose.output");

@@ -9,6 +9,20 @@
 
 namespace obscura::detail {
 
+namespace {
+
+// The sRGB formats of GL 4.5 core, sized, unsized and compressed (the sampler decodes them).
+bool isSrgbFormat(GLenum format) {
+    switch (format) {
+    case GL_SRGB8: case GL_SRGB8_ALPHA8: case GL_SRGB: case GL_SRGB_ALPHA: case GL_COMPRESSED_SRGB:
+    case GL_COMPRESSED_SRGB_ALPHA: case GL_COMPRESSED_SRGB_ALPHA_BPTC_UNORM: case GL_COMPRESSED_SRGB8_ETC2:
+    case GL_COMPRESSED_SRGB8_ALPHA8_ETC2_EAC: case GL_COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2: return true;
+    default: return false;
+    }
+}
+
+} // namespace
+
 std::string formatName(GLenum f) {
     switch (f) {
     case GL_DEPTH_COMPONENT16: return "GL_DEPTH_COMPONENT16";
@@ -45,6 +59,10 @@ std::string formatName(GLenum f) {
     case GL_STENCIL_INDEX8: return "GL_STENCIL_INDEX8";
     case GL_RGBA8_SNORM: return "GL_RGBA8_SNORM";
     case GL_RGBA16_SNORM: return "GL_RGBA16_SNORM";
+    case GL_SRGB: return "GL_SRGB";
+    case GL_SRGB_ALPHA: return "GL_SRGB_ALPHA";
+    case GL_RGBA: return "GL_RGBA";
+    case GL_RGB: return "GL_RGB";
     default: {
         char buf[32];
         std::snprintf(buf, sizeof buf, "0x%04X", f);
@@ -107,7 +125,7 @@ TextureInfo queryTexture2D(ContextImpl& ctx, GLuint name, const std::string& who
         t.pixelFormat = GL_STENCIL_INDEX;
         return t;
     }
-    t.srgb = t.internalFormat == GL_SRGB8 || t.internalFormat == GL_SRGB8_ALPHA8;
+    t.srgb = isSrgbFormat(t.internalFormat);
     t.integer = redType == GL_INT || redType == GL_UNSIGNED_INT;
     t.floating = redType == GL_FLOAT;
     t.signedFloat = t.floating && t.internalFormat != GL_R11F_G11F_B10F && t.internalFormat != GL_RGB9_E5;

@@ -312,10 +312,17 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
                 throw Error(ErrorCode::InvalidArgument, "GBufferSettings::shadows has maps of light " + std::to_string(m.light) +
                                                             " but the scene has " + std::to_string(scene.lights.size()) + " lights");
     }
-    for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        if (scene.materials[i].albedoTexture != 0)
-            impl_->validateHostTexture(scene.materials[i].albedoTexture,
-                                       "Scene::materials[" + std::to_string(i) + "].albedoTexture");
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const GLuint texture = scene.materials[i].albedoTexture;
+        if (texture == 0) continue;
+        const std::string who = "Scene::materials[" + std::to_string(i) + "].albedoTexture";
+        impl_->validateHostTexture(texture, who);
+        // Last frame's image on an in-scene screen, say: drawn into while sampled.
+        requireNotOwnOutput({{who.c_str(), texture}},
+                            {impl_->depth.get(), impl_->normal.get(), impl_->albedo.get(), impl_->direct.get(),
+                             impl_->backDepth.get()},
+                            "GBuffer");
+    }
 
     StateScope scope(ctx);
     PassScope pass(ctx, "gbuffer.render");

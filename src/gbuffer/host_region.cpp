@@ -68,7 +68,9 @@ HostRect resolveRegion(const HostRect& region, const TextureInfo& depth) {
 
 void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, const std::string& who) {
     switch (internalFormat) {
-    case GL_RED: case GL_RG: case GL_RGB: case GL_RGBA: case GL_DEPTH_COMPONENT: case GL_DEPTH_STENCIL:
+    case GL_RED: case GL_RG: case GL_RGB: case GL_RGBA: case GL_SRGB: case GL_SRGB_ALPHA: case GL_DEPTH_COMPONENT:
+    case GL_DEPTH_STENCIL: case GL_COMPRESSED_RED: case GL_COMPRESSED_RG: case GL_COMPRESSED_RGB:
+    case GL_COMPRESSED_RGBA: case GL_COMPRESSED_SRGB: case GL_COMPRESSED_SRGB_ALPHA:
         throw Error(ErrorCode::InvalidArgument, who + " has an unsized format (" + formatName(internalFormat) +
                                                     "): HostGBuffer::region copies it, and GL copies only sized ones");
     default: break;

@@ -19,10 +19,11 @@ struct ContextImpl;
 HostRect resolveRegion(const HostRect& region, const TextureInfo& depth);
 
 //! Refuses (Error{InvalidArgument} naming `who`) a host texture that glCopyImageSubData
-//! would refuse: one in an unsized format, or mutable (glTexImage2D) with a min filter that
-//! samples mipmaps and without the levels it needs (GL counts it incomplete; a level-0-only
-//! texture under the default filter is one). Read in place, such textures are fine: our
-//! samplers do not use mipmaps.
+//! would refuse: one in an unsized format (compressed ones adopt() refuses anyway), or
+//! mutable (glTexImage2D) with a min filter that samples
+//! mipmaps and without the levels it needs (GL counts it incomplete; a level-0-only texture
+//! under the default filter is one). Read in place, such textures are fine: our samplers do
+//! not use mipmaps.
 void requireCopyable(ContextImpl& ctx, GLuint texture, GLenum internalFormat, const std::string& who);
 
 //! True where `region` is the whole of a texture of `depth`'s size: read in place.

@@ -118,7 +118,9 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
                          {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u},
                          {"GBufferView::albedo", g.albedo.name},
                          {"GBufferView::directRadiance", g.directRadiance.name}},
-                        {d.radiance.get(), d.guide.get(), d.full.get()}, "IndirectLight");
+                        {d.radiance.get(), filtered(s) ? d.guide.get() : 0u,
+                         s.resolution != AoResolution::Full ? d.full.get() : 0u},
+                        "IndirectLight"); // what this run writes: an earlier run's other output may be read
     const int scale = static_cast<int>(s.resolution);
     const glm::ivec2 fullSize(view.width, view.height);
     const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);

@@ -322,6 +322,15 @@ TEST_CASE_METHOD(BadInputFixture, "Host normal encodings and spaces outside thei
     bad = host;
     bad.normal = {srgb, 0, 0, 0};
     expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "GL_SRGB8_ALPHA8");
+    // The unsized sRGB format (glTexImage2D keeps it as given) is decoded as well.
+    GLuint unsizedSrgb = 0;
+    glGenTextures(1, &unsizedSrgb);
+    glBindTexture(GL_TEXTURE_2D, unsizedSrgb);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB_ALPHA, 16, 16, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    bad.normal = {unsizedSrgb, 0, 0, 0};
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normal has format");
+    glDeleteTextures(1, &unsizedSrgb);
     glDeleteTextures(1, &rgba8);
     glDeleteTextures(1, &srgb);
 }

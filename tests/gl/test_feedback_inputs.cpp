@@ -2,7 +2,7 @@
 // the next direct radiance, a bent normal as the normal, a drawn texture into itself) would
 // be read while the call writes it, which GL leaves undefined. Each call refuses it before
 // any GL work and names the input; a second object of the module, which writes elsewhere,
-// takes it.
+// takes it (drawToHost: another framebuffer).
 #include "gl_fixture.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
@@ -10,8 +10,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 using namespace obscura;
 
@@ -97,6 +99,11 @@ TEST_CASE("Ambient occlusion refuses its own bent normals as the normal; a secon
     fed.normal = first.bentNormal;
     requireRefusedAsOwnOutput([&] { ao.run(fed, s); }, "GBufferView::normal", "AmbientOcclusion");
     CHECK(ao.memoryBytes() == memory);
+    if (s.resolution == AoResolution::Half) { // a full-resolution run leaves the half one's output alone
+        AmbientOcclusionSettings full = s;
+        full.resolution = AoResolution::Full;
+        requireFinite(f.ctx, ao.run(fed, full).ao);
+    }
     requireFinite(f.ctx, other.run(fed, s).ao);
     CHECK(test::drainGlErrors().empty());
 }
@@ -115,43 +122,84 @@ TEST_CASE("The composer refuses its own radiance as an input; a second composer 
     ComposeInputs asIndirect = in;
     asIndirect.indirect = composer.radiance();
     requireRefusedAsOwnOutput([&] { composer.compose(asIndirect, s); }, "ComposeInputs::indirect", "Composer");
+    ComposeInputs displayAsAlbedo = in; // the tone-mapped image is compose()'s result
+    displayAsAlbedo.gbuffer.albedo = composer.compose(in, s);
+    requireRefusedAsOwnOutput([&] { composer.compose(displayAsAlbedo, s); }, "GBufferView::albedo", "Composer");
     CHECK(composer.memoryBytes() == memory);
     requireFinite(f.ctx, other.compose(asIndirect, s));
     CHECK(test::drainGlErrors().empty());
 }
 
-TEST_CASE("drawToHost refuses to draw a texture into a framebuffer that has it as its first draw buffer",
+TEST_CASE("The G-buffer refuses its own image as a material texture; a second G-buffer takes it", "[gbuffer][bad-input]") {
+    LitCorner f;
+    // Last frame's lit image on a screen in the scene: render() would draw into the texture
+    // it samples.
+    Scene scene = test::cornerScene(true);
+    scene.materials[0].albedoTexture = f.view.directRadiance.name;
+    requireRefusedAsOwnOutput([&] { f.gbuffer.render(scene, f.camera, {W, H, true, {}}); },
+                              "Scene::materials[0].albedoTexture", "GBuffer");
+    GBuffer other(f.ctx);
+    requireFinite(f.ctx, other.render(scene, f.camera, {W, H, true, {}}).directRadiance);
+    CHECK(test::drainGlErrors().empty());
+}
+
+TEST_CASE("drawToHost refuses a framebuffer with the source's level 0 at any colour attachment",
           "[compose][host][bad-input]") {
     LitCorner f;
     Composer composer(f.ctx);
-    GLuint texture = 0, fbo = 0, elsewhere = 0, target = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, GL_RGBA8, W, H);
+    GLuint source = 0, elsewhere = 0, buffer = 0, fbo = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &source);
+    glTextureStorage2D(source, 2, GL_RGBA8, W, H); // level 1 may be drawn into: it is not sampled
     glCreateTextures(GL_TEXTURE_2D, 1, &elsewhere);
     glTextureStorage2D(elsewhere, 1, GL_RGBA8, W, H);
+    glCreateRenderbuffers(1, &buffer);
+    glNamedRenderbufferStorage(buffer, GL_RGBA8, W, H);
+    const glm::vec4 grey(0.25f, 0.5f, 0.75f, 1.0f);
+    glClearTexImage(source, 0, GL_RGBA, GL_FLOAT, &grey);
+    const TextureView view{source, GL_RGBA8, W, H};
+    const HostTarget target{0, 0, 0, W, H, HostBlend::Overwrite, HostSourceEncoding::Display};
+    const auto drawInto = [&](GLuint framebuffer) {
+        HostTarget t = target;
+        t.framebuffer = framebuffer;
+        composer.drawToHost(view, t);
+    };
+    enum class Attached { SourceFirst, SourceSecond, SourceLevelOne, Renderbuffer };
+    const Attached attached = GENERATE(Attached::SourceFirst, Attached::SourceSecond, Attached::SourceLevelOne, Attached::Renderbuffer);
+    CAPTURE(int(attached));
     glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
-    glCreateFramebuffers(1, &target);
-    glNamedFramebufferTexture(target, GL_COLOR_ATTACHMENT0, elsewhere, 0);
-    const TextureView source{texture, GL_RGBA8, W, H};
-    try {
-        composer.drawToHost(source, {fbo, 0, 0, W, H});
-        FAIL("drawToHost drew a texture into itself");
-    } catch (const Error& e) {
-        CHECK(e.code() == ErrorCode::InvalidArgument);
-        CHECK_THAT(e.what(), Catch::Contains("level 0 of the source texture") && Catch::Contains("feedback loop"));
+    if (attached == Attached::SourceFirst) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, source, 0);
+    if (attached == Attached::SourceSecond) { // not a draw buffer: GL still calls it a loop
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, elsewhere, 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, source, 0);
+    }
+    if (attached == Attached::SourceLevelOne) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, source, 1);
+    if (attached == Attached::Renderbuffer) glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, buffer);
+    REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    if (attached == Attached::SourceFirst || attached == Attached::SourceSecond) {
+        const std::string at = attached == Attached::SourceFirst ? "GL_COLOR_ATTACHMENT0" : "GL_COLOR_ATTACHMENT1";
+        CHECK_THROWS_WITH(drawInto(fbo), Catch::Contains("level 0 of the source texture") && Catch::Contains(at) &&
+                                             Catch::Contains("feedback loop"));
+    } else {
+        CHECK_NOTHROW(drawInto(fbo));
+        if (attached == Attached::SourceLevelOne) { // level 1 now holds the source's values
+            std::vector<std::uint8_t> texel(std::size_t(W / 2) * (H / 2) * 4);
+            glGetTextureImage(source, 1, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(texel.size()), texel.data());
+            CHECK(int(texel[1]) == Approx(0.5 * 255).margin(1));
+        }
     }
     CHECK(test::drainGlErrors().empty());
-    // Into another framebuffer it is drawn: the value arrives.
-    const glm::vec4 grey(0.25f, 0.5f, 0.75f, 1.0f);
-    glClearTexImage(texture, 0, GL_RGBA, GL_FLOAT, &grey);
-    composer.drawToHost(source, {target, 0, 0, W, H, HostBlend::Overwrite, HostSourceEncoding::Display});
+    // Into a framebuffer without it, it is drawn: the value arrives.
+    GLuint other = 0;
+    glCreateFramebuffers(1, &other);
+    glNamedFramebufferTexture(other, GL_COLOR_ATTACHMENT0, elsewhere, 0);
+    drawInto(other);
     const Image drawn = readTexture(f.ctx, {elsewhere, GL_RGBA8, W, H});
     REQUIRE(drawn.channels == 4);
     CHECK(drawn.pixels[1] == Approx(0.5f).margin(1.0 / 255));
     CHECK(test::drainGlErrors().empty());
     glDeleteFramebuffers(1, &fbo);
-    glDeleteFramebuffers(1, &target);
-    glDeleteTextures(1, &texture);
+    glDeleteFramebuffers(1, &other);
+    glDeleteRenderbuffers(1, &buffer);
+    glDeleteTextures(1, &source);
     glDeleteTextures(1, &elsewhere);
 }

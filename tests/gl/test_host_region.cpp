@@ -317,20 +317,29 @@ TEST_CASE("A mutable host texture with a mipmap filter is copied where its level
     Context ctx(gl.desc());
     GBuffer ours(ctx), adopter(ctx);
     const Camera& camera = kFloorCamera;
-    const GBufferView rendered = floorView(ours, W + Pad, H + PadY, 1);
-    // 48 x 35 under the default GL_NEAREST_MIPMAP_LINEAR needs levels 1-5 (24x17 ... 1x1).
-    enum class Levels { All, MaxLevelZero, MaxLevelTwo, FirstTwo, WrongFormat };
-    const Levels levels = GENERATE(Levels::All, Levels::MaxLevelZero, Levels::MaxLevelTwo, Levels::FirstTwo, Levels::WrongFormat);
+    // 48 x 20: the sides' log2 differ (5 and 4), so the chain's length comes from the wider
+    // side: levels 1-5 are 24x10, 12x5, 6x2, 3x1, 1x1 (the height clamps at 1).
+    constexpr int TW = 48, TH = 20;
+    constexpr HostRect region{3, 2, 30, 15};
+    const GBufferView rendered = floorView(ours, TW, TH, 1);
+    enum class Levels { All, MaxLevelZero, MaxLevelTwo, ToSmallerSide, FirstTwo, WrongSize, WrongFormat };
+    const Levels levels = GENERATE(Levels::All, Levels::MaxLevelZero, Levels::MaxLevelTwo, Levels::ToSmallerSide,
+                                   Levels::FirstTwo, Levels::WrongSize, Levels::WrongFormat);
     const bool complete = levels == Levels::All || levels == Levels::MaxLevelZero || levels == Levels::MaxLevelTwo;
     CAPTURE(int(levels));
+    const int last = levels == Levels::FirstTwo        ? 1
+                     : levels == Levels::MaxLevelZero  ? 0
+                     : levels == Levels::MaxLevelTwo   ? 2
+                     : levels == Levels::ToSmallerSide ? 4 // counted from the height: one short
+                                                       : 5;
     GLuint albedo = 0;
     glGenTextures(1, &albedo);
     glBindTexture(GL_TEXTURE_2D, albedo);
-    const int last = levels == Levels::FirstTwo ? 1 : levels == Levels::MaxLevelZero ? 0 : 5;
     for (int i = 0; i <= last; ++i) {
         const GLenum format = levels == Levels::WrongFormat && i == 3 ? GL_RGBA16 : GL_RGBA8;
-        glTexImage2D(GL_TEXTURE_2D, i, format, std::max(1, (W + Pad) >> i), std::max(1, (H + PadY) >> i), 0, GL_RGBA,
-                     GL_UNSIGNED_BYTE, nullptr);
+        const int w = levels == Levels::WrongSize && i == 2 ? 13 : std::max(1, TW >> i);
+        const int h = levels == Levels::WrongSize && i == 2 ? 8 : std::max(1, TH >> i);
+        glTexImage2D(GL_TEXTURE_2D, i, format, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     }
     if (levels == Levels::MaxLevelZero) glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
     if (levels == Levels::MaxLevelTwo) glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 2);
@@ -338,23 +347,52 @@ TEST_CASE("A mutable host texture with a mipmap filter is copied where its level
     HostGBuffer in;
     in.depth = rendered.depth;
     in.albedo = {albedo};
-    in.region = kRegion;
+    in.region = region;
     if (complete) {
         const GBufferView copied = adopter.adopt(in, camera);
         CHECK(copied.albedo.name != albedo);
-        CHECK(copied.width == W);
+        CHECK(copied.width == region.width);
     } else {
         CHECK_THROWS_WITH(adopter.adopt(in, camera), Catch::Contains("HostGBuffer::albedo") &&
                                                          Catch::Contains("lacks mipmap levels"));
         CHECK(test::drainGlErrors().empty());
-        // GL itself refuses this copy: the rule above is GL's, not a stricter one.
+        // GL itself refuses this copy (Mesa since 17.1 checks the mipmap completeness the
+        // texture's own min filter asks for): the rule above is GL's, not a stricter one.
         GLuint scratch = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &scratch);
-        glTextureStorage2D(scratch, 1, GL_RGBA8, W, H);
-        glCopyImageSubData(albedo, GL_TEXTURE_2D, 0, kRegion.x, kRegion.y, 0, scratch, GL_TEXTURE_2D, 0, 0, 0, 0, W, H, 1);
+        glTextureStorage2D(scratch, 1, GL_RGBA8, region.width, region.height);
+        glCopyImageSubData(albedo, GL_TEXTURE_2D, 0, region.x, region.y, 0, scratch, GL_TEXTURE_2D, 0, 0, 0, 0,
+                           region.width, region.height, 1);
         CHECK(test::drainGlErrors() == std::vector<unsigned>{GL_INVALID_OPERATION});
         glDeleteTextures(1, &scratch);
     }
+    CHECK(test::drainGlErrors().empty());
+    glDeleteTextures(1, &albedo);
+}
+
+TEST_CASE("A host region refuses unsized textures, which GL cannot copy (their storage is the driver's choice)",
+          "[gbuffer][host][bad-input]") {
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer ours(ctx), adopter(ctx);
+    const Camera& camera = kFloorCamera;
+    const GBufferView rendered = floorView(ours, W + Pad, H + PadY, 1);
+    const auto [format, needle] = GENERATE(table<GLenum, std::string>(
+        {{GL_SRGB_ALPHA, "unsized format (GL_SRGB_ALPHA)"}, {GL_RGBA, "unsized format (GL_RGBA)"}}));
+    CAPTURE(needle);
+    GLuint albedo = 0;
+    glGenTextures(1, &albedo);
+    glBindTexture(GL_TEXTURE_2D, albedo);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexImage2D(GL_TEXTURE_2D, 0, format, W + Pad, H + PadY, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    REQUIRE(test::drainGlErrors().empty());
+    HostGBuffer in;
+    in.depth = rendered.depth;
+    in.albedo = {albedo};
+    CHECK(adopter.adopt(in, camera).albedo.name == albedo); // in place, sampled as it is
+    in.region = kRegion;
+    CHECK_THROWS_WITH(adopter.adopt(in, camera), Catch::Contains("HostGBuffer::albedo") && Catch::Contains(needle));
     CHECK(test::drainGlErrors().empty());
     glDeleteTextures(1, &albedo);
 }
