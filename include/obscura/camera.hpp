@@ -46,7 +46,9 @@ struct Camera {
     //! Throws Error{InvalidArgument} for values outside these ranges.
     OBSCURA_API static Camera perspective(const LookAt& lookAt, float fovy, float aspect, float nearPlane, float farPlane,
                               DepthMode mode = DepthMode::Standard);
-    //! halfHeight: world units, (0, inf): half the height of the view volume.
+    //! halfHeight: world units, (0, inf): half the height of the view volume. aspect:
+    //! width/height, (0, inf). near: world units, (0, far). far: world units, (near, inf).
+    //! Throws Error{InvalidArgument} for values outside these ranges.
     OBSCURA_API static Camera orthographic(const LookAt& lookAt, float halfHeight, float aspect, float nearPlane,
                                float farPlane, DepthMode mode = DepthMode::Standard);
 };

@@ -44,8 +44,8 @@ struct ComposeSettings {
     float indirectScale = 1.0f;  //!< k, [0, 1e6]
     float exposure = 1.0f;       //!< multiplies the radiance before tone mapping, (0, 1e6]
     ToneMapper toneMapper = ToneMapper::Aces;
-    //! Drago: the largest scene luminance L_wmax (after exposure), (0, inf); 0 = the frame's
-    //! own maximum (a reduction pass). Either counts as at least 1e-30: a frame is mapped to
+    //! Drago: the largest scene luminance L_wmax, W/(sr m^2) after exposure, [0, inf); 0 = the
+    //! frame's own maximum (a reduction pass). Either counts as at least 1e-30: a frame is mapped to
     //! its own maximum down to 1e-30 after exposure (applied in float, after the half-float
     //! radiance(), so a small exposure costs no precision).
     float dragoMaxLuminance = 0.0f;
@@ -86,7 +86,10 @@ enum class HostSourceEncoding {
 //! The host's own GL_FRAMEBUFFER_SRGB setting is not used: `encoding` decides.
 struct HostTarget {
     unsigned framebuffer = 0;
-    int x = 0, y = 0, width = 0, height = 0; //!< pixels, width and height >= 1
+    //! Pixels. x, y: the viewport's lower-left corner, within ContextInfo::viewportBoundsRange
+    //! (GL would clamp it); it may lie off the framebuffer. width, height: [1,
+    //! ContextInfo::maxViewportDims].
+    int x = 0, y = 0, width = 0, height = 0;
     HostBlend blend = HostBlend::Overwrite;
     HostSourceEncoding encoding = HostSourceEncoding::Auto;
 };
@@ -121,9 +124,9 @@ public:
     //! Error{InvalidArgument} for a source whose base level is not 0, for a target that is not
     //! a complete framebuffer of this context, whose first draw buffer is GL_NONE, has no
     //! image attached or an integer one (the output is float), that has the source's level 0
-    //! at any colour attachment (a feedback loop), with an empty rectangle or one wider or
-    //! taller than
-    //! GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims), or bad enumerators.
+    //! at any colour attachment (a feedback loop), with an empty rectangle, one wider or
+    //! taller than GL_MAX_VIEWPORT_DIMS (ContextInfo::maxViewportDims) or with its origin
+    //! outside GL_VIEWPORT_BOUNDS_RANGE, or bad enumerators.
     void drawToHost(const TextureView& source, const HostTarget& target);
 
     std::size_t memoryBytes() const;

@@ -148,6 +148,9 @@ struct ContextInfo {
     int maxDrawBuffers = 0;
     int maxViewports = 0;
     int maxViewportDims[2] = {0, 0}; //!< GL_MAX_VIEWPORT_DIMS, pixels: HostTarget's largest width and height
+    //! GL_VIEWPORT_BOUNDS_RANGE, pixels: where HostTarget's x and y may lie (at least
+    //! [-32768, 32767] in GL 4.5)
+    float viewportBoundsRange[2] = {0.0f, 0.0f};
     bool conservativeRaster = false; //!< GL_NV_conservative_raster or GL_INTEL_conservative_rasterization
     int timestampBits = 0;           //!< GL_QUERY_COUNTER_BITS of GL_TIMESTAMP; 0 = no GPU timer (wall clock used)
 };

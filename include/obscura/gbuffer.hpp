@@ -189,7 +189,9 @@ public:
 
     //! Rasterizes every mesh and mesh reference of the scene. Pass "gbuffer.render".
     //! Throws Error{InvalidArgument} for a bad size, a non-finite camera or light, a material
-    //! index out of range, non-finite mesh positions or an unusable host buffer.
+    //! index out of range, non-finite mesh positions, an unusable host buffer, or a material
+    //! texture that is one of this GBuffer's own images (drawn into while sampled: render the
+    //! frame that shows it with another GBuffer).
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
     //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,

@@ -15,7 +15,9 @@
 namespace obscura::headless {
 
 struct HeadlessDesc {
-    int major = 4;          //!< requested GL version; drivers may return a newer one
+    //! The requested GL version, one that exists (1.0-1.5, 2.0-2.1, 3.0-3.3, 4.0-4.6);
+    //! drivers may return a newer one. Obscura's Context needs 4.5.
+    int major = 4;
     int minor = 5;
     bool coreProfile = true;
     bool debug = false;     //!< EGL_CONTEXT_OPENGL_DEBUG: enables KHR_debug messages

@@ -181,9 +181,9 @@ OBSCURA_API int channels(const Quantity& quantity);
 OBSCURA_API std::string describe(const Quantity& quantity);
 
 struct RenderSettings {
-    int samplesPerPixel = 256; //!< [2, 1048576]; each half gets half of them
+    int samplesPerPixel = 256; //!< [2, 1048576]; each half gets half of them (odd: one fewer)
     std::uint64_t seed = 1;
-    int threads = 0;           //!< 0 = all cores
+    int threads = 0;           //!< worker threads, [0, 4096]; 0 = all cores
     bool progress = false;     //!< a progress bar on stderr
 };
 

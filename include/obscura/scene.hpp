@@ -107,7 +107,7 @@ struct Light {
     glm::vec3 tangent{1.0f, 0.0f, 0.0f}; //!< rect: direction of its width; made orthogonal to direction; not parallel to it
     glm::vec2 size{1.0f};                //!< rect: width and height, world units, (0, inf)
     float innerAngle = 0.3f;  //!< spot: half-angle of full intensity, radians, [0, outerAngle]
-    float outerAngle = 0.5f;  //!< spot: half-angle where intensity reaches 0, radians, (0, pi/2)
+    float outerAngle = 0.5f;  //!< spot: half-angle where intensity reaches 0, radians, [1e-6, pi/2)
     //! Point and spot: radius of the emitting sphere, world units, [0, inf). Irradiance uses
     //! 1/max(d², radius²), so a surface touching a light of radius > 0 stays finite. With
     //! radius 0 a point exactly at the light receives nothing (the direction is undefined).
@@ -120,7 +120,7 @@ struct Light {
 struct Environment {
     std::string path;        //!< EXR/HDR file, equirectangular (longitude along x)
     float intensity = 1.0f;  //!< radiance scale, [0, inf)
-    float rotation = 0.0f;   //!< about +y, radians, any value (taken modulo 2 pi)
+    float rotation = 0.0f;   //!< about +y, radians, any finite value (taken modulo 2 pi)
 };
 
 enum class PhaseFunction {
@@ -132,7 +132,7 @@ enum class PhaseFunction {
 //! A homogeneous medium in an axis-aligned box (for the participating-media module and
 //! its reference). Phase angles are between the light's travel direction and the view ray's.
 struct Medium {
-    glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units, boxMin <= boxMax per axis
+    glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units, finite, boxMin <= boxMax per axis
     glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
     glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
     PhaseFunction phase = PhaseFunction::HenyeyGreenstein;
@@ -157,7 +157,8 @@ struct Bounds {
 };
 
 //! Checks everything that can be checked on the CPU: lights (finite, in range, consistent
-//! types), materials, CPU meshes (sizes, finite positions, index range) and material indices.
+//! types), materials, the environment and media (finite, in range, enumerators), CPU meshes
+//! (sizes, finite positions, index range) and material indices.
 //! Throws Error{InvalidArgument} naming the offending element, e.g. "Scene::lights[2].radius".
 OBSCURA_API void validateScene(const Scene& scene);
 

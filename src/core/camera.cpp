@@ -39,6 +39,7 @@ glm::mat4 lookAtMatrix(const LookAt& l) {
 }
 
 void checkRange(float nearPlane, float farPlane, DepthMode mode) {
+    detail::requireEnumerator(mode, {DepthMode::Standard, DepthMode::StandardZeroToOne, DepthMode::Reversed}, "camera DepthMode");
     if (!(nearPlane > 0.0f) || !std::isfinite(nearPlane))
         throw Error(ErrorCode::InvalidArgument, "camera near plane must be finite and > 0, got " + std::to_string(nearPlane));
     const bool infiniteFar = std::isinf(farPlane) && farPlane > 0.0f;

@@ -3,6 +3,7 @@
 #include "core/context_impl.hpp"
 #include "core/sampling.hpp"
 #include "core/shader_library.hpp"
+#include "core/validate.hpp"
 #include "shaders/common/common_bindings.h"
 
 #include <algorithm>
@@ -162,6 +163,7 @@ Context::Context(const ContextDesc& desc) : impl_(std::make_unique<detail::Conte
         throw Error(ErrorCode::InvalidArgument,
                     "ContextDesc::getProcAddress is null: pass the host's GL loader function "
                     "(eglGetProcAddress, glfwGetProcAddress, ...)");
+    detail::requireEnumerator(desc.statePolicy, {StatePolicy::Preserve, StatePolicy::Clobber}, "ContextDesc::statePolicy");
     auto& ctx = *impl_;
     detail::LoaderTrampoline trampoline{&desc, {}};
     const int version = gladLoadGLContextUserPtr(&ctx.gl, detail::loadThroughHost, &trampoline);
@@ -192,6 +194,7 @@ Context::Context(const ContextDesc& desc) : impl_(std::make_unique<detail::Conte
     ctx.gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &info.maxDrawBuffers);
     ctx.gl.GetIntegerv(GL_MAX_VIEWPORTS, &info.maxViewports);
     ctx.gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, info.maxViewportDims);
+    ctx.gl.GetFloatv(GL_VIEWPORT_BOUNDS_RANGE, info.viewportBoundsRange);
     ctx.gl.GetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &info.timestampBits);
     info.conservativeRaster = detail::hasExtension(ctx.gl, "GL_NV_conservative_raster") ||
                               detail::hasExtension(ctx.gl, "GL_INTEL_conservative_rasterization");

@@ -25,8 +25,10 @@ void check(const Image& t, const Image& r, const Options& o) {
                                                     "x" + std::to_string(r.channels) + ")");
     if (o.mask && (o.mask->width != t.width || o.mask->height != t.height || o.mask->channels != 1 || !consistent(*o.mask)))
         throw Error(ErrorCode::InvalidArgument, "metrics: the mask must be a 1-channel image of the same size");
-    if (!(o.relativeEpsilon > 0.0) || !(o.outlierFraction >= 0.0 && o.outlierFraction < 0.5) || !(o.peak > 0.0))
-        throw Error(ErrorCode::InvalidArgument, "metrics: relativeEpsilon and peak must be > 0, outlierFraction in [0, 0.5)");
+    if (!(o.relativeEpsilon > 0.0) || std::isinf(o.relativeEpsilon) || !(o.outlierFraction >= 0.0 && o.outlierFraction < 0.5) ||
+        !(o.peak > 0.0) || std::isinf(o.peak))
+        throw Error(ErrorCode::InvalidArgument,
+                    "metrics: relativeEpsilon and peak must be finite and > 0, outlierFraction in [0, 0.5)");
 }
 
 bool counted(const Options& o, std::size_t pixel) { return !o.mask || o.mask->pixels[pixel] > 0.0f; }

@@ -13,6 +13,8 @@ namespace {
 
 using detail::requireFinite;
 using detail::requireInRange;
+using detail::requireEnumerator;
+using detail::shortNumber;
 
 void validateMeshData(const MeshData& d, const std::string& what) {
     const std::size_t n = d.positions.size();
@@ -41,6 +43,8 @@ std::string lightName(std::size_t i) { return "Scene::lights[" + std::to_string(
 
 void validateLight(const Light& l, std::size_t i) {
     const std::string what = lightName(i);
+    requireEnumerator(l.type, {LightType::Point, LightType::Spot, LightType::Directional, LightType::Rect, LightType::Sphere},
+                      what + ".type");
     requireFinite(l.color, what + ".color");
     requireFinite(l.position, what + ".position");
     requireFinite(l.direction, what + ".direction");
@@ -83,10 +87,33 @@ void validateMaterial(const Material& m, std::size_t i) {
         throw Error(ErrorCode::InvalidArgument, what + ".emission must be >= 0 per channel");
 }
 
+void validateEnvironment(const Environment& e) {
+    requireInRange(e.intensity, 0.0, FLT_MAX, "Scene::environment.intensity", "(radiance scale)");
+    requireFinite(e.rotation, "Scene::environment.rotation");
+}
+
+void validateMedium(const Medium& m, std::size_t i) {
+    const std::string what = "Scene::media[" + std::to_string(i) + "]";
+    requireFinite(m.boxMin, what + ".boxMin");
+    requireFinite(m.boxMax, what + ".boxMax");
+    requireFinite(m.scattering, what + ".scattering");
+    requireFinite(m.absorption, what + ".absorption");
+    if (glm::any(glm::lessThan(m.boxMax, m.boxMin)))
+        throw Error(ErrorCode::InvalidArgument, what + ".boxMax must be >= boxMin on every axis");
+    if (glm::any(glm::lessThan(m.scattering, glm::vec3(0.0f))) || glm::any(glm::lessThan(m.absorption, glm::vec3(0.0f))))
+        throw Error(ErrorCode::InvalidArgument, what + ": scattering and absorption must be >= 0 per channel (1/world unit)");
+    requireEnumerator(m.phase, {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh},
+                      what + ".phase");
+    if (!(std::abs(m.anisotropy) < 1.0f))
+        throw Error(ErrorCode::InvalidArgument, what + ".anisotropy must be in (-1, 1), got " + shortNumber(m.anisotropy));
+}
+
 } // namespace
 
 void validateScene(const Scene& scene) {
     for (std::size_t i = 0; i < scene.lights.size(); ++i) validateLight(scene.lights[i], i);
+    if (scene.environment) validateEnvironment(*scene.environment);
+    for (std::size_t i = 0; i < scene.media.size(); ++i) validateMedium(scene.media[i], i);
     for (std::size_t i = 0; i < scene.materials.size(); ++i) validateMaterial(scene.materials[i], i);
     const auto checkMaterial = [&](std::uint32_t index, const std::string& what) {
         if (index >= scene.materials.size())

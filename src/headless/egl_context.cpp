@@ -69,6 +69,15 @@ EGLDisplay deviceDisplay(bool hardwareOnly) {
     return EGL_NO_DISPLAY;
 }
 
+// A GL version that exists: EGL would refuse another with EGL_BAD_MATCH, which says less.
+void requireGlVersion(int major, int minor) {
+    static constexpr int lastMinor[] = {5, 1, 3, 6}; // 1.5, 2.1, 3.3, 4.6
+    if (major < 1 || major > 4 || minor < 0 || minor > lastMinor[major - 1])
+        throw obscura::Error(obscura::ErrorCode::InvalidArgument,
+                             "HeadlessDesc: GL " + std::to_string(major) + "." + std::to_string(minor) +
+                                 " does not exist (1.0-1.5, 2.0-2.1, 3.0-3.3, 4.0-4.6)");
+}
+
 } // namespace
 
 struct HeadlessContext::Impl {
@@ -78,6 +87,7 @@ struct HeadlessContext::Impl {
 };
 
 HeadlessContext::HeadlessContext(const HeadlessDesc& desc) : impl_(std::make_unique<Impl>()) {
+    requireGlVersion(desc.major, desc.minor);
     const char* forced = std::getenv("OBSCURA_EGL_PLATFORM");
     const std::string want = forced ? forced : "";
     auto& d = impl_->display;

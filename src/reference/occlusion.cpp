@@ -1,5 +1,6 @@
 // Ambient occlusion, obscurance and bent normals.
 #include "obscura/error.hpp"
+#include "core/validate.hpp"
 #include "reference/estimators.hpp"
 
 #include <cmath>
@@ -53,6 +54,10 @@ Estimator occlusionEstimator(const RayScene::Impl& scene, const Quantity& quanti
     if (const auto* ob = std::get_if<Obscurance>(&quantity)) {
         if (!(ob->maxDistance > 0.0) || std::isinf(ob->maxDistance))
             throw Error(ErrorCode::InvalidArgument, "Obscurance::maxDistance must be finite and > 0 world units");
+        obscura::detail::requireEnumerator(ob->falloff,
+                          {ObscuranceFalloff::None, ObscuranceFalloff::Linear, ObscuranceFalloff::Quadratic,
+                           ObscuranceFalloff::Smooth},
+                          "Obscurance::falloff");
         const Obscurance q = *ob;
         return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
             const glm::vec3 origin = surfaceOrigin(scene, p);

@@ -143,6 +143,9 @@ Reference render(const RayScene& scene, const ShadingPoints& points, const Quant
     if (settings.samplesPerPixel < 2 || settings.samplesPerPixel > (1 << 20))
         throw Error(ErrorCode::InvalidArgument, "RenderSettings::samplesPerPixel must be in [2, 1048576], got " +
                                                     std::to_string(settings.samplesPerPixel));
+    if (settings.threads < 0 || settings.threads > 4096)
+        throw Error(ErrorCode::InvalidArgument,
+                    "RenderSettings::threads must be in [0, 4096] (0: all cores), got " + std::to_string(settings.threads));
     if (points.width < 1 || points.height < 1 ||
         points.points.size() != static_cast<std::size_t>(points.width) * static_cast<std::size_t>(points.height))
         throw Error(ErrorCode::InvalidArgument, "ShadingPoints: inconsistent size");

@@ -57,6 +57,13 @@ float pcfKernelCode(PcfKernel kernel) {
 } // namespace
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
+    requireEnumerator(s.filter,
+                      {ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Vsm, ShadowFilter::Esm, ShadowFilter::Evsm2,
+                       ShadowFilter::Evsm4, ShadowFilter::Msm, ShadowFilter::Pcss},
+                      owner + "::filter");
+    requireEnumerator(s.pcfKernel, {PcfKernel::Grid, PcfKernel::PoissonDisc, PcfKernel::OptimizedGrid}, owner + "::pcfKernel");
+    requireEnumerator(s.momentPrecision, {ShadowMomentPrecision::Float32, ShadowMomentPrecision::Bits16},
+                      owner + "::momentPrecision");
     requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");
     if (!(s.pcssBlockerFraction > 0.0f && s.pcssBlockerFraction < 1.0f))
         throw Error(ErrorCode::InvalidArgument,

@@ -40,6 +40,7 @@ void validateSettings(const VoxelizerSettings& s) {
     if (!isPowerOfTwo(s.resolution) || s.resolution < 8 || s.resolution > 2048)
         throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::resolution must be a power of two in [8, 2048], got " +
                                                     std::to_string(s.resolution));
+    requireEnumerator(s.mode, {VoxelMode::Surface, VoxelMode::Solid}, "VoxelizerSettings::mode");
     requireInRange(s.targets, 1, VOXEL_MAX_TARGETS, "VoxelizerSettings::targets", "render targets (128 slices each)");
     requireInRange(s.margin, 0.0, 1.0, "VoxelizerSettings::margin", "of the largest extent");
     if (!s.fitBox) {

@@ -415,6 +415,18 @@ TEST_CASE("Drawing into a host framebuffer overwrites or multiplies its colour a
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 0, 10}), Error);
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {12345, 0, 0, 10, 10}), Error);
     CHECK_THROWS_AS(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, 0, 10, 10, static_cast<HostBlend>(2)}), Error);
+    // An origin GL would clamp (GL_VIEWPORT_BOUNDS_RANGE) shifted the source; one off the
+    // framebuffer but within the range is drawn (partly clipped).
+    const float* bounds = f.ctx.info().viewportBoundsRange;
+    REQUIRE(bounds[0] <= -32768.0f);
+    REQUIRE(bounds[1] >= 32767.0f);
+    const int past = static_cast<int>(bounds[1]) + 1;
+    CHECK_THROWS_WITH(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, past, 0, 10, 10}),
+                      Catch::Contains("GL_VIEWPORT_BOUNDS_RANGE"));
+    CHECK_THROWS_WITH(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, 0, -past - 1, 10, 10}),
+                      Catch::Contains("GL_VIEWPORT_BOUNDS_RANGE"));
+    CHECK_NOTHROW(f.composer.drawToHost(ao.view(GL_R16F, 8, 8), {fbo, -5, -5, 10, 10}));
+    CHECK(test::drainGlErrors().empty());
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &color);
 }

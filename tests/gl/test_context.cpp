@@ -79,6 +79,27 @@ TEST_CASE("A context older than GL 4.5 is rejected with its version", "[context]
     }
 }
 
+TEST_CASE("A state policy outside its enumerators and a GL version that does not exist are refused",
+          "[context][bad-input]") {
+    test::GlFixture gl;
+    ContextDesc desc = gl.desc();
+    desc.statePolicy = static_cast<StatePolicy>(2); // behaved as Clobber before
+    CHECK_THROWS_WITH(Context(desc), Catch::Contains("ContextDesc::statePolicy"));
+    for (const auto& [major, minor] : {std::pair{4, 7}, std::pair{3, 4}, std::pair{0, 0}, std::pair{5, 0}, std::pair{4, -1}}) {
+        CAPTURE(major, minor);
+        headless::HeadlessDesc bad;
+        bad.major = major;
+        bad.minor = minor;
+        try {
+            headless::HeadlessContext context(bad);
+            FAIL("created a GL " << major << "." << minor << " context");
+        } catch (const Error& e) {
+            CHECK(e.code() == ErrorCode::InvalidArgument);
+            CHECK_THAT(e.what(), Catch::Contains("does not exist"));
+        }
+    }
+}
+
 TEST_CASE("A compatibility-profile context is refused", "[context][bad-input]") {
     headless::HeadlessDesc compat;
     compat.coreProfile = false;

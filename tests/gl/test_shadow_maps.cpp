@@ -564,6 +564,20 @@ TEST_CASE("Shadow maps are left out without shadowed lights and refuse bad setti
     bad = {};
     bad.constantBias = NAN;
     CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("constantBias"));
+    // Enumerators outside their lists: a filter ran as Hard, a kernel as Grid, and a moment
+    // precision stored 16 bits for a shader reading 32.
+    bad = {};
+    bad.filter = static_cast<ShadowFilter>(8);
+    CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("::filter"));
+    bad = {};
+    bad.pcfKernel = static_cast<PcfKernel>(3);
+    CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("::pcfKernel"));
+    bad = {};
+    bad.momentPrecision = static_cast<ShadowMomentPrecision>(2);
+    CHECK_THROWS_WITH(shadows.mask(view, set, 0, bad), Catch::Contains("::momentPrecision"));
+    ShadowMapSettings mapping{256, 2, 0.5f};
+    mapping.pointMapping = static_cast<PointShadowMapping>(2); // mapped as Cube before
+    CHECK_THROWS_WITH(shadows.render(scene, camera, mapping), Catch::Contains("ShadowMapSettings::pointMapping"));
     const Camera other = Camera::perspective({{0, 2.5f, 5.1f}, {0, 0, 0}, {0, 1, 0}}, 0.9f, 1.0f, 0.05f, 100.0f);
     const GBufferView otherView = gbuffer.render(scene, other, {32, 32, false, {}});
     CHECK_THROWS_WITH(shadows.mask(otherView, set, 0, {}), Catch::Contains("another camera"));

@@ -374,7 +374,8 @@ TEST_CASE("Voxelization is robust to flat scenes and far offsets and tiny or inv
                  [](VoxelizerSettings& s) { s.targets = 0; }, [](VoxelizerSettings& s) { s.targets = 9; },
                  [](VoxelizerSettings& s) { s.margin = -0.1f; },
                  [](VoxelizerSettings& s) { s.fitBox = false, s.boxMax.x = s.boxMin.x; },
-                 [](VoxelizerSettings& s) { s.fitBox = false, s.boxMin.y = std::nanf(""); }}) {
+                 [](VoxelizerSettings& s) { s.fitBox = false, s.boxMin.y = std::nanf(""); },
+                 [](VoxelizerSettings& s) { s.mode = static_cast<VoxelMode>(2); }}) { // ran the Solid pass before
             VoxelizerSettings s;
             change(s);
             CHECK_THROWS_AS(voxelizer.voxelize(scene, s), Error);

@@ -135,3 +135,18 @@ TEST_CASE("Bent normals of symmetric configurations are the normal", "[reference
     CHECK(r.value.pixels[1] > 0.99);
     CHECK(std::abs(r.value.pixels[2]) < 4.0 / std::sqrt(settings.samplesPerPixel / 2.0));
 }
+
+TEST_CASE("An obscurance falloff outside its enumerators and a negative thread count are refused", "[reference][obscurance]") {
+    // Before, an unknown falloff weighed every hit 1 (fully open) and -1 threads meant all cores.
+    const RayScene scene(test::meshScene({test::quadMesh(kFloor)}));
+    const ShadingPoints points = test::pointsAt(pointsNearCentre(), {0, 1, 0});
+    RenderSettings settings;
+    settings.samplesPerPixel = 4;
+    Obscurance unknown;
+    unknown.falloff = static_cast<ObscuranceFalloff>(9);
+    CHECK_THROWS_WITH(render(scene, points, unknown, settings), Catch::Contains("Obscurance::falloff"));
+    settings.threads = -1;
+    CHECK_THROWS_WITH(render(scene, points, reference::AmbientOcclusion{}, settings), Catch::Contains("RenderSettings::threads"));
+    settings.threads = 1;
+    CHECK_NOTHROW(render(scene, points, reference::AmbientOcclusion{}, settings));
+}

@@ -98,4 +98,10 @@ TEST_CASE("Unsupported projections are refused with a reason", "[unit][camera]")
     CHECK_THROWS_AS(Camera::perspective({{0, 0, 0}, {0, 0, -1}, {0, 0, -1}}, 1.0f, 1.0f, 0.1f, 10.0f), Error);
     CHECK_THROWS_AS(Camera::perspective({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 3.2f, 1.0f, 0.1f, 10.0f), Error);
     CHECK_THROWS_AS(Camera::orthographic({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 0.0f, 1.0f, 0.1f, 10.0f), Error);
+    // A DepthMode outside its enumerators left the depth row unset (perspective: zero rows).
+    const DepthMode unknown = static_cast<DepthMode>(3);
+    CHECK_THROWS_WITH(Camera::perspective({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f, unknown),
+                      Catch::Contains("DepthMode"));
+    CHECK_THROWS_WITH(Camera::orthographic({{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 1.0f, 1.0f, 0.1f, 10.0f, unknown),
+                      Catch::Contains("DepthMode"));
 }

@@ -114,4 +114,10 @@ TEST_CASE("The halves' noise estimate is MSE(A B) over 4 and bad inputs are refu
     metrics::Options o;
     o.mask = &wrongMask;
     CHECK_THROWS_AS(metrics::mse(a, b, o), Error);
+    metrics::Options infinite; // documented (0, inf): an infinite epsilon or peak made every error 0 or Inf
+    infinite.relativeEpsilon = INFINITY;
+    CHECK_THROWS_WITH(metrics::relMse(a, b, infinite), Catch::Contains("finite"));
+    infinite = {};
+    infinite.peak = INFINITY;
+    CHECK_THROWS_WITH(metrics::psnr(a, b, infinite), Catch::Contains("finite"));
 }

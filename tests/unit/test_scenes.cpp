@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -174,4 +175,43 @@ TEST_CASE("Camera specs parse the lookAt/fovy convention", "[unit][scenes]") {
     // Vertical fov 45 deg: projection[1][1] = 1 / tan(22.5 deg); aspect 2.
     CHECK(cam.projection[1][1] == Approx(1.0 / std::tan(3.14159265 / 8)));
     CHECK(cam.projection[0][0] == Approx(cam.projection[1][1] / 2));
+}
+
+TEST_CASE("validateScene refuses a light type, environment or medium outside its range", "[unit][scenes]") {
+    // Before, a light type outside the enumerators shaded as nothing, an environment's NaN
+    // rotation or negative intensity and a medium's NaN coefficients or unknown phase passed
+    // (media were checked only by the reference, and only the one it rendered).
+    const auto refused = [](const Scene& s, const std::string& needle) {
+        CHECK_THROWS_WITH(validateScene(s), Catch::Contains(needle));
+    };
+    Scene s;
+    s.lights.push_back({});
+    s.lights[0].type = static_cast<LightType>(7);
+    refused(s, "Scene::lights[0].type");
+    s = {};
+    s.environment = Environment{"sky.exr", -1.0f, 0.0f};
+    refused(s, "Scene::environment.intensity");
+    s.environment = Environment{"sky.exr", 1.0f, NAN};
+    refused(s, "Scene::environment.rotation");
+    s.environment = Environment{"sky.exr", 2.0f, 7.0f}; // any finite rotation
+    CHECK_NOTHROW(validateScene(s));
+    Medium good;
+    good.boxMin = {-1, -1, -1};
+    good.boxMax = {1, 1, 1};
+    good.scattering = glm::vec3(0.5f);
+    s = {};
+    s.media = {good, good};
+    CHECK_NOTHROW(validateScene(s));
+    const auto bad = [&](auto change, const std::string& needle) {
+        Scene t = s;
+        change(t.media[1]);
+        refused(t, "Scene::media[1]" + needle);
+    };
+    bad([](Medium& m) { m.scattering.y = NAN; }, ".scattering");
+    bad([](Medium& m) { m.absorption = glm::vec3(INFINITY); }, ".absorption");
+    bad([](Medium& m) { m.boxMax.x = NAN; }, ".boxMax");
+    bad([](Medium& m) { m.boxMax.z = -2.0f; }, ".boxMax must be >= boxMin");
+    bad([](Medium& m) { m.absorption.x = -0.1f; }, ": scattering and absorption");
+    bad([](Medium& m) { m.phase = static_cast<PhaseFunction>(5); }, ".phase");
+    bad([](Medium& m) { m.anisotropy = 1.0f; }, ".anisotropy");
 }

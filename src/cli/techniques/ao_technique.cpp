@@ -82,7 +82,7 @@ public:
                                                                 {"half", AoResolution::Half},
                                                                 {"quarter", AoResolution::Quarter}});
         else if (key == "blur_radius") s.blurRadius = parseInteger(key, value, 0, 16, "taps");
-        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-6, 1, ""));
+        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-30, 1, ""));
         else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
