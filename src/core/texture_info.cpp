@@ -11,12 +11,13 @@ namespace obscura::detail {
 
 namespace {
 
-// The sRGB formats of GL 4.5 core, sized, unsized and compressed (the sampler decodes them).
+// The sRGB formats of GL 4.5 core a texture that passes queryTexture2D can have, sized and
+// unsized (compressed ones are refused; a generic compressed one may be stored uncompressed).
+// The sampler decodes them.
 bool isSrgbFormat(GLenum format) {
     switch (format) {
     case GL_SRGB8: case GL_SRGB8_ALPHA8: case GL_SRGB: case GL_SRGB_ALPHA: case GL_COMPRESSED_SRGB:
-    case GL_COMPRESSED_SRGB_ALPHA: case GL_COMPRESSED_SRGB_ALPHA_BPTC_UNORM: case GL_COMPRESSED_SRGB8_ETC2:
-    case GL_COMPRESSED_SRGB8_ALPHA8_ETC2_EAC: case GL_COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2: return true;
+    case GL_COMPRESSED_SRGB_ALPHA: return true;
     default: return false;
     }
 }

@@ -19,7 +19,6 @@
 #include <cfloat>
 #include <cmath>
 #include <string>
-#include <utility>
 
 namespace obscura {
 namespace {
@@ -133,16 +132,6 @@ struct GBuffer::Impl {
 
     void releaseRegionCopies() noexcept {
         for (RegionCopy* c : {&regionDepth, &regionNormal, &regionAlbedo, &regionRadiance, &regionBackDepth}) c->release();
-    }
-
-    // Whether `name` is a texture adopt() writes or frees: a view adopt() returned, handed
-    // back as a host texture, would be read while overwritten, reallocated or deleted.
-    bool adoptWrites(GLuint name) const noexcept {
-        if (name == 0) return false;
-        for (const GLuint own : {adoptedNormal.get(), regionDepth.name(), regionNormal.name(), regionAlbedo.name(),
-                                 regionRadiance.name(), regionBackDepth.name()})
-            if (name == own) return true;
-        return false;
     }
 
     std::size_t regionCopyBytes() const noexcept {
@@ -444,15 +433,17 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, SampledAs::Rgb);
     TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
     TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
-    for (const auto& [who, texture] : {std::pair{"depth", host.depth.name}, std::pair{"normal", host.normal.name},
-                                       std::pair{"albedo", host.albedo.name}, std::pair{"directRadiance", host.directRadiance.name},
-                                       std::pair{"backDepth", host.backDepth.name}})
-        if (impl_->adoptWrites(texture))
-            throw Error(ErrorCode::InvalidArgument,
-                        std::string("HostGBuffer::") + who +
-                            " is a texture of a view this GBuffer's adopt() returned (its normals or a region's "
-                            "copy), which adopt() overwrites, reallocates or frees: pass the host's own texture, "
-                            "or adopt the view with another GBuffer");
+    // A view adopt() returned, handed back: its normals or region copies would be read while
+    // overwritten, reallocated or freed.
+    const Impl& own = *impl_;
+    requireNotOwnOutput({{"HostGBuffer::depth", host.depth.name},
+                         {"HostGBuffer::normal", host.normal.name},
+                         {"HostGBuffer::albedo", host.albedo.name},
+                         {"HostGBuffer::directRadiance", host.directRadiance.name},
+                         {"HostGBuffer::backDepth", host.backDepth.name}},
+                        {own.adoptedNormal.get(), own.regionDepth.name(), own.regionNormal.name(), own.regionAlbedo.name(),
+                         own.regionRadiance.name(), own.regionBackDepth.name()},
+                        "GBuffer");
     const HostRect region = resolveRegion(host.region, depth);
     if (!coversWhole(region, depth)) {
         requireCopyable(ctx, host.depth.name, depth.internalFormat, "HostGBuffer::depth");

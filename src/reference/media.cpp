@@ -108,10 +108,8 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
                                                     " but the scene has " + std::to_string(scene.scene.media.size()) +
                                                     " media");
     const Medium medium = scene.scene.media[q.medium];
-    if (glm::any(glm::lessThan(medium.boxMax, medium.boxMin)) || glm::any(glm::lessThan(medium.scattering, glm::vec3(0))) ||
-        glm::any(glm::lessThan(medium.absorption, glm::vec3(0))) || !(std::abs(medium.anisotropy) < 1.0f))
-        throw Error(ErrorCode::InvalidArgument, "Scene::media[" + std::to_string(q.medium) +
-                                                    "]: needs boxMin <= boxMax, coefficients >= 0 and |anisotropy| < 1");
+    // Its box, coefficients, phase and anisotropy were checked when the RayScene was made
+    // (validateScene).
     return [&scene, q, medium](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const glm::dvec3 sigmaS(medium.scattering), sigmaT = sigmaS + glm::dvec3(medium.absorption);
         double t0, t1;
