@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
         examples::App app(options);
         const assets::LoadedScene scene = assets::loadScene(options.scene);
         const assets::CameraSpec spec =
-            options.camera.empty() ? scene.camera : assets::parseCameraSpec(options.camera, scene.camera);
+            options.camera.empty() ? scene.camera
+                                   : assets::parseCameraSpec(options.camera, scene.camera, sceneBounds(scene.scene));
         TextureImage shown;
         {
             Context ctx(app.contextDesc());

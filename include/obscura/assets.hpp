@@ -45,9 +45,24 @@ OBSCURA_API LoadedScene loadMeshFile(const std::filesystem::path& path);
 //! A built-in name, a .json file, or a mesh file.
 OBSCURA_API LoadedScene loadScene(const std::string& source);
 
-//! Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg" (lookAt + vertical fovy in degrees). Near
-//! and far planes are taken from `base`. Throws Error{Parse}.
-OBSCURA_API CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base);
+//! Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far]" (lookAt, vertical fovy in degrees,
+//! optionally the near and far planes in world units, 0 < near < far). Without near and far
+//! they are `base`'s at base's own eye (the scene's own camera spelled out is unchanged) and
+//! where they hold `bounds` seen from the new eye, else fitDepthRange's.
+//! Throws Error{Parse} for a count other than 10 or 12, a word that is not a number, or
+//! planes outside 0 < near < far < inf.
+OBSCURA_API CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base, const Bounds& bounds = {});
+//! `spec` with near and far planes that hold `bounds` seen from its eye along its view axis:
+//! far 1 % past the farthest corner's view depth, near 0.9 of the nearest corner's, but at
+//! least far / 1000 (with the eye inside the bounds or beside them, the nearest corner's depth
+//! is 0 or less; 1000 keeps a 32F depth's relative precision near 1e-5, camera.hpp). Unchanged
+//! for empty bounds or bounds wholly behind the eye (nothing to hold).
+OBSCURA_API CameraSpec fitDepthRange(const CameraSpec& spec, const Bounds& bounds);
+//! False when `bounds` lie wholly outside `camera`'s view volume (all eight corners outside
+//! one of its six planes): the picture has no geometry at all. True otherwise (a box that
+//! straddles a frustum's edge may still miss it; a cheap test, for warnings). True for empty
+//! bounds.
+OBSCURA_API bool boundsMayBeVisible(const Camera& camera, const Bounds& bounds);
 //! Parses "WxH" (pixels, both >= 1). Throws Error{Parse}.
 OBSCURA_API std::pair<int, int> parseImageSize(const std::string& text);
 //! A standard-depth perspective camera for an image of width x height pixels.

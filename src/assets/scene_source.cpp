@@ -2,6 +2,7 @@
 #include "obscura/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -23,7 +24,27 @@ LoadedScene loadScene(const std::string& source) {
     return loadMeshFile(path);
 }
 
-CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base) {
+namespace {
+
+std::array<glm::vec3, 8> corners(const Bounds& b) {
+    std::array<glm::vec3, 8> c;
+    for (int i = 0; i < 8; ++i) c[i] = {(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z};
+    return c;
+}
+
+// Nearest and farthest view depth (distance along the view axis) of the bounds' corners.
+std::pair<float, float> depthRangeOf(const LookAt& lookAt, const Bounds& b) {
+    const glm::vec3 forward = glm::normalize(lookAt.target - lookAt.eye);
+    float nearest = INFINITY, farthest = -INFINITY;
+    for (const glm::vec3& c : corners(b)) {
+        const float z = glm::dot(c - lookAt.eye, forward);
+        nearest = std::min(nearest, z);
+        farthest = std::max(farthest, z);
+    }
+    return {nearest, farthest};
+}
+
+std::vector<float> parseNumbers(const std::string& text) {
     std::vector<float> v;
     std::stringstream in(text);
     std::string item;
@@ -36,13 +57,60 @@ CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base) {
             throw Error(ErrorCode::Parse, "camera \"" + text + "\": \"" + item + "\" is not a number");
         }
     }
-    if (v.size() != 10)
-        throw Error(ErrorCode::Parse, "camera \"" + text + "\" needs 10 numbers: ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg (got " +
+    return v;
+}
+
+} // namespace
+
+CameraSpec fitDepthRange(const CameraSpec& spec, const Bounds& bounds) {
+    if (bounds.empty) return spec;
+    const auto [nearest, farthest] = depthRangeOf(spec.lookAt, bounds);
+    if (!(farthest > 0.0f)) return spec;
+    CameraSpec c = spec;
+    c.farPlane = 1.01f * farthest;
+    c.nearPlane = std::max(0.9f * nearest, c.farPlane / 1000.0f);
+    return c;
+}
+
+bool boundsMayBeVisible(const Camera& camera, const Bounds& bounds) {
+    if (bounds.empty) return true;
+    const glm::mat4 clip = camera.projection * camera.view;
+    const auto all = corners(bounds);
+    std::array<glm::vec4, 8> h;
+    for (int i = 0; i < 8; ++i) h[i] = clip * glm::vec4(all[i], 1.0f);
+    // Clip space: inside is -w <= x, y <= w and the depth mode's z range; a plane all eight
+    // corners lie outside of hides them all.
+    const float zLow = camera.clipDepth == ClipDepth::ZeroToOne ? 0.0f : -1.0f;
+    const auto allOutside = [&](auto outside) { return std::all_of(h.begin(), h.end(), outside); };
+    return !(allOutside([](const glm::vec4& p) { return p.x < -p.w; }) || allOutside([](const glm::vec4& p) { return p.x > p.w; }) ||
+             allOutside([](const glm::vec4& p) { return p.y < -p.w; }) || allOutside([](const glm::vec4& p) { return p.y > p.w; }) ||
+             allOutside([&](const glm::vec4& p) { return p.z < zLow * p.w; }) ||
+             allOutside([](const glm::vec4& p) { return p.z > p.w; }));
+}
+
+CameraSpec parseCameraSpec(const std::string& text, const CameraSpec& base, const Bounds& bounds) {
+    const std::vector<float> v = parseNumbers(text);
+    if (v.size() != 10 && v.size() != 12)
+        throw Error(ErrorCode::Parse, "camera \"" + text +
+                                          "\" needs 10 or 12 numbers: ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far] (got " +
                                           std::to_string(v.size()) + ")");
     CameraSpec c = base;
     c.lookAt = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
     c.fovyDegrees = v[9];
-    return c;
+    if (v.size() == 12) {
+        if (!(v[10] > 0.0f && v[10] < v[11] && std::isfinite(v[11])))
+            throw Error(ErrorCode::Parse, "camera \"" + text + "\": near and far must satisfy 0 < near < far < inf, got " +
+                                              std::to_string(v[10]) + " and " + std::to_string(v[11]));
+        c.nearPlane = v[10];
+        c.farPlane = v[11];
+        return c;
+    }
+    // The base's planes were chosen for its own eye: kept there, and elsewhere only where
+    // they still hold the scene.
+    if (c.lookAt.eye == base.lookAt.eye) return c;
+    const CameraSpec fitted = fitDepthRange(c, bounds);
+    if (base.nearPlane <= fitted.nearPlane && base.farPlane >= fitted.farPlane) return c;
+    return fitted;
 }
 
 std::pair<int, int> parseImageSize(const std::string& text) {

@@ -10,7 +10,7 @@ namespace obscura::cli {
 
 struct SceneOptions {
     std::string scene = "cornell";
-    std::string camera;            //!< ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg; empty = the scene's own
+    std::string camera;            //!< ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far]; empty = the scene's own
     std::string size = "256x256";
     std::string depth = "standard"; //!< standard | zero_to_one | reversed
 };

@@ -168,13 +168,55 @@ TEST_CASE("Camera specs parse the lookAt/fovy convention", "[unit][scenes]") {
     const assets::CameraSpec c = assets::parseCameraSpec("1,2,3,0,0,0,0,1,0,45", base);
     CHECK(c.lookAt.eye == glm::vec3(1, 2, 3));
     CHECK(c.fovyDegrees == 45.0f);
-    CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,3", base), Catch::Contains("10 numbers"));
+    CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,3", base), Catch::Contains("10 or 12 numbers"));
+    const assets::CameraSpec planes = assets::parseCameraSpec("1,2,3,0,0,0,0,1,0,45,0.5,20", base);
+    CHECK((planes.nearPlane == 0.5f && planes.farPlane == 20.0f));
+    CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,3,0,0,0,0,1,0,45,2,1", base), Catch::Contains("0 < near < far"));
     CHECK_THROWS_WITH(assets::parseCameraSpec("1,2,x,0,0,0,0,1,0,45", base), Catch::Contains("\"x\""));
     const Camera cam = assets::makeCamera(c, 64, 32);
     CHECK(analyzeProjection(cam).kind == ProjectionKind::Perspective);
     // Vertical fov 45 deg: projection[1][1] = 1 / tan(22.5 deg); aspect 2.
     CHECK(cam.projection[1][1] == Approx(1.0 / std::tan(3.14159265 / 8)));
     CHECK(cam.projection[0][0] == Approx(cam.projection[1][1] / 2));
+}
+
+// The case: a floor-and-wall model 4 units wide, framed as mesh files are (from 8.6
+// units, near plane 4.1), seen from 3 units before its wall. Every corner of the model lies
+// nearer than the framing camera's near plane from there (nothing would be drawn); the planes
+// fitted to the bounds hold every corner, and a base camera's own eye keeps its own planes.
+TEST_CASE("A camera given without planes fits them to the scene seen from its eye", "[unit][scenes]") {
+    Bounds floorAndWall;
+    floorAndWall.min = {-2.0f, 0.0f, -2.0f};
+    floorAndWall.max = {2.0f, 2.0f, 2.0f};
+    floorAndWall.empty = false;
+    const assets::CameraSpec framed = assets::framingCamera(floorAndWall);
+    const std::string closeUp = "0,1,1,0,0.5,-2,0,1,0,60";
+    const auto cornerDepths = [&](const assets::CameraSpec& c) {
+        const glm::vec3 forward = glm::normalize(c.lookAt.target - c.lookAt.eye);
+        std::vector<float> depths;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner{(i & 1) ? 2.0f : -2.0f, (i & 2) ? 2.0f : 0.0f, (i & 4) ? 2.0f : -2.0f};
+            depths.push_back(glm::dot(corner - c.lookAt.eye, forward));
+        }
+        return depths;
+    };
+    const assets::CameraSpec kept = assets::parseCameraSpec(closeUp, framed);
+    for (float depth : cornerDepths(kept)) CHECK(depth < kept.nearPlane);
+    const assets::CameraSpec fitted = assets::parseCameraSpec(closeUp, framed, floorAndWall);
+    for (float depth : cornerDepths(fitted))
+        if (depth > 0.0f) CHECK((depth > fitted.nearPlane && depth < fitted.farPlane));
+    CHECK(fitted.farPlane / fitted.nearPlane <= 1000.0f * 1.0001f);
+    // Seen through that camera the bounds are in view; turned around, they are not.
+    CHECK(assets::boundsMayBeVisible(assets::makeCamera(fitted, 64, 48), floorAndWall));
+    CHECK_FALSE(assets::boundsMayBeVisible(assets::makeCamera(kept, 64, 48), floorAndWall));
+    const assets::CameraSpec away = assets::parseCameraSpec("0,1.5,2.5,0,1.5,10,0,1,0,45", framed, floorAndWall);
+    CHECK_FALSE(assets::boundsMayBeVisible(assets::makeCamera(away, 64, 48), floorAndWall));
+    // A base camera's own eye keeps its planes, whatever they are.
+    assets::CameraSpec base = framed;
+    base.lookAt = {{0.0f, 3.0f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    base.nearPlane = 7.0f;
+    const assets::CameraSpec same = assets::parseCameraSpec("0,3,8,0,0,0,0,1,0,45", base, floorAndWall);
+    CHECK((same.nearPlane == 7.0f && same.farPlane == base.farPlane));
 }
 
 TEST_CASE("validateScene refuses a light type, environment or medium outside its range", "[unit][scenes]") {
