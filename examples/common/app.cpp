@@ -40,13 +40,15 @@ int runGuarded(const std::function<void()>& body) {
     }
 }
 
-ExampleScene loadExampleScene(const AppOptions& options, int width, int height) {
+ExampleScene loadExampleScene(const AppOptions& options, int width, int height, DepthMode mode) {
     ExampleScene s;
     s.loaded = assets::loadScene(options.scene);
-    const assets::CameraSpec spec =
-        options.camera.empty() ? s.loaded.camera : assets::parseCameraSpec(options.camera, s.loaded.camera);
-    s.camera = assets::makeCamera(spec, width, height);
     const Bounds bounds = sceneBounds(s.loaded.scene);
+    const assets::CameraSpec spec =
+        options.camera.empty() ? s.loaded.camera : assets::parseCameraSpec(options.camera, s.loaded.camera, bounds);
+    s.camera = assets::makeCamera(spec, width, height, mode);
+    if (!assets::boundsMayBeVisible(s.camera, bounds))
+        std::fprintf(stderr, "warning: the whole scene lies outside the camera's view: the picture holds no geometry\n");
     s.diagonal = glm::length(bounds.max - bounds.min);
     return s;
 }
@@ -60,7 +62,7 @@ std::string pngPath(const std::string& path) {
 
 void addAppOptions(CLI::App& cli, AppOptions& o) {
     cli.add_option("--scene", o.scene, "Built-in scene, JSON scene or mesh file")->capture_default_str();
-    cli.add_option("--camera", o.camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg");
+    cli.add_option("--camera", o.camera, "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far]");
     cli.add_option("--size", o.size, "WxH pixels")->capture_default_str();
     cli.add_flag("--window", o.window, "Open a GLFW window (default: headless EGL)");
     cli.add_option("--frames", o.frames, "Frames to render; 0 = until the window is closed")->capture_default_str();
@@ -162,6 +164,7 @@ ContextDesc App::contextDesc() const {
     if (impl_->headless) return impl_->headless->contextDesc();
     ContextDesc d;
     d.getProcAddress = glfwLoader;
+    d.profiling = Profiling::Always; // the examples print their pass times
     return d;
 }
 

@@ -15,7 +15,7 @@ namespace obscura::examples {
 
 struct AppOptions {
     std::string scene = "cornell"; //!< built-in name, JSON scene or mesh file
-    std::string camera;            //!< ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg; empty = the scene's
+    std::string camera;            //!< ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far]; empty = the scene's
     std::string size = "512x512";  //!< WxH pixels
     bool window = false;           //!< open a GLFW window instead of a headless context
     int frames = 1;                //!< frames to render; 0 = until the window is closed
@@ -64,12 +64,13 @@ private:
     std::string screenshot_;
 };
 
-//! The scene of --scene seen through --camera (or the scene's own camera) at `width` x `height`.
+//! The scene of --scene seen through --camera (or the scene's own camera) at `width` x `height`,
+//! with depth as `mode` says.
 struct ExampleScene {
     assets::LoadedScene loaded;
     Camera camera;
     float diagonal = 0.0f; //!< of the scene's bounding box, world units
 };
-ExampleScene loadExampleScene(const AppOptions& options, int width, int height);
+ExampleScene loadExampleScene(const AppOptions& options, int width, int height, DepthMode mode = DepthMode::Standard);
 
 } // namespace obscura::examples

@@ -1,7 +1,7 @@
 // Global illumination example: one-bounce indirect light of a scene, screen-space or hybrid
-// (voxel visibility, screen radiance), alone or combined with the direct light (and, with the
-// thesis's formula, AO-shaded ambient light), on the example's own context (headless EGL, or a
-// GLFW window with an ImGui panel).
+// (voxel visibility, screen radiance), alone or combined with the direct light (and AO-shaded
+// ambient light, with --ambient), on the example's own context (headless EGL, or a GLFW window
+// with an ImGui panel).
 //
 //   obscura_example_global_illumination --scene cornell --method hybrid --view composed --out gi.png
 //   obscura_example_global_illumination --formula thesis --ambient 0.05 --out gi_ambient.png
@@ -30,22 +30,22 @@ int main(int argc, char** argv) {
     std::string viewName = "composed";
     float exposure = 0.0f;
     float ambient = 0.0f;
-    std::string formulaName = "physical";
+    std::string formulaName = "standard";
     parser.add_option("--view", viewName, "indirect (L1 alone) or composed (the combine of ComposeSettings, tone mapped)")
         ->capture_default_str();
     parser.add_option("--formula", formulaName,
-                      "Combine of the composed view: physical (direct + L1: the indirect light replaces the ambient "
-                      "term) or thesis (AO-shaded ambient + L1 + AO times direct)")
-        ->check(CLI::IsMember({"physical", "thesis"}))
+                      "Combine of the composed view: standard (direct + AO-shaded ambient + L1), physical (direct + "
+                      "L1: the indirect light replaces the ambient term) or thesis (AO-shaded ambient + L1 + AO "
+                      "times direct)")
+        ->check(CLI::IsMember({"standard", "physical", "thesis"}))
         ->capture_default_str();
     parser.add_option("--ambient", ambient,
                       "Ambient radiance L_amb, W/(sr m^2), [0, 65504], that AO shades in the composed view with "
-                      "--formula thesis (0: none)")
+                      "--formula standard or thesis (0: none)")
         ->check(CLI::Range(0.0f, 65504.0f))
         ->capture_default_str();
     bool withAo = true;
-    parser.add_option("--ao", withAo, "Shade the ambient term of --formula thesis with AO (1) or not (0)")
-        ->capture_default_str();
+    parser.add_option("--ao", withAo, "Shade the ambient term with AO (1) or not (0)")->capture_default_str();
     parser.add_option("--exposure", exposure, "Radiance multiplier before tone mapping, [0, 1e3] (0: 1, no scaling)")
         ->check(CLI::Range(0.0f, 1e3f))
         ->capture_default_str();
@@ -60,12 +60,15 @@ int main(int argc, char** argv) {
         const float diagonal = example.diagonal;
         if (controls.radius <= 0.0f) controls.radius = 0.1f * diagonal;
         bool composed = viewName == "composed";
-        bool thesis = formulaName == "thesis";
+        static const char* const kFormulas[] = {"standard", "physical", "thesis"};
+        static const CombineFormula kFormulaValues[] = {CombineFormula::Standard, CombineFormula::Physical,
+                                                        CombineFormula::Thesis};
+        int formula = formulaName == "physical" ? 1 : formulaName == "thesis" ? 2 : 0;
         app.setPanel([&] {
             controls.drawPanel("global illumination");
             ImGui::Begin("global illumination");
             controls.changed |= ImGui::Checkbox("composed", &composed);
-            controls.changed |= ImGui::Checkbox("thesis formula (else physical)", &thesis);
+            controls.changed |= ImGui::Combo("formula", &formula, kFormulas, 3);
             controls.changed |= ImGui::DragFloat("ambient", &ambient, 0.001f, 0.0f, 65504.0f, "%.4f");
             controls.changed |= ImGui::Checkbox("ambient occlusion", &withAo);
             controls.changed |= ImGui::DragFloat("exposure", &exposure, 0.001f, 0.0f, 1e3f, "%.4f");
@@ -98,13 +101,15 @@ int main(int argc, char** argv) {
                 const IndirectLightView result = gi.run(view, s);
                 ComposeSettings c;
                 c.exposure = exposure > 0.0f ? exposure : 1.0f;
-                c.formula = thesis ? CombineFormula::Thesis : CombineFormula::Physical;
+                c.formula = kFormulaValues[formula];
                 c.ambient = glm::vec3(ambient);
                 if (composed) {
                     ComposeInputs inputs{view, {}, result.radiance};
-                    // The physical combine uses neither AO nor the ambient light next to L1
-                    // (ComposeSettings): no AO pass then.
-                    if (thesis && withAo) {
+                    // AO shades the ambient term (and, in the thesis's formula, the direct
+                    // light); the physical combine uses neither next to L1: no AO pass then.
+                    const bool aoRead = c.formula == CombineFormula::Thesis ||
+                                        (c.formula == CombineFormula::Standard && ambient > 0.0f);
+                    if (aoRead && withAo) {
                         AmbientOcclusionSettings a;
                         a.radius = s.radius;
                         a.resolution = s.resolution;

@@ -3,6 +3,12 @@
 //
 // Combine (radiance, W/(sr m^2), per pixel; rho the albedo, L_dir the G-buffer's direct
 // radiance, L1 the one-bounce indirect radiance of IndirectLight, AO of AmbientOcclusion):
+//   Standard: L = L_dir + rho AO L_amb + k L1   (the default; what engines use)
+//             (AO shades only the ambient term, the constant stand-in for the light that
+//             neither the shadowed direct light nor the screen's one bounce carries, such as
+//             the sky's: outdoors, sun shadows keep it where GI, which sees no sky, adds
+//             nothing. The ambient and L1 overlap where the screen does see the light the
+//             ambient stands for; keep L_amb for what the scene's GI cannot gather.)
 //   Thesis:   L = rho AO L_amb + k L1 + AO L_dir
 //             (the source thesis's L = f_d (AO pi L_amb + k E_ind) + L_dir AO with f_d = rho/pi,
 //             E_ind = pi L1 / rho; AO darkens the direct light too, which is not physical)
@@ -10,7 +16,9 @@
 //             L = L_dir + rho AO L_amb    when it is not
 //             (the indirect light replaces the ambient term, which is its constant stand-in:
 //             with L1 given, L_amb and AO are not used; AO never darkens the direct light,
-//             which shadow maps shadow. A host can keep L_amb set and toggle GI.)
+//             which shadow maps shadow. A host can keep L_amb set and toggle GI. Without a
+//             sky term in L1, surfaces in shadow outdoors go black.)
+// docs/compose.md shows the three side by side.
 // Missing inputs count as absent: no AO = 1, no L1 = 0. Background pixels (depth at the
 // camera's clear depth, or one no surface has: see HostGBuffer::depth) get L = L_dir with
 // either formula: no AO, ambient or indirect term, whatever the albedo there.
@@ -33,12 +41,12 @@ namespace obscura {
 
 class Context;
 
-enum class CombineFormula { Thesis, Physical };
+enum class CombineFormula { Thesis, Physical, Standard };
 enum class ToneMapper { None, Drago, Aces };
 
 // Setting keys for tools are the field names in snake case.
 struct ComposeSettings {
-    CombineFormula formula = CombineFormula::Physical;
+    CombineFormula formula = CombineFormula::Standard;
     //! L_amb, W/(sr m^2), [0, 65504] per channel (Physical: only without indirect light)
     glm::vec3 ambient{0.0f};
     float indirectScale = 1.0f;  //!< k, [0, 1e6]
@@ -114,6 +122,10 @@ public:
     //! an input that is this Composer's own output (radiance() fed back as the direct
     //! radiance: alternate two Composers).
     TextureView compose(const ComposeInputs& inputs, const ComposeSettings& settings);
+
+    //! Compiles the programs compose() and drawToHost() take, ahead of time (nothing is
+    //! allocated). Throws Error{InvalidArgument} for settings out of range.
+    void prepare(const ComposeSettings& settings);
 
     //! The combined radiance of the last compose call, before its `exposure`, which the tone
     //! mapper multiplies it by (GL_RGBA16F, W/(sr m^2)).

@@ -122,20 +122,61 @@ struct DebugMessage {
     std::string text;
 };
 
+//! Obscura's own reports of a likely host mistake it cannot prove (DebugMessage::id, with
+//! source GL_DEBUG_SOURCE_THIRD_PARTY, type GL_DEBUG_TYPE_OTHER and severity
+//! GL_DEBUG_SEVERITY_MEDIUM). They go to ContextDesc::debugOutput where it is set, else into
+//! the GL debug log (glDebugMessageInsert), which reaches the host's own GL debug callback
+//! where it enabled GL_DEBUG_OUTPUT. With ContextDesc::strictChecks the call throws
+//! Error{InvalidArgument} with the same text instead.
+enum class Diagnostic : unsigned {
+    //! GBuffer::adopt: the camera's ClipDepth is not the current GL_CLIP_DEPTH_MODE. The
+    //! projection matrix alone cannot tell a [-1, 1] projection from a [0, 1] one (read as the
+    //! other it is just another valid near plane), so a wrong ClipDepth gives quietly wrong
+    //! AO and GI; a host whose depth pass ran under another clip control than the one current
+    //! at adopt() gets a false alarm.
+    ClipDepthMismatch = 0x0B5C0001u,
+    //! GBuffer::adopt: at least 1 % of the host's depth pixels lie exactly on the camera's
+    //! near plane (depth 0, or 1 with reversed-Z), where no rendered surface lies: a depth
+    //! buffer cleared for the other depth convention, or a projection other than the one it
+    //! was rendered with. Counted only while diagnostics can be delivered (debugOutput set,
+    //! strictChecks, or the host's GL_DEBUG_OUTPUT enabled), as it reads a count back (a stall).
+    DepthOnNearPlane = 0x0B5C0002u,
+};
+
 //! Resolves a GL function name in the host's current context (eglGetProcAddress,
 //! glfwGetProcAddress, SDL_GL_GetProcAddress, wglGetProcAddress with its fallback, ...).
 using GetProcAddressFn = void* (*)(void* userData, const char* name);
 using DebugCallback = std::function<void(const DebugMessage&)>;
 
+//! Which passes Profiler times (profiler.hpp).
+enum class Profiling {
+    //! None: no query, no glFinish. The default, for engines: a frame costs what its passes do.
+    Off,
+    //! GL_TIMESTAMP queries, read back later without stalling, where they are trustworthy (a
+    //! hardware driver with timestamp bits); nothing on software renderers, whose queries
+    //! under-report by about 20x. For engines that show pass times in their own overlay.
+    TimerQueries,
+    //! As TimerQueries on hardware; on software renderers (and without timestamp bits) glFinish
+    //! and a steady clock around every pass, which stalls the pipeline at each pass: for tools,
+    //! benchmarks and tests (the CLI, the examples and HeadlessContext::contextDesc use it).
+    Always,
+};
+
 struct ContextDesc {
     GetProcAddressFn getProcAddress = nullptr; //!< required
     void* userData = nullptr;                  //!< passed to getProcAddress unchanged
     StatePolicy statePolicy = StatePolicy::Preserve;
+    Profiling profiling = Profiling::Off;
     //! Optional. When set, GL debug output is enabled during our calls and every message
-    //! they raise is passed here (the host's own callback is restored afterwards). Messages
-    //! only arrive on debug contexts or drivers that report without one. It is called from
-    //! inside the driver: exceptions it throws are swallowed.
+    //! they raise is passed here (the host's own callback is restored afterwards), and so are
+    //! Obscura's own Diagnostic reports. GL's messages only arrive on debug contexts or
+    //! drivers that report without one. It may be called from inside the driver: exceptions
+    //! it throws are swallowed.
     DebugCallback debugOutput;
+    //! Refuse with Error{InvalidArgument} what is otherwise only reported as a Diagnostic (a
+    //! likely mistake that a host could also mean): for hosts that want to find such
+    //! mistakes early, in development builds.
+    bool strictChecks = false;
 };
 
 //! What Context found about the GL implementation.

@@ -96,6 +96,14 @@ enum class NormalEncoding {
     //! n * 0.5 + 0.5 in a normalized format of at least 4 bits a channel (GL_RGB(A)8,
     //! GL_RGB10_A2, GL_RGB(A)16); not sRGB, which the sampler would decode
     Unsigned,
+    //! Already as GBufferView::normal holds them: a float RGBA format (GL_RGBA16F as ours, or
+    //! GL_RGBA32F), view space, unit, facing the camera, alpha 1 on geometry and 0 on
+    //! background (another GBuffer's view normals, or a host pass written to that contract).
+    //! Read in place: no conversion pass and no memory (a region is still copied). The host
+    //! vouches for the contract, which nothing checks per pixel; alpha is each pixel's bound in
+    //! units of the view's normalError (1 for exact normals). NormalSpace::View only, and
+    //! HostGBuffer::normalDeviation must be 0 (it is applied by the conversion).
+    ViewContract,
 };
 
 //! GBufferView::normalError of host normals with `bits` in their coarsest channel in
@@ -120,15 +128,25 @@ struct HostRect {
 struct HostGBuffer {
     //! Required. GL_TEXTURE_2D, single-sampled, GL_DEPTH_COMPONENT16/24/32/32F or
     //! GL_DEPTH24_STENCIL8/GL_DEPTH32F_STENCIL8 (then GL_DEPTH_STENCIL_TEXTURE_MODE must be
-    //! GL_DEPTH_COMPONENT). Only `name` is read (here and in the other host textures): the
-    //! format and size are GL's, and the view gets them from there. Pixels at the camera's
+    //! GL_DEPTH_COMPONENT). Here and in the other host textures, `name` is required and
+    //! `internalFormat`, `width` and `height` are checked where not 0 (0: take GL's): a field
+    //! that differs from what GL reports is refused with InvalidArgument naming both, since a
+    //! description that lies (a copied snippet's format, last frame's size) is a host's bug. Pixels at the camera's
     //! clear depth are background, and so are those a float format lets hold what no
     //! rasterizer writes (NaN, +-Inf, below 0 or above 1), and depths farther than
     //! kMaxViewDistance (camera.hpp: with an infinite far plane, below near / 2^56);
     //! subnormal values count as 0 (the clear depth with reversed-Z, the near plane
     //! otherwise). Every pass leaves background pixels out.
     TextureView depth;
-    //! Optional, same size. Without it normals are reconstructed from depth: the cross product
+    //! Optional, same size: face normals, or smooth shading normals (interpolated from
+    //! vertices; say how far they may lie from the faces' in normalDeviation). A normal
+    //! facing away from the camera is turned around when the depth's own plane there lies on
+    //! its other side (a back face drawn two-sided), and else (a shading normal past a
+    //! silhouette, which turned around would point into the surface) bent just enough to face
+    //! the camera: its component along the view ray removed down to dot(n, toward camera) =
+    //! 1/64; that pixel's bound (alpha) grows by how far it was bent
+    //! (tests/gl/test_silhouette_normals.cpp).
+    //! Without it normals are reconstructed from depth: the cross product
     //! of one-sided differences to the neighbours whose depth steps least. Each pixel's alpha
     //! then bounds its error from the depth's precision (a step of the depth format through
     //! the projection; each pixel's depth must lie within one step of one plane through it and
@@ -145,6 +163,18 @@ struct HostGBuffer {
     //! to kMaxNormalError. Across creases and silhouettes the reconstruction is not the face
     //! normal, and no bound holds there.
     TextureView normal;
+    //! Radians, [0, pi/2]: how far `normal` may lie from the face normals of the surface
+    //! around its point (its own face and the faces that share a vertex with it). 0 (the
+    //! default) for face normals. The screen-space tests trust each normal to within its
+    //! bound and compare a pixel's rays with its neighbours' tangent planes, which may lie on
+    //! the next face; a bound too small lets a curved surface's own neighbours hide its rays
+    //! (ray-marched AO 0.2-0.5 along a coarse sphere's outline). For smooth shading normals
+    //! give twice the largest angle between a vertex normal and the normals of the faces
+    //! around that vertex (22 degrees on a 320-face sphere). Every pixel's bound (its alpha
+    //! in the view) grows by 2 sin(deviation / 2), at the price of occluders that close to a
+    //! tangent plane going unseen, as for 8-bit normals (README, "Host normals"). Ignored
+    //! without `normal`.
+    float normalDeviation = 0.0f;
     NormalSpace normalSpace = NormalSpace::View;
     NormalEncoding normalEncoding = NormalEncoding::Signed;
     //! Optional, same size, used in place: diffuse reflectance, for IndirectLight and
@@ -203,6 +233,11 @@ public:
     //! and for a texture of a view this GBuffer's adopt() returned (its normals or a region's
     //! copy, which this call would overwrite or free; another GBuffer may adopt it).
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
+
+    //! Compiles the program adopt() runs for such host buffers ahead of time (from whether
+    //! `host.normal` is given, its encoding and space; no texture is read, and nothing is
+    //! allocated). Throws Error{InvalidArgument} for enumerators out of range.
+    void prepareAdopt(const HostGBuffer& host);
 
     //! View-space positions reconstructed from depth into a GL_RGBA32F texture (xyz in world
     //! units, alpha = 1 on geometry, 0 on background with xyz = 0). Pass "gbuffer.positions".

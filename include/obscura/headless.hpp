@@ -38,7 +38,8 @@ public:
 
     //! eglGetProcAddress, in the form ContextDesc expects (userData unused).
     static void* getProcAddress(void* userData, const char* name);
-    //! A ContextDesc for obscura::Context on this context.
+    //! A ContextDesc for obscura::Context on this context, with Profiling::Always (tools and
+    //! tests time their passes; an engine's own ContextDesc defaults to Profiling::Off).
     ContextDesc contextDesc(StatePolicy policy = StatePolicy::Preserve) const;
 
 private:

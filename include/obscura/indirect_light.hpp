@@ -94,6 +94,10 @@ public:
     //! radiance fed back as direct radiance, for more bounces: alternate two objects).
     IndirectLightView run(const GBufferView& gbuffer, const IndirectLightSettings& settings);
 
+    //! Compiles every shader program run() takes for these settings, ahead of time (as
+    //! AmbientOcclusion::prepare). Throws as run() does for the settings.
+    void prepare(const IndirectLightSettings& settings);
+
     //! The last run's refinement (RefinementCount, ambient_occlusion.hpp); zeros when it ran
     //! at full resolution or without one; a refused run leaves it unchanged. Waits for the run
     //! to finish: not for every frame.

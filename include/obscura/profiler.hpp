@@ -57,7 +57,9 @@ public:
     ClockSource clock() const noexcept;
     //! Overrides the automatic choice (e.g. to compare both clocks). Discards pending results.
     void setClock(ClockSource clock);
-    //! Disabled, passes are not timed (and no queries or glFinish are issued). Default on.
+    //! Disabled, passes are not timed (and no queries or glFinish are issued). The default is
+    //! ContextDesc::profiling's: off for Off, and for TimerQueries where they are not
+    //! trustworthy; this overrides it, with clock() as it is.
     void setEnabled(bool enabled) noexcept;
     bool enabled() const noexcept;
 

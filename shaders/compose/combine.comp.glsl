@@ -31,6 +31,7 @@ void main() {
     const vec3 ambient = rho * ao * compose.ambient.rgb;
     vec3 l;
     if (compose.flags.x == COMPOSE_FORMULA_THESIS) l = ambient + compose.ambient.w * l1 + ao * direct;
+    else if (compose.flags.x == COMPOSE_FORMULA_STANDARD) l = direct + ambient + compose.ambient.w * l1;
     else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
     const vec3 combined = clampRadiance(l);
     imageStore(radianceOut, pixel, vec4(combined, 1.0));

@@ -97,6 +97,32 @@ int falloffCode(ObscuranceFalloff f) {
 }
 
 
+bool marches(const AmbientOcclusionSettings& s) { return s.method == AoMethod::RayMarch || s.method == AoMethod::Points; }
+ScreenThickness thicknessOf(const AmbientOcclusionSettings& s) {
+    return marches(s) ? s.thicknessMode : ScreenThickness::Constant;
+}
+ScreenMarch marchOf(const AmbientOcclusionSettings& s) {
+    return s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;
+}
+
+// The integrator's program for the settings; `variant`: "TILES" (over the geometry tiles),
+// "REFINE" (the listed pixels at full resolution) or nothing.
+GLuint integratorProgram(ContextImpl& ctx, const AmbientOcclusionSettings& s, const char* variant) {
+    std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
+    if (marches(s)) {
+        const auto screen = screenMarchDefines(marchOf(s), thicknessOf(s));
+        defines.insert(defines.end(), screen.begin(), screen.end());
+    }
+    if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+    addRayLaneDefine(defines, s.rayLanes);
+    if (variant) defines.push_back(variant);
+    return ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
+}
+
+GuidedFilterSettings filterSettings(const AmbientOcclusionSettings& s, bool tiled) {
+    return {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
+}
+
 } // namespace
 
 struct AmbientOcclusion::Impl {
@@ -141,8 +167,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    const bool marches = s.method == AoMethod::RayMarch || s.method == AoMethod::Points;
-    const ScreenThickness thickness = marches ? s.thicknessMode : ScreenThickness::Constant;
+    const ScreenThickness thickness = thicknessOf(s);
     const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
     const int scale = static_cast<int>(s.resolution);
@@ -165,23 +190,15 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
     bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
-    const ScreenMarch march = s.method == AoMethod::RayMarch ? s.march : ScreenMarch::View;
-    if (march == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, thickness, "ao.hiz");
+    if (marchOf(s) == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, thickness, "ao.hiz");
     const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
     // The guide is only for the filters: a full-resolution result without blur needs none.
     const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide") : 0;
     const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
-    std::vector<std::string> defines = {"METHOD=" + std::to_string(static_cast<int>(s.method))};
-    if (marches) {
-        const auto screen = screenMarchDefines(march, thickness);
-        defines.insert(defines.end(), screen.begin(), screen.end());
-    }
-    if (s.method == AoMethod::Voxel) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
-    addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
     const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, aoTexture, bent, false, size, scale};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
+    const GuidedFilterSettings filter = filterSettings(s, tiled);
     if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "ao.tiles");
     d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
                    std::max(std::size_t(size.x) * std::size_t(size.y),
@@ -189,9 +206,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
                    s.rayLanes);
     {
         PassScope pass(ctx, passName(s.method));
-        std::vector<std::string> integratorDefines = defines;
-        if (tiled) integratorDefines.push_back("TILES");
-        const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, integratorDefines);
+        const GLuint program = integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
         ctx.gl.UseProgram(program);
         if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
@@ -216,8 +231,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         d.filters.upsample(ctx, images, filter, fullAo, fullBent, {view.width, view.height}, "ao.upsample");
         if (refine) {
             PassScope pass(ctx, "ao.refine");
-            defines.push_back("REFINE");
-            const GLuint program = ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
+            const GLuint program = integratorProgram(ctx, s, "REFINE");
             ctx.gl.UseProgram(program);
             d.bindWrite(AO_OUT_IMAGE, fullAo, GL_R16F);
             if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, fullBent, GL_RGBA16F);
@@ -229,6 +243,19 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     }
     barrierForReaders(ctx);
     return out;
+}
+
+void AmbientOcclusion::prepare(const AmbientOcclusionSettings& s) {
+    validateSettings(s);
+    auto& ctx = impl_->ctx;
+    StateScope scope(ctx);
+    const int scale = static_cast<int>(s.resolution);
+    const bool tiled = scale > 1 && s.geometryTiles;
+    if (marchOf(s) == ScreenMarch::HiZ) HiZPyramid::prepare(ctx, thicknessOf(s));
+    integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
+    if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
+    // Only which images a run gives the filters matters here, not their names.
+    if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, s.bentNormals ? 1u : 0u, false, {}, scale}, filterSettings(s, tiled));
 }
 
 RefinementCount AmbientOcclusion::lastRefinement() const {

@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace obscura {
 namespace {
@@ -20,7 +22,8 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ComposeSettings& s) {
-    requireEnumerator(s.formula, {CombineFormula::Thesis, CombineFormula::Physical}, "ComposeSettings::formula");
+    requireEnumerator(s.formula, {CombineFormula::Thesis, CombineFormula::Physical, CombineFormula::Standard},
+                      "ComposeSettings::formula");
     requireEnumerator(s.toneMapper, {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}, "ComposeSettings::toneMapper");
     requireFinite(s.ambient, "ComposeSettings::ambient");
     for (int c = 0; c < 3; ++c) requireInRange(s.ambient[c], 0.0, 65504.0, "ComposeSettings::ambient", "W/(sr m^2)");
@@ -102,6 +105,16 @@ std::optional<int> attachmentSampling(ContextImpl& ctx, GLuint framebuffer, GLui
     return std::nullopt;
 }
 
+// The programs of compose()'s two passes and of drawToHost, in that order (no permutations:
+// the settings are uniforms).
+const std::vector<std::vector<std::string_view>>& programStages() {
+    static const std::vector<std::vector<std::string_view>> stages = {
+        {"compose/combine.comp.glsl"},
+        {"compose/tonemap.comp.glsl"},
+        {"compose/host_output.vert.glsl", "compose/host_output.frag.glsl"}};
+    return stages;
+}
+
 } // namespace
 
 struct Composer::Impl {
@@ -150,7 +163,9 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     const float dragoMax = s.dragoMaxLuminance > 0.0f ? std::max(s.dragoMaxLuminance, 1e-30f) : 0.0f;
     p.tone = glm::vec4(s.exposure, dragoMax, s.dragoBias, s.dragoDisplayMax);
     p.display = glm::vec4(s.gamma, reconstruction.clearDepth, reconstruction.farthestDepth, 0.0f);
-    p.flags = glm::ivec4(s.formula == CombineFormula::Thesis ? COMPOSE_FORMULA_THESIS : COMPOSE_FORMULA_PHYSICAL,
+    p.flags = glm::ivec4(s.formula == CombineFormula::Thesis     ? COMPOSE_FORMULA_THESIS
+                         : s.formula == CombineFormula::Physical ? COMPOSE_FORMULA_PHYSICAL
+                                                                 : COMPOSE_FORMULA_STANDARD,
                          s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
                          : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES
                                                             : COMPOSE_TONE_NONE,
@@ -169,7 +184,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     const GLuint display = d.display.ensure(ctx, GL_RGBA8, w, h, "compose.display");
     {
         PassScope pass(ctx, "compose.combine");
-        ctx.gl.UseProgram(ctx.shaders->program({"compose/combine.comp.glsl"}));
+        ctx.gl.UseProgram(ctx.shaders->program(programStages()[0]));
         d.bindRead(COMPOSE_DIRECT_UNIT, g.directRadiance.name);
         d.bindRead(COMPOSE_ALBEDO_UNIT, g.albedo.name);
         d.bindRead(COMPOSE_DEPTH_UNIT, g.depth.name);
@@ -182,13 +197,20 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     }
     {
         PassScope pass(ctx, "compose.tonemap");
-        ctx.gl.UseProgram(ctx.shaders->program({"compose/tonemap.comp.glsl"}));
+        ctx.gl.UseProgram(ctx.shaders->program(programStages()[1]));
         d.bindRead(COMPOSE_RADIANCE_UNIT, radiance);
         ctx.state.bindImage(ctx, COMPOSE_DISPLAY_IMAGE, display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
         dispatchCompute2D(ctx, w, h, COMPOSE_WORKGROUP);
     }
     barrierForReaders(ctx);
     return {display, GL_RGBA8, w, h};
+}
+
+void Composer::prepare(const ComposeSettings& settings) {
+    validateSettings(settings);
+    auto& ctx = impl_->ctx;
+    StateScope scope(ctx);
+    for (const auto& stages : programStages()) ctx.shaders->program(stages);
 }
 
 TextureView Composer::radiance() const {
@@ -253,7 +275,7 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
     // The shader writes location 0 only: the others would be undefined where their mask lets through.
     for (GLuint i = 1; i < static_cast<GLuint>(ctx.info.maxDrawBuffers); ++i)
         ctx.gl.ColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    const GLuint program = ctx.shaders->program({"compose/host_output.vert.glsl", "compose/host_output.frag.glsl"});
+    const GLuint program = ctx.shaders->program(programStages()[2]);
     ctx.gl.UseProgram(program);
     ctx.gl.ProgramUniform1i(program, COMPOSE_LOC_SOURCE_CHANNELS, info.channels);
     ctx.state.bindTexture(ctx, COMPOSE_SOURCE_UNIT, source.name);

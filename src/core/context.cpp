@@ -164,6 +164,8 @@ Context::Context(const ContextDesc& desc) : impl_(std::make_unique<detail::Conte
                     "ContextDesc::getProcAddress is null: pass the host's GL loader function "
                     "(eglGetProcAddress, glfwGetProcAddress, ...)");
     detail::requireEnumerator(desc.statePolicy, {StatePolicy::Preserve, StatePolicy::Clobber}, "ContextDesc::statePolicy");
+    detail::requireEnumerator(desc.profiling, {Profiling::Off, Profiling::TimerQueries, Profiling::Always},
+                              "ContextDesc::profiling");
     auto& ctx = *impl_;
     detail::LoaderTrampoline trampoline{&desc, {}};
     const int version = gladLoadGLContextUserPtr(&ctx.gl, detail::loadThroughHost, &trampoline);

@@ -77,6 +77,12 @@ public:
     GLuint ensure(ContextImpl& ctx, GLenum internalFormat, int width, int height, std::string_view label);
     GLuint get() const noexcept { return texture_.get(); }
     std::size_t bytes() const { return texture_ ? bytesPerTexel(format_) * std::size_t(width_) * std::size_t(height_) : 0; }
+    //! Frees the texture (a later ensure() allocates it again).
+    void release() noexcept {
+        texture_.reset();
+        format_ = GL_NONE;
+        width_ = height_ = 0;
+    }
 
 private:
     Texture texture_;

@@ -20,7 +20,7 @@ public:
     explicit ProfilerImpl(ContextImpl& ctx) : ctx_(ctx) {}
 
     ClockSource clock = ClockSource::GpuTimestamp;
-    bool enabled = true;
+    bool enabled = false; // ContextDesc::profiling decides
 
     // May throw (allocating queries); end() must not, since it runs in a destructor.
     int begin(const char* name) {
@@ -171,6 +171,8 @@ Profiler::Profiler(detail::ContextImpl& ctx) : ctx_(ctx), impl_(std::make_unique
     // Software renderers under-report timer queries; a context without timestamp bits has none.
     const bool gpuTimer = !ctx.info.softwareRenderer && ctx.info.timestampBits > 0;
     impl_->clock = gpuTimer ? ClockSource::GpuTimestamp : ClockSource::WallClockFinish;
+    const Profiling mode = ctx.desc.profiling;
+    impl_->enabled = mode == Profiling::Always || (mode == Profiling::TimerQueries && gpuTimer);
     if (const char* env = std::getenv("OBSCURA_PROFILER_CLOCK")) {
         const std::string v = env;
         if (v == "gpu") impl_->clock = ClockSource::GpuTimestamp;

@@ -191,4 +191,18 @@ double depthStepOf(ContextImpl& ctx, GLuint depthTexture) {
     return queryTexture2D(ctx, depthTexture, "depth texture").depthStep;
 }
 
+void requireDescribedAs(const obscura::TextureView& given, const TextureInfo& actual, const std::string& who) {
+    const auto refuse = [&](const std::string& field, const std::string& said, const std::string& is) {
+        throw Error(ErrorCode::InvalidArgument, who + "." + field + " says " + said + " but texture " +
+                                                    std::to_string(given.name) + " is " + is +
+                                                    " (leave the field 0 to take GL's)");
+    };
+    if (given.internalFormat != 0 && given.internalFormat != actual.internalFormat)
+        refuse("internalFormat", formatName(given.internalFormat), formatName(actual.internalFormat));
+    if (given.width != 0 && given.width != actual.width)
+        refuse("width", std::to_string(given.width), std::to_string(actual.width) + " texels wide");
+    if (given.height != 0 && given.height != actual.height)
+        refuse("height", std::to_string(given.height), std::to_string(actual.height) + " texels high");
+}
+
 } // namespace obscura::detail

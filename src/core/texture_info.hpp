@@ -2,6 +2,7 @@
 // Facts about a texture name, queried without changing any binding (DSA queries), after
 // checking that the name is a texture (querying a non-texture would raise a GL error).
 #include "core/gl.hpp"
+#include "obscura/texture.hpp"
 
 #include <string>
 
@@ -54,6 +55,12 @@ enum class SampledAs { Depth, Colour, Rgb, FloatRgb, Normal };
 //! requireSampledDepth, else a format as `kind` describes. Throws Error{InvalidArgument}
 //! mentioning `who`.
 void requireReadableAs(ContextImpl& ctx, GLuint name, const TextureInfo& info, const std::string& who, SampledAs kind);
+
+//! A host's description of its texture: each field it states (internalFormat, width, height
+//! not 0) must be what GL reports, so that a description that lies (a copied snippet's format,
+//! last frame's size) is refused instead of silently ignored. Throws Error{InvalidArgument}
+//! naming `who`, the field, and both values.
+void requireDescribedAs(const obscura::TextureView& given, const TextureInfo& actual, const std::string& who);
 
 std::string formatName(GLenum internalFormat);
 

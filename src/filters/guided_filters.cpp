@@ -26,6 +26,19 @@ std::vector<std::string> variant(const FilterImages& images, const GuidedFilterS
     return defines;
 }
 
+GLuint blurProgram(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s, bool lastStep) {
+    return ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images, s, lastStep));
+}
+
+GLuint upsampleProgram(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s) {
+    std::vector<std::string> defines = variant(images, s, true);
+    if (s.refineThreshold > 0.0f) defines.push_back("REFINE");
+    if (images.scale == 2) defines.push_back("HALF"); // the bilinear weights' zeros, known
+    return ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, defines);
+}
+
+GLuint tilesProgram(ContextImpl& ctx) { return ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {}); }
+
 // The value every channel of a background pixel gets, in the value image's format.
 void clearValue(ContextImpl& ctx, GLuint texture, bool rgb, float background) {
     const glm::vec4 texel(background);
@@ -106,7 +119,7 @@ void GuidedFilters::blur(ContextImpl& ctx, const FilterImages& images, const Gui
         const bool horizontal = d == 0;
         // At full resolution the vertical pass is the last step.
         const bool lastStep = !horizontal && images.scale == 1;
-        const GLuint program = ctx.shaders->program({"filters/guided_blur.comp.glsl"}, variant(images, s, lastStep));
+        const GLuint program = blurProgram(ctx, images, s, lastStep);
         if (lastStep) bindModulation(ctx, images);
         ctx.gl.UseProgram(program);
         if (horizontal) bindImages(ctx, images, images.value, images.direction, valueTemp, directionTemp);
@@ -122,19 +135,14 @@ void GuidedFilters::upsample(ContextImpl& ctx, const FilterImages& images, const
                              GLuint fullDirection, glm::ivec2 fullSize, const char* passName) {
     PassScope pass(ctx, passName);
     upload(ctx, images, s);
-    std::vector<std::string> defines = variant(images, s, true);
     bindModulation(ctx, images);
     if (s.geometryTiles) {
         // What the upsampling writes at background pixels, for the tiles it does not visit.
         clearValue(ctx, fullValue, images.rgb, s.background);
         clearToZero(ctx, fullDirection);
     }
-    if (s.refineThreshold > 0.0f) {
-        startRefineList(ctx, fullSize);
-        defines.push_back("REFINE");
-    }
-    if (images.scale == 2) defines.push_back("HALF"); // the bilinear weights' zeros, known
-    ctx.gl.UseProgram(ctx.shaders->program({"filters/joint_upsample.comp.glsl"}, defines));
+    if (s.refineThreshold > 0.0f) startRefineList(ctx, fullSize);
+    ctx.gl.UseProgram(upsampleProgram(ctx, images, s));
     bindImages(ctx, images, images.value, images.direction, fullValue, fullDirection);
     // One invocation per 2 x 2 quad of G-buffer pixels (see joint_upsample.comp.glsl).
     if (s.geometryTiles) dispatchIndirect(ctx, tiles_, 3 * sizeof(GLuint)); // the upsampling's header
@@ -177,11 +185,20 @@ void GuidedFilters::findGeometryTiles(ContextImpl& ctx, const FilterImages& imag
     const GLuint header[FILTER_TILES_HEADER_UINTS] = {0, 1, 1, 0, quadGroupsPerSide, quadGroupsPerSide, 0, 0};
     ctx.gl.NamedBufferSubData(tiles_.get(), 0, sizeof header, header);
     ctx.state.bindStorageBuffer(ctx, FILTER_TILES_SSBO, tiles_.get());
-    const GLuint program = ctx.shaders->program({"filters/geometry_tiles.comp.glsl"}, {});
+    const GLuint program = tilesProgram(ctx);
     ctx.gl.UseProgram(program);
     ctx.gl.ProgramUniform1i(program, FILTER_LOC_TILE_SCALE, scale);
     dispatchCompute2D(ctx, tiles.x, tiles.y, FILTER_WORKGROUP); // one invocation per tile
     ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GuidedFilters::prepare(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s) {
+    if (s.geometryTiles) tilesProgram(ctx);
+    if (s.taps > 0) {
+        blurProgram(ctx, images, s, false);
+        blurProgram(ctx, images, s, images.scale == 1);
+    }
+    if (images.scale > 1) upsampleProgram(ctx, images, s);
 }
 
 void GuidedFilters::dispatchGeometryTiles(ContextImpl& ctx) { dispatchIndirect(ctx, tiles_, 0); }

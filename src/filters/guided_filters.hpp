@@ -93,6 +93,10 @@ public:
     //! many the refinement computed (all of them, or none past the list's capacity). Waits for
     //! the GPU.
     RefinementCount refinementCount(ContextImpl& ctx) const;
+    //! Compiles the programs findGeometryTiles (with s.geometryTiles), blur and upsample
+    //! (images.scale > 1) use for such images and settings, ahead of time: of `images` only
+    //! which textures are given (not 0), `rgb` and `scale` matter.
+    static void prepare(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s);
     //! The most pixels an upsample to fullSize lists for refinement.
     static std::size_t refineCapacity(glm::ivec2 fullSize);
     std::size_t memoryBytes() const;

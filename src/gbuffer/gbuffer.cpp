@@ -2,6 +2,7 @@
 
 #include "core/compute.hpp"
 #include "core/context_impl.hpp"
+#include "core/diagnostics.hpp"
 #include "core/frame_uniforms.hpp"
 #include "core/pass_scope.hpp"
 #include "core/shader_library.hpp"
@@ -24,6 +25,8 @@ namespace obscura {
 namespace {
 
 using namespace detail;
+
+constexpr double kHalfPi = 1.5707963705062866; // pi / 2 as the float nearest it, which lies above
 
 
 shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
@@ -58,10 +61,11 @@ void dispatchOverImage(ContextImpl& ctx, int width, int height) {
     barrierForReaders(ctx);
 }
 
-// A host texture read beside the depth: level 0, the depth's size.
-TextureInfo hostTextureBeside(ContextImpl& ctx, GLuint name, const std::string& who, const TextureInfo& depth) {
-    const TextureInfo t = queryTexture2D(ctx, name, who);
-    requireBaseLevelZero(ctx, name, who);
+// A host texture read beside the depth: level 0, the depth's size, as the host described it.
+TextureInfo hostTextureBeside(ContextImpl& ctx, const TextureView& given, const std::string& who, const TextureInfo& depth) {
+    const TextureInfo t = queryTexture2D(ctx, given.name, who);
+    requireDescribedAs(given, t, who);
+    requireBaseLevelZero(ctx, given.name, who);
     if (t.width != depth.width || t.height != depth.height)
         throw Error(ErrorCode::InvalidArgument, who + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                                                     " but depth is " + std::to_string(depth.width) + "x" +
@@ -77,7 +81,7 @@ TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint d
         throw Error(ErrorCode::InvalidArgument,
                     "HostGBuffer::backDepth is HostGBuffer::depth (texture " + std::to_string(depthName) +
                         "): it must be a second layer, the nearest surfaces behind the first");
-    const TextureInfo t = hostTextureBeside(ctx, texture.name, "HostGBuffer::backDepth", depth);
+    const TextureInfo t = hostTextureBeside(ctx, texture, "HostGBuffer::backDepth", depth);
     requireSampledDepth(ctx, texture.name, t, "HostGBuffer::backDepth");
     return {texture.name, t.internalFormat, t.width, t.height};
 }
@@ -88,9 +92,104 @@ TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint d
 TextureView hostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
                        SampledAs kind) {
     if (!texture) return {};
-    const TextureInfo t = hostTextureBeside(ctx, texture.name, who, depth);
+    const TextureInfo t = hostTextureBeside(ctx, texture, who, depth);
     requireReadableAs(ctx, texture.name, t, who, kind);
     return {texture.name, t.internalFormat, t.width, t.height};
+}
+
+// The host's normals as adopt() reads them: the texture (empty: reconstructed from depth),
+// the view's normalError, the conversion pass's defines, or none when they are read in place.
+struct HostNormals {
+    TextureView texture;
+    float normalError = kHalfNormalError;
+    Defines defines;
+    bool inPlace = false; //!< NormalEncoding::ViewContract: no conversion pass
+};
+
+// The conversion pass's defines for the host's normals (none given: FROM_DEPTH).
+Defines normalDefines(const HostGBuffer& host) {
+    if (host.normal.name == 0) return {"FROM_DEPTH"};
+    Defines defines;
+    if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
+    if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
+    return defines;
+}
+
+HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const TextureInfo& depth) {
+    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned, NormalEncoding::ViewContract},
+                      "HostGBuffer::normalEncoding");
+    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
+    requireInRange(host.normalDeviation, 0.0, kHalfPi, "HostGBuffer::normalDeviation", "radians");
+    HostNormals out;
+    out.defines = normalDefines(host);
+    if (host.normal.name == 0) return out;
+    const TextureInfo n = hostTextureBeside(ctx, host.normal, "HostGBuffer::normal", depth);
+    out.texture = {host.normal.name, n.internalFormat, n.width, n.height};
+    GLint componentType = 0;
+    ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
+    // The coarsest of the three channels bounds the error (GL_R3_G3_B2's blue has 2 bits).
+    GLint bits = 0;
+    for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE}) {
+        GLint size = 0;
+        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, channel, &size);
+        bits = channel == GL_TEXTURE_RED_SIZE ? size : std::min(bits, size);
+    }
+    const NormalEncoding encoding = host.normalEncoding;
+    const bool signedOk = encoding == NormalEncoding::Signed && n.signedFloat;
+    // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
+    // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
+    // sRGB storage would be decoded by the sampler, bending every normal.
+    const bool unsignedOk = encoding == NormalEncoding::Unsigned && componentType == GL_UNSIGNED_NORMALIZED && !n.srgb &&
+                            bits >= 1 && adoptedNormalError(NormalEncoding::Unsigned, bits) <= kMaxNormalError;
+    const bool contractOk = encoding == NormalEncoding::ViewContract && n.signedFloat && n.channels == 4;
+    if (n.depth || n.channels < 3 || !(signedOk || unsignedOk || contractOk))
+        throw Error(ErrorCode::InvalidArgument,
+                    "HostGBuffer::normal has format " + formatName(n.internalFormat) + "; accepted: " +
+                        (encoding == NormalEncoding::Signed
+                             ? "a signed float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) "
+                               "with NormalEncoding::Signed"
+                         : encoding == NormalEncoding::Unsigned
+                             ? "a normalized unsigned RGB/RGBA format of at least 4 bits a channel, not sRGB "
+                               "(GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"
+                             : "GL_RGBA16F or GL_RGBA32F (alpha holds the bound) with NormalEncoding::ViewContract"));
+    if (encoding == NormalEncoding::ViewContract && (host.normalSpace != NormalSpace::View || host.normalDeviation != 0.0f))
+        throw Error(ErrorCode::InvalidArgument, "NormalEncoding::ViewContract normals are read in place: they must be in "
+                                                "NormalSpace::View with HostGBuffer::normalDeviation 0 (the conversion "
+                                                "pass applies the other settings)");
+    out.inPlace = encoding == NormalEncoding::ViewContract;
+    // Read in place, no store of ours rounds them again: the host format's own rounding, as
+    // adoptedNormalError counts it (our half floats' for 16 bits).
+    out.normalError = !out.inPlace ? adoptedNormalError(encoding, bits) : bits <= 16 ? kHalfNormalError : 0x1p-23f;
+    return out;
+}
+
+// Diagnostic::ClipDepthMismatch: the camera's ClipDepth against the current clip control.
+void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera) {
+    GLint mode = GL_NEGATIVE_ONE_TO_ONE;
+    ctx.gl.GetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
+    const bool zeroToOne = camera.clipDepth == ClipDepth::ZeroToOne;
+    if (zeroToOne == (mode == GL_ZERO_TO_ONE)) return;
+    reportDiagnostic(
+        ctx, Diagnostic::ClipDepthMismatch,
+        std::string("GBuffer::adopt: the camera's ClipDepth is ") + (zeroToOne ? "ZeroToOne" : "NegativeOneToOne") +
+            " but the current GL_CLIP_DEPTH_MODE is " + (mode == GL_ZERO_TO_ONE ? "GL_ZERO_TO_ONE" : "GL_NEGATIVE_ONE_TO_ONE") +
+            ": depth written under the current mode is read with the other mapping, and AO and GI are quietly wrong. "
+            "ClipDepth::NegativeOneToOne is for hosts with GL's default clip control (glm::perspective), ZeroToOne for "
+            "those that call glClipControl(..., GL_ZERO_TO_ONE) (reversed-Z, glm::perspectiveZO). If the depth pass ran "
+            "under another clip control than the one current now, ignore this.");
+}
+
+// Diagnostic::DepthOnNearPlane, from the normals pass's count.
+void reportNearPlanePixels(ContextImpl& ctx, GLuint pixels, int w, int h, const Camera& camera) {
+    const std::size_t total = std::size_t(w) * std::size_t(h);
+    if (std::size_t(pixels) * 100 < total) return;
+    const bool reversed = analyzeProjection(camera).reversedZ;
+    reportDiagnostic(ctx, Diagnostic::DepthOnNearPlane,
+                     "GBuffer::adopt: " + std::to_string(pixels) + " of " + std::to_string(total) +
+                         " host depth pixels lie exactly on the camera's near plane (depth " + (reversed ? "1" : "0") +
+                         (reversed ? " with its reversed-Z projection" : " with its standard projection") +
+                         "), where no rendered surface lies. Is the depth cleared for the other convention (background "
+                         "must hold " + (reversed ? "0" : "1") + ") or rendered with another projection than the camera's?");
 }
 
 } // namespace
@@ -111,6 +210,8 @@ struct GBuffer::Impl {
     Sampler materialSampler;     //!< our uploaded images, mipmapped
     Sampler hostMaterialSampler; //!< host textures: no mipmaps assumed (an incomplete chain would sample black)
     SizedTexture adoptedNormal; //!< adopt() output
+    Buffer nearPlaneCount;      //!< Diagnostic::DepthOnNearPlane's count, while diagnostics are delivered
+    GLuint nearPlanePixels = 0; //!< its last value
     //! adopt()'s copies of HostGBuffer::region: depth, normal, albedo, radiance, back depth
     RegionCopy regionDepth, regionNormal, regionAlbedo, regionRadiance, regionBackDepth;
     SizedTexture positions;     //!< positions() output
@@ -132,6 +233,39 @@ struct GBuffer::Impl {
 
     void releaseRegionCopies() noexcept {
         for (RegionCopy* c : {&regionDepth, &regionNormal, &regionAlbedo, &regionRadiance, &regionBackDepth}) c->release();
+    }
+
+    // adopt()'s pass "gbuffer.normals": the host's normals (or, without them, the depth's) in
+    // the view's contract, into adoptedNormal.
+    // With `countNearPlane`, nearPlanePixels gets the pixels whose depth is the near plane's
+    // (Diagnostic::DepthOnNearPlane; a read-back, which waits for the pass).
+    TextureView convertNormals(const Camera& camera, const TextureView& depthIn, const TextureView& normalIn,
+                               const HostNormals& normals, float deviation, int w, int h, bool countNearPlane) {
+        PassScope pass(ctx, "gbuffer.normals");
+        const GLuint normal = adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
+        Defines defines = normals.defines; // as prepareAdopt
+        if (countNearPlane) {
+            defines.push_back("COUNT_NEAR_PLANE");
+            if (!nearPlaneCount) nearPlaneCount = createBuffer(ctx, sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer.near_plane_count");
+            const GLuint zero = 0;
+            ctx.gl.NamedBufferSubData(nearPlaneCount.get(), 0, sizeof zero, &zero);
+            ctx.state.bindStorageBuffer(ctx, GBUFFER_NEAR_PLANE_SSBO, nearPlaneCount.get());
+        }
+        const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
+        ctx.gl.UseProgram(program);
+        frame.bind(ctx, camera, w, h, depthStepOf(ctx, depthIn.name), normals.normalError);
+        ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, depthIn.name);
+        ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
+        if (normalIn.name != 0) {
+            ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, normalIn.name);
+            ctx.state.bindSampler(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, ctx.nearestClampSampler());
+            ctx.gl.ProgramUniform1f(program, GBUFFER_LOC_NORMAL_DEVIATION,
+                                    static_cast<float>(2.0 * std::sin(0.5 * double(deviation))));
+        }
+        ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchOverImage(ctx, w, h);
+        if (countNearPlane) ctx.gl.GetNamedBufferSubData(nearPlaneCount.get(), 0, sizeof nearPlanePixels, &nearPlanePixels);
+        return {normal, GL_RGBA16F, w, h};
     }
 
     std::size_t regionCopyBytes() const noexcept {
@@ -389,47 +523,12 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     auto& ctx = impl_->ctx;
     analyzeProjection(camera);
     const TextureInfo depth = queryTexture2D(ctx, host.depth.name, "HostGBuffer::depth");
+    requireDescribedAs(host.depth, depth, "HostGBuffer::depth");
     requireSampledDepth(ctx, host.depth.name, depth, "HostGBuffer::depth");
     requireImageSize(depth.width, depth.height, ctx.info.maxTextureSize, "HostGBuffer::depth");
     requireBaseLevelZero(ctx, host.depth.name, "HostGBuffer::depth");
-    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned}, "HostGBuffer::normalEncoding");
-    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
-    Defines defines;
-    float normalError = kHalfNormalError;
-    TextureView normalIn{};
-    if (host.normal.name != 0) {
-        const TextureInfo n = hostTextureBeside(ctx, host.normal.name, "HostGBuffer::normal", depth);
-        normalIn = {host.normal.name, n.internalFormat, n.width, n.height};
-        GLint componentType = 0;
-        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
-        // The coarsest of the three channels bounds the error (GL_R3_G3_B2's blue has 2 bits).
-        GLint bits = 0;
-        for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE}) {
-            GLint size = 0;
-            ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, channel, &size);
-            bits = channel == GL_TEXTURE_RED_SIZE ? size : std::min(bits, size);
-        }
-        const bool signedOk = host.normalEncoding == NormalEncoding::Signed && n.signedFloat;
-        // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
-        // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
-        // sRGB storage would be decoded by the sampler, bending every normal.
-        const bool unsignedOk = host.normalEncoding == NormalEncoding::Unsigned &&
-                                componentType == GL_UNSIGNED_NORMALIZED && !n.srgb && bits >= 1 &&
-                                adoptedNormalError(NormalEncoding::Unsigned, bits) <= kMaxNormalError;
-        if (n.depth || n.channels < 3 || !(signedOk || unsignedOk))
-            throw Error(ErrorCode::InvalidArgument,
-                        "HostGBuffer::normal has format " + formatName(n.internalFormat) + "; accepted: " +
-                            (host.normalEncoding == NormalEncoding::Signed
-                                 ? "a signed float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) "
-                                   "with NormalEncoding::Signed"
-                                 : "a normalized unsigned RGB/RGBA format of at least 4 bits a channel, not sRGB "
-                                   "(GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"));
-        normalError = adoptedNormalError(host.normalEncoding, bits);
-        if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
-        if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
-    } else {
-        defines.push_back("FROM_DEPTH");
-    }
+    const HostNormals normals = checkHostNormals(ctx, host, depth);
+    TextureView normalIn = normals.texture;
     TextureView albedo = hostColour(ctx, host.albedo, "HostGBuffer::albedo", depth, SampledAs::Rgb);
     TextureView directRadiance = hostColour(ctx, host.directRadiance, "HostGBuffer::directRadiance", depth, SampledAs::FloatRgb);
     TextureView backDepth = hostBackDepth(ctx, host.backDepth, host.depth.name, depth);
@@ -453,29 +552,23 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         if (backDepth) requireCopyable(ctx, backDepth.name, backDepth.internalFormat, "HostGBuffer::backDepth");
     }
 
+    reportClipDepthMismatch(ctx, camera);
+    // Queried before the scope, which may turn the host's GL_DEBUG_OUTPUT on or off.
+    const bool countNearPlane = !normals.inPlace && diagnosticsDelivered(ctx);
     StateScope scope(ctx);
     TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height};
     if (coversWhole(region, depth)) impl_->releaseRegionCopies();
     else impl_->copyRegion(region, depthIn, normalIn, albedo, directRadiance, backDepth);
-    PassScope pass(ctx, "gbuffer.normals");
     const int w = region.width, h = region.height;
-    const GLuint normal = impl_->adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
-    const GLuint program = ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
-    ctx.gl.UseProgram(program);
-    impl_->frame.bind(ctx, camera, w, h, depthStepOf(ctx, depthIn.name), normalError);
-    ctx.state.bindTexture(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, depthIn.name);
-    ctx.state.bindSampler(ctx, GBUFFER_DEPTH_TEXTURE_UNIT, ctx.nearestClampSampler());
-    if (normalIn.name != 0) {
-        ctx.state.bindTexture(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, normalIn.name);
-        ctx.state.bindSampler(ctx, GBUFFER_NORMAL_TEXTURE_UNIT, ctx.nearestClampSampler());
-    }
-    ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchOverImage(ctx, w, h);
+    TextureView normal = normalIn;
+    if (normals.inPlace) impl_->adoptedNormal.release();
+    else normal = impl_->convertNormals(camera, depthIn, normalIn, normals, host.normalDeviation, w, h, countNearPlane);
+    if (countNearPlane) reportNearPlanePixels(ctx, impl_->nearPlanePixels, w, h, camera);
 
     GBufferView v;
     v.depth = {depthIn.name, depth.internalFormat, w, h};
-    v.normal = {normal, GL_RGBA16F, w, h};
-    v.normalError = normalError;
+    v.normal = normal;
+    v.normalError = normals.normalError;
     v.albedo = albedo;
     v.directRadiance = directRadiance;
     v.backDepth = backDepth;
@@ -483,6 +576,15 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
     v.width = w;
     v.height = h;
     return v;
+}
+
+void GBuffer::prepareAdopt(const HostGBuffer& host) {
+    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned, NormalEncoding::ViewContract},
+                      "HostGBuffer::normalEncoding");
+    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
+    if (host.normal.name != 0 && host.normalEncoding == NormalEncoding::ViewContract) return; // no pass
+    StateScope scope(impl_->ctx);
+    impl_->ctx.shaders->program({"gbuffer/normals.comp.glsl"}, normalDefines(host));
 }
 
 TextureView GBuffer::positions(const GBufferView& view) {
@@ -511,7 +613,8 @@ std::size_t GBuffer::memoryBytes() const {
                  (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
     if (i.backDepth) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * bytesPerTexel(GL_DEPTH_COMPONENT32F);
     total += i.lightCapacity * sizeof(shader::LightData);
-    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes() + i.regionCopyBytes();
+    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes() + i.regionCopyBytes() +
+             (i.nearPlaneCount ? sizeof(GLuint) : 0);
     return total;
 }
 

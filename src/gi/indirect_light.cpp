@@ -47,6 +47,28 @@ void validateSettings(const IndirectLightSettings& s) {
 
 bool filtered(const IndirectLightSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
 
+bool hybrid(const IndirectLightSettings& s) { return s.method == GiMethod::Hybrid; }
+ScreenThickness thicknessOf(const IndirectLightSettings& s) {
+    return hybrid(s) ? ScreenThickness::Constant : s.thicknessMode;
+}
+
+// The integrator's program for the settings; `variant`: "TILES", "REFINE" or nothing (as AO's).
+GLuint integratorProgram(ContextImpl& ctx, const IndirectLightSettings& s, const char* variant) {
+    std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid(s) ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
+    if (hybrid(s)) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
+    else {
+        const auto screen = screenMarchDefines(s.march, thicknessOf(s));
+        defines.insert(defines.end(), screen.begin(), screen.end());
+    }
+    addRayLaneDefine(defines, s.rayLanes);
+    if (variant) defines.push_back(variant);
+    return ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
+}
+
+GuidedFilterSettings filterSettings(const IndirectLightSettings& s, bool tiled) {
+    return {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
+}
+
 } // namespace
 
 struct IndirectLight::Impl {
@@ -108,7 +130,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
                                                 "the G-buffer with GBuffer::render, or give HostGBuffer::albedo and "
                                                 "directRadiance to GBuffer::adopt");
     const bool hybrid = s.method == GiMethod::Hybrid;
-    const ScreenThickness thickness = hybrid ? ScreenThickness::Constant : s.thicknessMode;
+    const ScreenThickness thickness = thicknessOf(s);
     const bool peeled = depthLayersFor(thickness) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
     requireViewInput(ctx, g.albedo, view, "albedo", SampledAs::Rgb);
@@ -137,17 +159,10 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
     // The guide is only for the filters: a full-resolution result without blur needs none.
     const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide") : 0;
-    std::vector<std::string> defines = {"METHOD=" + std::to_string(hybrid ? GI_METHOD_HYBRID : GI_METHOD_SCREEN)};
-    if (hybrid) defines.push_back("TRAVERSAL=" + std::to_string(voxelTraversalCode(s.voxelTraversal)));
-    else {
-        const auto screen = screenMarchDefines(s.march, thickness);
-        defines.insert(defines.end(), screen.begin(), screen.end());
-    }
-    addRayLaneDefine(defines, s.rayLanes);
     const bool refine = scale > 1 && s.refineThreshold > 0.0f;
     const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
     const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
-    const GuidedFilterSettings filter{s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
+    const GuidedFilterSettings filter = filterSettings(s, tiled);
     if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "gi.tiles");
     const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                        : screenRayIterations(s.march, s.steps, fullSize);
@@ -156,9 +171,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
                    s.rayLanes);
     {
         PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
-        std::vector<std::string> integratorDefines = defines;
-        if (tiled) integratorDefines.push_back("TILES");
-        const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, integratorDefines);
+        const GLuint program = integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
         ctx.gl.UseProgram(program);
         if (hybrid) bindVoxelGrid(ctx, *s.voxels);
         d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
@@ -176,8 +189,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         d.filters.upsample(ctx, images, filter, full, 0, fullSize, "gi.upsample");
         if (refine) {
             PassScope pass(ctx, "gi.refine");
-            defines.push_back("REFINE");
-            const GLuint program = ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
+            const GLuint program = integratorProgram(ctx, s, "REFINE");
             ctx.gl.UseProgram(program);
             d.bindWrite(GI_OUT_IMAGE, full, GL_RGBA16F);
             d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
@@ -187,6 +199,19 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     }
     barrierForReaders(ctx);
     return out;
+}
+
+void IndirectLight::prepare(const IndirectLightSettings& s) {
+    validateSettings(s);
+    auto& ctx = impl_->ctx;
+    StateScope scope(ctx);
+    const int scale = static_cast<int>(s.resolution);
+    const bool tiled = scale > 1 && s.geometryTiles;
+    if (!hybrid(s) && s.march == ScreenMarch::HiZ) HiZPyramid::prepare(ctx, thicknessOf(s));
+    integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
+    if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
+    // Only which images a run gives the filters matters here: the radiance (rgb) and the albedo.
+    if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, 0, true, {}, scale, 1}, filterSettings(s, tiled));
 }
 
 RefinementCount IndirectLight::lastRefinement() const {

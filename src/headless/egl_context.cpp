@@ -156,6 +156,7 @@ ContextDesc HeadlessContext::contextDesc(StatePolicy policy) const {
     ContextDesc desc;
     desc.getProcAddress = &HeadlessContext::getProcAddress;
     desc.statePolicy = policy;
+    desc.profiling = Profiling::Always;
     return desc;
 }
 

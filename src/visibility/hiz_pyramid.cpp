@@ -12,6 +12,19 @@
 
 namespace obscura::detail {
 
+GLuint HiZPyramid::levelZeroProgram(ContextImpl& ctx, ScreenThickness mode) {
+    Defines level0{"LEVEL0"};
+    for (std::string& d : screenThicknessDefines(mode)) level0.push_back(std::move(d));
+    return ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, level0);
+}
+
+GLuint HiZPyramid::reduceProgram(ContextImpl& ctx) { return ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, {"REDUCE"}); }
+
+void HiZPyramid::prepare(ContextImpl& ctx, ScreenThickness mode) {
+    levelZeroProgram(ctx, mode);
+    reduceProgram(ctx);
+}
+
 // The pyramid is padded to powers of two, so that level L's cell i covers the pixels
 // [i 2^L, (i + 1) 2^L) with GL's halving mip sizes.
 void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thickness, ScreenThickness mode, const char* pass) {
@@ -24,14 +37,12 @@ void HiZPyramid::build(ContextImpl& ctx, const GBufferView& view, float thicknes
     }
     PassScope scope(ctx, pass);
     auto& gl = ctx.gl;
-    Defines level0{"LEVEL0"};
-    for (std::string& d : screenThicknessDefines(mode)) level0.push_back(std::move(d));
-    GLuint program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, level0);
+    GLuint program = levelZeroProgram(ctx, mode);
     gl.UseProgram(program);
     gl.ProgramUniform1f(program, VIS_LOC_THICKNESS, thickness);
     ctx.state.bindImage(ctx, VIS_HIZ_WRITE_IMAGE, texture_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     dispatchCompute2D(ctx, size.x, size.y, VIS_WORKGROUP_2D);
-    program = ctx.shaders->program({"visibility/hiz_build.comp.glsl"}, {"REDUCE"});
+    program = reduceProgram(ctx);
     gl.UseProgram(program);
     for (int level = 1; level < levels; ++level) {
         gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

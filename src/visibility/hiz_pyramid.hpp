@@ -19,8 +19,13 @@ public:
     //! or down to its back layer, as `mode` says. Leaves it bound at VIS_HIZ_UNIT.
     void build(ContextImpl& ctx, const GBufferView& view, float thickness, ScreenThickness mode, const char* pass);
     std::size_t memoryBytes() const;
+    //! Compiles the programs build() uses for `mode`, ahead of time.
+    static void prepare(ContextImpl& ctx, ScreenThickness mode);
 
 private:
+    static GLuint levelZeroProgram(ContextImpl& ctx, ScreenThickness mode);
+    static GLuint reduceProgram(ContextImpl& ctx);
+
     Texture texture_;
     glm::ivec2 size_{0};
     int levels_ = 0;

@@ -184,8 +184,10 @@ expect_note("note: gi.screen ignores --set shadow_resolution=64: read only with 
 expect_note("note: compose ignores --set gamma=2: read only with srgb=0"
             ${render} --technique compose --set gamma=2 --out "${WORK_DIR}/x.png")
 expect_note("note: compose ignores --set ambient=0.1: the physical formula replaces the ambient term"
-            ${render} --technique compose --set ambient=0.1 --out "${WORK_DIR}/x.png")
-expect_note("" ${render} --technique compose --set ambient=0.1 --set gi=0 --out "${WORK_DIR}/x.png")
+            ${render} --technique compose --set formula=physical --set ambient=0.1 --out "${WORK_DIR}/x.png")
+expect_note("" ${render} --technique compose --set formula=physical --set ambient=0.1 --set gi=0 --out "${WORK_DIR}/x.png")
+# The standard formula (the default) adds the AO-shaded ambient term beside the indirect light.
+expect_note("" ${render} --technique compose --set ambient=0.1 --out "${WORK_DIR}/x.png")
 # shadow.cube takes every filter's keys, and names those the filter it runs does not read.
 set(cube "${OBSCURA}" render --scene cornell_sphere --size 8x8 --frames 1 --technique shadow.cube)
 expect_note("note: shadow.cube ignores --set pcf_radius=2: not read with filter=hard"
@@ -208,19 +210,20 @@ endif()
 expect_note("note: gbuffer ignores --set shadow_resolution=64: read only with direct_lighting=1"
             ${render} --technique gbuffer --set direct_lighting=0 --set shadow_resolution=64 --out "${WORK_DIR}/x.exr")
 expect_note("" ${render} --technique gbuffer --set shadow_resolution=64 --out "${WORK_DIR}/x.exr")
-# The physical combine without indirect light multiplies AO into the ambient term only (0 by
-# default), so ao and radius do nothing until ambient > 0 or under the thesis's formula, which
-# darkens the direct light with AO too.
-expect_note("note: compose ignores --set ao=1: the physical formula darkens only the ambient term"
+# The standard and physical combines multiply AO into the ambient term only (0 by default), so
+# ao and radius do nothing until ambient > 0 or under the thesis's formula, which darkens the
+# direct light with AO too.
+expect_note("note: compose ignores --set ao=1: the standard and physical formulas darken only the ambient term"
             ${render} --technique compose --set gi=0 --set ao=1 --out "${WORK_DIR}/x.png")
 expect_note("note: compose ignores --set radius=0.5: read only with gi=1, or with ao=1 where the combine reads AO"
             ${render} --technique compose --set gi=0 --set radius=0.5 --out "${WORK_DIR}/x.png")
-expect_note("note: compose ignores --set ao=0: the physical formula darkens only the ambient term"
+expect_note("note: compose ignores --set ao=0: the standard and physical formulas darken only the ambient term"
             ${render} --technique compose --set gi=0 --set ao=0 --out "${WORK_DIR}/x.png")
 expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set ambient=0.2 --out "${WORK_DIR}/x.png")
 expect_note("" ${render} --technique compose --set gi=0 --set ao=1 --set radius=0.5 --set formula=thesis --out "${WORK_DIR}/x.png")
 # ... and runs the AO pass only where the combine uses it.
-foreach(case "gi=0;0" "gi=0;ambient=0.2;1" "gi=0;formula=thesis;1" "formula=thesis;1" "ambient=0.2;0")
+foreach(case "gi=0;0" "gi=0;ambient=0.2;1" "gi=0;formula=thesis;1" "formula=thesis;1" "ambient=0.2;1"
+             "formula=physical;ambient=0.2;0")
   list(POP_BACK case expected)
   list(TRANSFORM case PREPEND "--set;")
   execute_process(COMMAND ${render} --technique compose ${case} --out "${WORK_DIR}/x.png"

@@ -317,7 +317,7 @@ TEST_CASE_METHOD(BadInputFixture, "Host normal encodings and spaces outside thei
     bad.normalSpace = static_cast<NormalSpace>(2);
     expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normalSpace");
     bad = host;
-    bad.normalEncoding = static_cast<NormalEncoding>(2);
+    bad.normalEncoding = static_cast<NormalEncoding>(3);
     expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normalEncoding");
     bad = host;
     bad.normal = {srgb, 0, 0, 0};
@@ -333,6 +333,55 @@ TEST_CASE_METHOD(BadInputFixture, "Host normal encodings and spaces outside thei
     glDeleteTextures(1, &unsizedSrgb);
     glDeleteTextures(1, &rgba8);
     glDeleteTextures(1, &srgb);
+}
+
+TEST_CASE_METHOD(BadInputFixture, "A host texture described other than GL has it is refused", "[bad-input]") {
+    // Before, only `name` was read: a host copying a snippet's GL_SRGB8_ALPHA8 for its RGBA8
+    // albedo, or last frame's size, was accepted silently. A field left 0 takes GL's.
+    const GLuint depth = hostTexture(GL_DEPTH_COMPONENT24, 16, 16), normal = hostTexture(GL_RGBA16F, 16, 16),
+                 albedo = hostTexture(GL_RGBA8, 16, 16), rgb16f = hostTexture(GL_RGB16F, 16, 16);
+    HostGBuffer host;
+    host.depth = {depth, GL_DEPTH_COMPONENT24, 16, 16};
+    host.normal = {normal, GL_RGBA16F, 16, 16};
+    host.albedo = {albedo, GL_RGBA8, 16, 16};
+    CHECK_NOTHROW(gbuffer.adopt(host, camera)); // the control: described as it is
+    HostGBuffer bare = host;
+    bare.depth = {depth, 0, 0, 0};
+    bare.normal = {normal, 0, 16, 0};
+    CHECK_NOTHROW(gbuffer.adopt(bare, camera));
+    HostGBuffer bad = host;
+    bad.depth.internalFormat = GL_DEPTH_COMPONENT32F;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument,
+                "HostGBuffer::depth.internalFormat says GL_DEPTH_COMPONENT32F but texture " + std::to_string(depth) +
+                    " is GL_DEPTH_COMPONENT24");
+    bad = host;
+    bad.normal.width = 32;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normal.width says 32");
+    bad = host;
+    bad.albedo.height = 8;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::albedo.height says 8");
+    bad = host;
+    bad.albedo.internalFormat = GL_SRGB8_ALPHA8;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "albedo.internalFormat says GL_SRGB8_ALPHA8");
+    // Normals read in place: view space only, no deviation, a float RGBA format (alpha holds
+    // the bound); the deviation's range.
+    bad = host;
+    bad.normalEncoding = NormalEncoding::ViewContract;
+    CHECK_NOTHROW(gbuffer.adopt(bad, camera));
+    bad.normalSpace = NormalSpace::World;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "NormalSpace::View");
+    bad.normalSpace = NormalSpace::View;
+    bad.normalDeviation = 0.1f;
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "normalDeviation 0");
+    bad.normalDeviation = 0.0f;
+    bad.normal = {rgb16f, 0, 0, 0};
+    expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "NormalEncoding::ViewContract");
+    for (const float deviation : {-0.1f, 1.6f, NAN}) {
+        bad = host;
+        bad.normalDeviation = deviation;
+        expectError([&] { gbuffer.adopt(bad, camera); }, ErrorCode::InvalidArgument, "HostGBuffer::normalDeviation");
+    }
+    for (GLuint t : {depth, normal, albedo, rgb16f}) glDeleteTextures(1, &t);
 }
 
 TEST_CASE_METHOD(BadInputFixture, "A view whose textures the host changed after adopt, or built by hand, is refused by "

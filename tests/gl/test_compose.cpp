@@ -72,9 +72,9 @@ void checkCombineFormulas(Frame& f) {
     const int W = f.width, H = f.height;
     const ConstantTexture ao(GL_R16F, W, H, glm::vec4(0.5f));
     const ConstantTexture indirect(GL_RGBA16F, W, H, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
-    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+    for (CombineFormula formula : {CombineFormula::Standard, CombineFormula::Thesis, CombineFormula::Physical})
         for (bool withIndirect : {true, false}) {
-            CAPTURE(formula == CombineFormula::Thesis, withIndirect);
+            CAPTURE(static_cast<int>(formula), withIndirect);
             ComposeSettings s;
             s.formula = formula;
             s.ambient = glm::vec3(0.4f, 0.3f, 0.2f);
@@ -96,10 +96,12 @@ void checkCombineFormulas(Frame& f) {
                         const double rho = f.albedo.at(x, y, c), l = f.direct.at(x, y, c), a = surface ? 0.5 : 1.0;
                         const double kl1 = withIndirect && surface ? s.indirectScale * 0.1 * (c + 1) : 0.0;
                         const double ambient = rho * a * s.ambient[c];
-                        // Physical: the indirect light, where given, replaces the ambient term.
-                        const double expected = formula == CombineFormula::Thesis ? ambient + kl1 + a * l
-                                                : withIndirect                    ? l + kl1
-                                                                                  : l + ambient;
+                        // Standard: both; Physical: the indirect light, where given, replaces
+                        // the ambient term.
+                        const double expected = formula == CombineFormula::Thesis     ? ambient + kl1 + a * l
+                                                : formula == CombineFormula::Standard ? l + ambient + kl1
+                                                : withIndirect                        ? l + kl1
+                                                                                      : l + ambient;
                         const double error = radiance.at(x, y, c) - expected;
                         CAPTURE(x, y, c, expected, error, rho, l);
                         // radiance() is before the exposure (the tone mapper applies it). It is
@@ -110,7 +112,7 @@ void checkCombineFormulas(Frame& f) {
                         // albedo is sRGB-encoded 8-bit: GL does not fix how exactly the shader's
                         // and the read-back's decodes agree (llvmpipe's differ by ~0.3 of a step
                         // at code 105): half a code step of rho in the ambient term.
-                        const bool ambientUsed = formula == CombineFormula::Thesis || !withIndirect;
+                        const bool ambientUsed = formula != CombineFormula::Physical || !withIndirect;
                         const double rhoSlack = ambientUsed ? a * s.ambient[c] * halfSrgbStep(rho) : 0.0;
                         const double halfRounding = std::ldexp(expected + kl1, -10);
                         const double floatSlack = std::ldexp(expected, -20) + 1e-6;
@@ -301,9 +303,9 @@ TEST_CASE("Sky pixels compose to the background radiance with every formula and 
     l.radius = 150.0f;
     const TextureView indirect = gi.run(view, l).radiance;
     int sky = 0;
-    for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+    for (CombineFormula formula : {CombineFormula::Standard, CombineFormula::Thesis, CombineFormula::Physical})
         for (ToneMapper mapper : {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}) {
-            CAPTURE(formula == CombineFormula::Thesis, static_cast<int>(mapper));
+            CAPTURE(static_cast<int>(formula), static_cast<int>(mapper));
             ComposeSettings s;
             s.formula = formula;
             s.toneMapper = mapper;
@@ -356,9 +358,9 @@ TEST_CASE("Sky pixels of a host G-buffer keep their direct radiance whatever the
         IndirectLightSettings l;
         l.radius = 150.0f;
         const TextureView indirect = gi.run(adopted, l).radiance;
-        for (CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+        for (CombineFormula formula : {CombineFormula::Standard, CombineFormula::Thesis, CombineFormula::Physical})
             for (bool withIndirect : {true, false}) {
-                CAPTURE(formula == CombineFormula::Thesis, withIndirect);
+                CAPTURE(static_cast<int>(formula), withIndirect);
                 ComposeSettings s;
                 s.formula = formula;
                 s.toneMapper = ToneMapper::None;
@@ -625,7 +627,7 @@ TEST_CASE("Compose refuses bad settings and inputs of the wrong size or kind", "
              [](ComposeSettings& s) { s.exposure = 0.0f; }, [](ComposeSettings& s) { s.gamma = 5.0f; },
              [](ComposeSettings& s) { s.ambient.x = -1.0f; }, [](ComposeSettings& s) { s.dragoBias = 0.1f; },
              [](ComposeSettings& s) { s.dragoMaxLuminance = NAN; },
-             [](ComposeSettings& s) { s.formula = static_cast<CombineFormula>(2); },
+             [](ComposeSettings& s) { s.formula = static_cast<CombineFormula>(3); },
              [](ComposeSettings& s) { s.toneMapper = static_cast<ToneMapper>(3); }}) {
         ComposeSettings s;
         change(s);

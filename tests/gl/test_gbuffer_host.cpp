@@ -88,6 +88,35 @@ TEST_CASE("Host depth (and normals) are adopted for post-processing", "[gbuffer]
             }
         glDeleteTextures(1, &tex);
     }
+    SECTION("normals already in the view's contract are read in place") {
+        // Another GBuffer's view normals (RGBA16F, view space, alpha 1): the identity, which
+        // adopt() converted again on every call before (a pass over every pixel and a texture
+        // of the view's size). In place: the view names the host's texture, no conversion
+        // program is compiled, the GBuffer holds no memory, and the AO is the rendered view's,
+        // value for value.
+        HostGBuffer in;
+        in.depth = rendered.depth;
+        in.normal = rendered.normal;
+        in.normalEncoding = NormalEncoding::ViewContract;
+        const GBufferView adopted = host.adopt(in, camera);
+        CHECK(adopted.normal.name == rendered.normal.name);
+        CHECK(adopted.normalError == rendered.normalError);
+        CHECK(host.memoryBytes() == 0);
+        for (const std::string& program : ctx.compiledPrograms()) CHECK(program.find("normals.comp") == std::string::npos);
+        AmbientOcclusion ao(ctx);
+        AmbientOcclusionSettings settings;
+        settings.radius = 1.0f;
+        const Image fromRendered = readTexture(ctx, ao.run(rendered, settings).ao);
+        const Image fromAdopted = readTexture(ctx, ao.run(adopted, settings).ao);
+        CHECK(fromAdopted.pixels == fromRendered.pixels);
+        // Converted first, then in place: the conversion's texture is freed.
+        in.normalEncoding = NormalEncoding::Signed;
+        host.adopt(in, camera);
+        const std::size_t converted = host.memoryBytes();
+        in.normalEncoding = NormalEncoding::ViewContract;
+        host.adopt(in, camera);
+        CHECK(converted - host.memoryBytes() == std::size_t(W) * H * 8); // one RGBA16F texture of the view's size
+    }
     CHECK(test::drainGlErrors().empty());
 }
 

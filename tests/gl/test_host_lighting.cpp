@@ -296,9 +296,9 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
             // which of them got in depended on the GPU's order (39 of 40 reruns differed at
             // half resolution) until an overflowing list refined none.
             CHECK(readTexture(f.ctx, gi.run(adopted, s).radiance).pixels == first.pixels);
-            for (const CombineFormula formula : {CombineFormula::Thesis, CombineFormula::Physical})
+            for (const CombineFormula formula : {CombineFormula::Standard, CombineFormula::Thesis, CombineFormula::Physical})
                 for (const ToneMapper mapper : {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}) {
-                    CAPTURE(formula == CombineFormula::Thesis, static_cast<int>(mapper));
+                    CAPTURE(static_cast<int>(formula), static_cast<int>(mapper));
                     ComposeSettings c;
                     c.formula = formula;
                     c.toneMapper = mapper;

@@ -51,6 +51,33 @@ TEST_CASE("On llvmpipe passes are timed by glFinish and a steady clock and that 
     CHECK(latest[0].ms > 0.0);
 }
 
+TEST_CASE("An engine's context times no pass unless it asks, and a software renderer's only when told to stall",
+          "[profiler]") {
+    // An engine's ContextDesc defaults to Profiling::Off: no queries, no glFinish. Tools ask
+    // for Always (HeadlessContext::contextDesc). TimerQueries times only where the timestamps
+    // are trustworthy: on llvmpipe, nothing.
+    test::GlFixture gl;
+    CHECK(ContextDesc{}.profiling == Profiling::Off);
+    CHECK(gl.desc().profiling == Profiling::Always);
+    const Scene scene = test::floorScene(1.0);
+    for (const Profiling mode : {Profiling::Off, Profiling::TimerQueries, Profiling::Always}) {
+        ContextDesc desc = gl.desc();
+        desc.profiling = mode;
+        Context ctx(desc);
+        const bool trustworthy = !ctx.info().softwareRenderer && ctx.info().timestampBits > 0;
+        const bool expected = mode == Profiling::Always || (mode == Profiling::TimerQueries && trustworthy);
+        CAPTURE(static_cast<int>(mode), trustworthy);
+        CHECK(ctx.profiler().enabled() == expected);
+        GBuffer gbuffer(ctx);
+        gbuffer.render(scene, floorCamera(), {32, 32, true, {}});
+        CHECK(ctx.profiler().statistics(/*wait=*/true).size() == (expected ? 1u : 0u));
+    }
+    ContextDesc bad = gl.desc();
+    bad.profiling = static_cast<Profiling>(3);
+    CHECK_THROWS_WITH(Context(bad), Catch::Contains("ContextDesc::profiling"));
+    CHECK(test::drainGlErrors().empty());
+}
+
 TEST_CASE("GPU timestamp queries are collected without stalling and completely when asked to wait", "[profiler]") {
     test::GlFixture gl;
     Context ctx(gl.desc());

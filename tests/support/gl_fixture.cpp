@@ -118,14 +118,16 @@ GLuint linkedProgram(const char* vertex, const char* fragment) {
 // with `program`, the depth test `func`, and the clip control `origin`, `depthMode`. Sets the GL
 // state the pass needs explicitly and leaves the defaults, except the viewport, which stays the
 // pass's (test contexts only).
+// `colour`, if not 0, is attached as the pass's one draw buffer and cleared to 0.
 GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float clear, GLenum func, GLenum origin,
-                     GLenum depthMode, const std::function<void()>& draw) {
+                     GLenum depthMode, const std::function<void()>& draw, GLuint colour = 0) {
     GLuint target = 0, fbo = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, format, width, height);
     glCreateFramebuffers(1, &fbo);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, target, 0);
-    glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    if (colour) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour, 0);
+    glNamedFramebufferDrawBuffer(fbo, colour ? GL_COLOR_ATTACHMENT0 : GL_NONE);
     REQUIRE(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, width, height);
@@ -139,7 +141,11 @@ GLuint hostDepthPass(int width, int height, GLenum format, GLuint program, float
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(func);
     glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear); // after the state that limits clears
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (colour) glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
     glUseProgram(program);
     draw();
     glUseProgram(0);
@@ -212,6 +218,66 @@ void main() { gl_Position = viewProjection * vec4(position, 1.0); })",
     glDeleteBuffers(1, &buffer);
     glDeleteProgram(program);
     return target;
+}
+
+HostShadingBuffers rasterizeShadingNormalsAsHost(const Scene& scene, const Camera& camera, int width, int height) {
+    std::vector<glm::vec3> vertices; // world position and world normal of each triangle corner, interleaved
+    for (const Mesh& mesh : scene.meshes) {
+        const MeshData& data = *mesh.data;
+        REQUIRE(data.normals.size() == data.positions.size());
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(mesh.model)));
+        const std::size_t count = data.indices.empty() ? data.positions.size() : data.indices.size();
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t v = data.indices.empty() ? i : data.indices[i];
+            vertices.push_back(glm::vec3(mesh.model * glm::vec4(data.positions[v], 1.0f)));
+            vertices.push_back(normalMatrix * data.normals[v]);
+        }
+    }
+    REQUIRE(scene.meshRefs.empty());
+    const GLuint program = linkedProgram(R"(#version 450
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 0) uniform mat4 viewProjection;
+layout(location = 1) uniform mat4 view;
+out vec3 viewNormal;
+void main() {
+    viewNormal = mat3(view) * normal;
+    gl_Position = viewProjection * vec4(position, 1.0);
+})",
+                                         R"(#version 450
+in vec3 viewNormal;
+layout(location = 0) out vec4 outNormal;
+void main() { outNormal = vec4(normalize(viewNormal), 1.0); })");
+    const glm::mat4 viewProjection = camera.projection * camera.view;
+    glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &viewProjection[0][0]);
+    glProgramUniformMatrix4fv(program, 1, 1, GL_FALSE, &camera.view[0][0]);
+    GLuint buffer = 0, vao = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, GLsizeiptr(vertices.size() * sizeof(glm::vec3)), vertices.data(), 0);
+    glCreateVertexArrays(1, &vao);
+    glVertexArrayVertexBuffer(vao, 0, buffer, 0, 2 * sizeof(glm::vec3));
+    for (GLuint attribute : {0u, 1u}) {
+        glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, attribute * GLuint(sizeof(glm::vec3)));
+        glVertexArrayAttribBinding(vao, attribute, 0);
+        glEnableVertexArrayAttrib(vao, attribute);
+    }
+    HostShadingBuffers out;
+    glCreateTextures(GL_TEXTURE_2D, 1, &out.normal);
+    glTextureStorage2D(out.normal, 1, GL_RGBA16F, width, height);
+    const bool reversed = analyzeProjection(camera).reversedZ;
+    out.depth = hostDepthPass(
+        width, height, GL_DEPTH_COMPONENT32F, program, reversed ? 0.0f : 1.0f, reversed ? GL_GREATER : GL_LESS,
+        GL_LOWER_LEFT, camera.clipDepth == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE,
+        [&] {
+            glBindVertexArray(vao);
+            glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertices.size() / 2));
+            glBindVertexArray(0);
+        },
+        out.normal);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &buffer);
+    glDeleteProgram(program);
+    return out;
 }
 
 GLuint libraryComputeProgram(const std::string& source) {

@@ -53,6 +53,16 @@ GLuint copyDepthAsHost(GLuint depth, int width, int height, GLenum format);
 GLuint rasterizeDepthAsHost(const Scene& scene, const Camera& camera, int width, int height, GLenum format,
                             GLenum clipOrigin = GL_LOWER_LEFT);
 
+//! A host's depth (GL_DEPTH_COMPONENT32F) and smooth shading normals (GL_RGBA16F, view space,
+//! unit): `scene`'s meshes (each with vertex normals; no MeshRefs) drawn by the host's own
+//! program, the vertex normals interpolated and normalized per fragment, as engines shade.
+//! Clip control, clear value and depth test follow the camera, as rasterizeDepthAsHost. The
+//! caller deletes both.
+struct HostShadingBuffers {
+    GLuint depth = 0, normal = 0;
+};
+HostShadingBuffers rasterizeShadingNormalsAsHost(const Scene& scene, const Camera& camera, int width, int height);
+
 //! A new host texture of `format` (a float or normalized RGBA one) from `image` (row 0 at the
 //! top): each pixel's rgb through `map(pixel index in row order, rgb)`, alpha 1. The caller
 //! deletes it.

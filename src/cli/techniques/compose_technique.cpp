@@ -14,7 +14,7 @@ namespace obscura::cli {
 namespace {
 
 const std::vector<SettingInfo> kSettings = joinSettings({
-    {"formula", "", "thesis|physical", "see CombineFormula"},
+    {"formula", "", "standard|thesis|physical", "see CombineFormula"},
     {"ambient", "W/(sr m^2)", "[0, 65504], or r:g:b", "ambient radiance L_amb, grey or a colour (physical formula: only with gi=0)"},
     {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
     {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
@@ -24,7 +24,8 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"drago_display_max", "cd/m^2", "(0, 1e4]", "Drago's display maximum L_dmax"},
     {"srgb", "", "0|1", "sRGB transfer function (else x^(1/gamma))"},
     {"gamma", "", "[1, 4]", "display gamma when srgb=0"},
-    {"ao", "", "0|1", "ray-marched AO (medium quality; the physical formula uses it only with gi=0 and ambient > 0)"},
+    {"ao", "", "0|1", "ray-marched AO (medium quality; shades the ambient term, so read only with ambient > 0, or "
+                      "with formula=thesis; the physical formula only with gi=0)"},
     {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
     {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
 }, LitGBuffer::settings());
@@ -35,7 +36,8 @@ public:
 
     void set(const std::string& key, const std::string& value) override {
         auto& s = settings_;
-        if (key == "formula") s.formula = parseChoice<CombineFormula>(key, value, {{"thesis", CombineFormula::Thesis},
+        if (key == "formula") s.formula = parseChoice<CombineFormula>(key, value, {{"standard", CombineFormula::Standard},
+                                                                                   {"thesis", CombineFormula::Thesis},
                                                                                    {"physical", CombineFormula::Physical}});
         else if (key == "ambient") s.ambient = parseColor(key, value, 0, 65504, "W/(sr m^2)");
         else if (key == "indirect_scale") s.indirectScale = static_cast<float>(parseNumber(key, value, 0, 1e6, ""));
@@ -79,8 +81,8 @@ public:
         if ((key == "ambient" || key == "ao") && physicalGi)
             return "the physical formula replaces the ambient term by the indirect light: read only with gi=0 or formula=thesis";
         if (key == "ao" && !combineReadsAo())
-            return "the physical formula darkens only the ambient term with AO, and ambient is 0: read only with ambient > 0 "
-                   "or formula=thesis";
+            return "the standard and physical formulas darken only the ambient term with AO, and ambient is 0: read only "
+                   "with ambient > 0 or formula=thesis";
         if (key == "indirect_scale" && !withGi_) return "read only with gi=1";
         if (key == "radius" && !withGi_ && !aoUsed())
             return "read only with gi=1, or with ao=1 where the combine reads AO (formula=thesis, or ambient > 0)";
@@ -128,12 +130,13 @@ public:
 
 private:
     // Whether the combine reads AO (compose.hpp): the thesis's formula always (AO darkens the
-    // direct light too), the physical one only as the ambient term's factor, with no indirect
-    // light and an ambient above 0. Otherwise no AO pass runs.
+    // direct light too), the others only as the ambient term's factor, with an ambient above 0
+    // (and, for the physical one, no indirect light). Otherwise no AO pass runs.
     bool combineReadsAo() const {
         const auto& s = settings_;
         const bool ambient = glm::any(glm::greaterThan(s.ambient, glm::vec3(0.0f)));
-        return s.formula == CombineFormula::Thesis || (!withGi_ && ambient);
+        if (s.formula == CombineFormula::Thesis) return true;
+        return ambient && (s.formula == CombineFormula::Standard || !withGi_);
     }
     bool aoUsed() const { return withAo_ && combineReadsAo(); }
 
