@@ -8,6 +8,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
+#include "gbuffer/host_inputs.hpp"
 #include "gbuffer/host_region.hpp"
 #include "shadows/shadow_lookup.hpp"
 #include "core/mesh_cache.hpp"
@@ -25,8 +26,6 @@ namespace obscura {
 namespace {
 
 using namespace detail;
-
-constexpr double kHalfPi = 1.5707963705062866; // pi / 2 as the float nearest it, which lies above
 
 
 shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
@@ -59,137 +58,6 @@ shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
 void dispatchOverImage(ContextImpl& ctx, int width, int height) {
     dispatchCompute2D(ctx, width, height, GBUFFER_WORKGROUP_SIZE);
     barrierForReaders(ctx);
-}
-
-// A host texture read beside the depth: level 0, the depth's size, as the host described it.
-TextureInfo hostTextureBeside(ContextImpl& ctx, const TextureView& given, const std::string& who, const TextureInfo& depth) {
-    const TextureInfo t = queryTexture2D(ctx, given.name, who);
-    requireDescribedAs(given, t, who);
-    requireBaseLevelZero(ctx, given.name, who);
-    if (t.width != depth.width || t.height != depth.height)
-        throw Error(ErrorCode::InvalidArgument, who + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-                                                    " but depth is " + std::to_string(depth.width) + "x" +
-                                                    std::to_string(depth.height));
-    return t;
-}
-
-// The host's second depth layer, read in place beside the first. Empty stays empty. The
-// first layer itself would make every peeled interval empty: a silent no-op, so refused.
-TextureView hostBackDepth(ContextImpl& ctx, const TextureView& texture, GLuint depthName, const TextureInfo& depth) {
-    if (!texture) return {};
-    if (texture.name == depthName)
-        throw Error(ErrorCode::InvalidArgument,
-                    "HostGBuffer::backDepth is HostGBuffer::depth (texture " + std::to_string(depthName) +
-                        "): it must be a second layer, the nearest surfaces behind the first");
-    const TextureInfo t = hostTextureBeside(ctx, texture, "HostGBuffer::backDepth", depth);
-    requireSampledDepth(ctx, texture.name, t, "HostGBuffer::backDepth");
-    return {texture.name, t.internalFormat, t.width, t.height};
-}
-
-// The host's albedo (SampledAs::Rgb: normalized or float) or radiance (SampledAs::FloatRgb:
-// it is not bounded by 1), RGB or RGBA, read in place by the passes that use them; described
-// as GL reports it (the host's TextureView need only name it). Empty stays empty.
-TextureView hostColour(ContextImpl& ctx, const TextureView& texture, const std::string& who, const TextureInfo& depth,
-                       SampledAs kind) {
-    if (!texture) return {};
-    const TextureInfo t = hostTextureBeside(ctx, texture, who, depth);
-    requireReadableAs(ctx, texture.name, t, who, kind);
-    return {texture.name, t.internalFormat, t.width, t.height};
-}
-
-// The host's normals as adopt() reads them: the texture (empty: reconstructed from depth),
-// the view's normalError, the conversion pass's defines, or none when they are read in place.
-struct HostNormals {
-    TextureView texture;
-    float normalError = kHalfNormalError;
-    Defines defines;
-    bool inPlace = false; //!< NormalEncoding::ViewContract: no conversion pass
-};
-
-// The conversion pass's defines for the host's normals (none given: FROM_DEPTH).
-Defines normalDefines(const HostGBuffer& host) {
-    if (host.normal.name == 0) return {"FROM_DEPTH"};
-    Defines defines;
-    if (host.normalEncoding == NormalEncoding::Unsigned) defines.push_back("UNSIGNED_ENCODING");
-    if (host.normalSpace == NormalSpace::World) defines.push_back("WORLD_SPACE");
-    return defines;
-}
-
-HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const TextureInfo& depth) {
-    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned, NormalEncoding::ViewContract},
-                      "HostGBuffer::normalEncoding");
-    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
-    requireInRange(host.normalDeviation, 0.0, kHalfPi, "HostGBuffer::normalDeviation", "radians");
-    HostNormals out;
-    out.defines = normalDefines(host);
-    if (host.normal.name == 0) return out;
-    const TextureInfo n = hostTextureBeside(ctx, host.normal, "HostGBuffer::normal", depth);
-    out.texture = {host.normal.name, n.internalFormat, n.width, n.height};
-    GLint componentType = 0;
-    ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, GL_TEXTURE_RED_TYPE, &componentType);
-    // The coarsest of the three channels bounds the error (GL_R3_G3_B2's blue has 2 bits).
-    GLint bits = 0;
-    for (const GLenum channel : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE}) {
-        GLint size = 0;
-        ctx.gl.GetTextureLevelParameteriv(host.normal.name, 0, channel, &size);
-        bits = channel == GL_TEXTURE_RED_SIZE ? size : std::min(bits, size);
-    }
-    const NormalEncoding encoding = host.normalEncoding;
-    const bool signedOk = encoding == NormalEncoding::Signed && n.signedFloat;
-    // 3 bits a channel already bound the error by asin(sqrt(3) / 7) + 2^-10 = 0.2510, past
-    // kMaxNormalError: the screen-space tests would refuse the view later, with less to say.
-    // sRGB storage would be decoded by the sampler, bending every normal.
-    const bool unsignedOk = encoding == NormalEncoding::Unsigned && componentType == GL_UNSIGNED_NORMALIZED && !n.srgb &&
-                            bits >= 1 && adoptedNormalError(NormalEncoding::Unsigned, bits) <= kMaxNormalError;
-    const bool contractOk = encoding == NormalEncoding::ViewContract && n.signedFloat && n.channels == 4;
-    if (n.depth || n.channels < 3 || !(signedOk || unsignedOk || contractOk))
-        throw Error(ErrorCode::InvalidArgument,
-                    "HostGBuffer::normal has format " + formatName(n.internalFormat) + "; accepted: " +
-                        (encoding == NormalEncoding::Signed
-                             ? "a signed float RGB/RGBA format (GL_RGB16F, GL_RGBA16F, GL_RGB32F, GL_RGBA32F) "
-                               "with NormalEncoding::Signed"
-                         : encoding == NormalEncoding::Unsigned
-                             ? "a normalized unsigned RGB/RGBA format of at least 4 bits a channel, not sRGB "
-                               "(GL_RGB8, GL_RGBA8, GL_RGB10_A2, GL_RGBA16) with NormalEncoding::Unsigned"
-                             : "GL_RGBA16F or GL_RGBA32F (alpha holds the bound) with NormalEncoding::ViewContract"));
-    if (encoding == NormalEncoding::ViewContract && (host.normalSpace != NormalSpace::View || host.normalDeviation != 0.0f))
-        throw Error(ErrorCode::InvalidArgument, "NormalEncoding::ViewContract normals are read in place: they must be in "
-                                                "NormalSpace::View with HostGBuffer::normalDeviation 0 (the conversion "
-                                                "pass applies the other settings)");
-    out.inPlace = encoding == NormalEncoding::ViewContract;
-    // Read in place, no store of ours rounds them again: the host format's own rounding, as
-    // adoptedNormalError counts it (our half floats' for 16 bits).
-    out.normalError = !out.inPlace ? adoptedNormalError(encoding, bits) : bits <= 16 ? kHalfNormalError : 0x1p-23f;
-    return out;
-}
-
-// Diagnostic::ClipDepthMismatch: the camera's ClipDepth against the current clip control.
-void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera) {
-    GLint mode = GL_NEGATIVE_ONE_TO_ONE;
-    ctx.gl.GetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
-    const bool zeroToOne = camera.clipDepth == ClipDepth::ZeroToOne;
-    if (zeroToOne == (mode == GL_ZERO_TO_ONE)) return;
-    reportDiagnostic(
-        ctx, Diagnostic::ClipDepthMismatch,
-        std::string("GBuffer::adopt: the camera's ClipDepth is ") + (zeroToOne ? "ZeroToOne" : "NegativeOneToOne") +
-            " but the current GL_CLIP_DEPTH_MODE is " + (mode == GL_ZERO_TO_ONE ? "GL_ZERO_TO_ONE" : "GL_NEGATIVE_ONE_TO_ONE") +
-            ": depth written under the current mode is read with the other mapping, and AO and GI are quietly wrong. "
-            "ClipDepth::NegativeOneToOne is for hosts with GL's default clip control (glm::perspective), ZeroToOne for "
-            "those that call glClipControl(..., GL_ZERO_TO_ONE) (reversed-Z, glm::perspectiveZO). If the depth pass ran "
-            "under another clip control than the one current now, ignore this.");
-}
-
-// Diagnostic::DepthOnNearPlane, from the normals pass's count.
-void reportNearPlanePixels(ContextImpl& ctx, GLuint pixels, int w, int h, const Camera& camera) {
-    const std::size_t total = std::size_t(w) * std::size_t(h);
-    if (std::size_t(pixels) * 100 < total) return;
-    const bool reversed = analyzeProjection(camera).reversedZ;
-    reportDiagnostic(ctx, Diagnostic::DepthOnNearPlane,
-                     "GBuffer::adopt: " + std::to_string(pixels) + " of " + std::to_string(total) +
-                         " host depth pixels lie exactly on the camera's near plane (depth " + (reversed ? "1" : "0") +
-                         (reversed ? " with its reversed-Z projection" : " with its standard projection") +
-                         "), where no rendered surface lies. Is the depth cleared for the other convention (background "
-                         "must hold " + (reversed ? "0" : "1") + ") or rendered with another projection than the camera's?");
 }
 
 } // namespace
@@ -242,11 +110,12 @@ struct GBuffer::Impl {
     TextureView convertNormals(const Camera& camera, const TextureView& depthIn, const TextureView& normalIn,
                                const HostNormals& normals, float deviation, int w, int h, bool countNearPlane) {
         PassScope pass(ctx, "gbuffer.normals");
-        const GLuint normal = adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
+        const GLuint converted = adoptedNormal.ensure(ctx, GL_RGBA16F, w, h, "gbuffer.normal");
         Defines defines = normals.defines; // as prepareAdopt
         if (countNearPlane) {
             defines.push_back("COUNT_NEAR_PLANE");
-            if (!nearPlaneCount) nearPlaneCount = createBuffer(ctx, sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer.near_plane_count");
+            if (!nearPlaneCount)
+                nearPlaneCount = createBuffer(ctx, sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer.near_plane_count");
             const GLuint zero = 0;
             ctx.gl.NamedBufferSubData(nearPlaneCount.get(), 0, sizeof zero, &zero);
             ctx.state.bindStorageBuffer(ctx, GBUFFER_NEAR_PLANE_SSBO, nearPlaneCount.get());
@@ -262,10 +131,10 @@ struct GBuffer::Impl {
             ctx.gl.ProgramUniform1f(program, GBUFFER_LOC_NORMAL_DEVIATION,
                                     static_cast<float>(2.0 * std::sin(0.5 * double(deviation))));
         }
-        ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        ctx.state.bindImage(ctx, GBUFFER_OUTPUT_IMAGE_UNIT, converted, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatchOverImage(ctx, w, h);
         if (countNearPlane) ctx.gl.GetNamedBufferSubData(nearPlaneCount.get(), 0, sizeof nearPlanePixels, &nearPlanePixels);
-        return {normal, GL_RGBA16F, w, h};
+        return {converted, GL_RGBA16F, w, h};
     }
 
     std::size_t regionCopyBytes() const noexcept {
