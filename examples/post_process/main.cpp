@@ -24,6 +24,7 @@ struct Options {
     bool ao = true, gi = true;
     float ambient = 0.05f; //!< W/(sr m^2), the AO-shaded ambient term
     bool half = true;      //!< AO and GI at half resolution
+    bool temporal = false; //!< a new sampling pattern every frame, accumulated over frames
 };
 
 // The integration: the engine's buffers in, its display framebuffer out. This is what
@@ -49,6 +50,7 @@ struct PostProcess {
     }
 
     void configure(const Options& o, float radius) {
+        aoSettings.temporal.enabled = giSettings.temporal.enabled = o.temporal;
         aoSettings.radius = giSettings.radius = radius;
         aoSettings.method = AoMethod::Horizon;
         aoSettings.resolution = giSettings.resolution = o.half ? AoResolution::Half : AoResolution::Full;
@@ -65,6 +67,7 @@ struct PostProcess {
     }
 
     void frame(const examples::HostEngine& engine, const Camera& camera, const Options& o, int w, int h) {
+        if (o.temporal) aoSettings.frameIndex = giSettings.frameIndex = giSettings.frameIndex + 1;
         const GBufferView view = gbuffer.adopt(hostBuffers(engine, w, h), camera);
         ComposeInputs inputs{view, {}, {}};
         if (o.ao) inputs.ao = ao.run(view, aoSettings).ao;
@@ -87,6 +90,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0f, 65504.0f))
         ->capture_default_str();
     parser.add_option("--half", o.half, "AO and indirect light at half resolution (1) or full (0)")->capture_default_str();
+    parser.add_option("--temporal", o.temporal,
+                      "A new sampling pattern every frame (frameIndex), accumulated over up to 16 frames (1), or "
+                      "the same pattern each frame (0)")
+        ->capture_default_str();
     CLI11_PARSE(parser, argc, argv);
     return examples::runGuarded([&] {
         examples::App app(options);
@@ -99,6 +106,7 @@ int main(int argc, char** argv) {
             changed |= ImGui::Checkbox("indirect light", &o.gi);
             changed |= ImGui::DragFloat("ambient", &o.ambient, 0.001f, 0.0f, 65504.0f, "%.4f");
             changed |= ImGui::Checkbox("half resolution", &o.half);
+            changed |= ImGui::Checkbox("temporal accumulation", &o.temporal);
             ImGui::End();
         });
         TextureImage shown;

@@ -28,6 +28,7 @@
 #include "obscura/voxelizer.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 namespace obscura {
@@ -64,6 +65,27 @@ enum class AoMethod {
 };
 
 enum class AoResolution { Full = 1, Half = 2, Quarter = 4 }; //!< of the G-buffer, per axis
+
+//! Temporal accumulation of a result (AO, indirect light) over frames, at the G-buffer's
+//! resolution, pass "<module>.temporal": each pixel's value is averaged with its history, the
+//! last run's result at the same surface point, found by reprojecting the point through the
+//! last run's camera and read bilinearly from the four texels around it; a texel whose stored
+//! point lies off the point's tangent plane, or whose normal differs (a surface the camera did
+//! not see last frame), is left out, so that what comes into view starts afresh instead of
+//! ghosting. The history
+//! counts its frames n; the result is history + (current - history) / min(n + 1, maxFrames):
+//! the plain mean of up to maxFrames frames, then an exponential average of weight
+//! 1 / maxFrames. Give each frame its own `frameIndex` (the settings' field), so that the
+//! frames' samples differ. Bent normals are not accumulated. The history costs two RGBA16F
+//! and two RG32UI textures of the G-buffer's size (32 bytes a pixel), held while enabled.
+struct TemporalSettings {
+    bool enabled = false;
+    int maxFrames = 16;           //!< frames averaged at most, [1, 256]
+    //! (0, 1]: a history texel whose point lies further from the point's tangent plane than
+    //! this share of its view depth is another surface.
+    float depthTolerance = 0.02f;
+    float normalThreshold = 0.9f; //!< [-1, 1]: the least cosine between the texel's normal and the point's
+};
 
 // Setting keys for tools (`--set`) are the field names in snake case (blurRadius: blur_radius).
 struct AmbientOcclusionSettings {
@@ -128,6 +150,12 @@ struct AmbientOcclusionSettings {
     //! Also write `bentNormal`, the cosine-weighted mean of the open directions (Horizon: of the
     //! directions above its slices' horizons, integrated over each slice's visible arc).
     bool bentNormals = false;
+    //! [0, 2^32 - 1]: shifts every pixel's sampling pattern (rotation and offsets along the
+    //! rays) by point frameIndex of a low-discrepancy sequence. 0 (the default) is no shift;
+    //! counting it up every frame gives each frame other samples, whose noise a host's TAA, or
+    //! `temporal`, averages away.
+    std::uint32_t frameIndex = 0;
+    TemporalSettings temporal; //!< off by default
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
     //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.
     const VoxelGrid* voxels = nullptr;
@@ -160,8 +188,8 @@ public:
     AmbientOcclusion(const AmbientOcclusion&) = delete;
     AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
 
-    //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample"
-    //! and "ao.refine" when used. Throws Error{InvalidArgument} for settings out of range
+    //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample",
+    //! "ao.refine" and "ao.temporal" when used. Throws Error{InvalidArgument} for settings out of range
     //! (enumerators included), a G-buffer without depth or normal (or without backDepth for
     //! DepthPeeling and PeelingOrConstant), the Voxel method without a grid, or a G-buffer
     //! texture it reads that is one of this object's own outputs (a bent normal fed back as
@@ -180,6 +208,10 @@ public:
     //! Reads a count back from the GPU, so it waits for the run to finish: for diagnostics
     //! and benchmarks, not for every frame.
     RefinementCount lastRefinement() const;
+
+    //! Forgets the temporal history (settings.temporal): the next run starts afresh, as after
+    //! a camera cut. Frees its memory.
+    void resetHistory();
 
     std::size_t memoryBytes() const;
 

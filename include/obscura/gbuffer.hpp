@@ -172,7 +172,7 @@ struct HostGBuffer {
     //! give twice the largest angle between a vertex normal and the normals of the faces
     //! around that vertex (22 degrees on a 320-face sphere). Every pixel's bound (its alpha
     //! in the view) grows by 2 sin(deviation / 2), at the price of occluders that close to a
-    //! tangent plane going unseen, as for 8-bit normals (README, "Host normals"). Ignored
+    //! tangent plane going unseen, as for 8-bit normals (docs/integration.md). Ignored
     //! without `normal`.
     float normalDeviation = 0.0f;
     NormalSpace normalSpace = NormalSpace::View;

@@ -32,6 +32,7 @@
 #include "obscura/voxelizer.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 namespace obscura {
@@ -69,6 +70,8 @@ struct IndirectLightSettings {
     float refineThreshold = 0.25f; //!< as AmbientOcclusionSettings (pass "gi.refine"), [0, 1]
     int rayLanes = 1;              //!< as AmbientOcclusionSettings: 1, 2, 4, 8 or 16
     bool geometryTiles = true;     //!< as AmbientOcclusionSettings (pass "gi.tiles")
+    std::uint32_t frameIndex = 0;      //!< as AmbientOcclusionSettings::frameIndex
+    TemporalSettings temporal;         //!< as AmbientOcclusionSettings::temporal (of the radiance; off by default)
     const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
     VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Hybrid
 };
@@ -86,7 +89,7 @@ public:
     IndirectLight& operator=(const IndirectLight&) = delete;
 
     //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
-    //! "gi.upsample" and "gi.refine" when used. Throws Error{InvalidArgument} for settings
+    //! "gi.upsample", "gi.refine" and "gi.temporal" when used. Throws Error{InvalidArgument} for settings
     //! out of range (enumerators included), a G-buffer without depth, normal, albedo or direct
     //! radiance (adopted host buffers have them only where the host gave them), without
     //! backDepth for DepthPeeling and PeelingOrConstant, the hybrid method without a grid, or
@@ -102,6 +105,9 @@ public:
     //! at full resolution or without one; a refused run leaves it unchanged. Waits for the run
     //! to finish: not for every frame.
     RefinementCount lastRefinement() const;
+
+    //! Forgets the temporal history (as AmbientOcclusion::resetHistory).
+    void resetHistory();
 
     std::size_t memoryBytes() const;
 

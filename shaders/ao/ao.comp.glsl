@@ -74,9 +74,6 @@ struct Estimate {
     float count;    // samples; horizon: the open arcs
 };
 
-// The pixel's offset along the rays (and of the slices), independent of its rotation.
-float pixelJitter(ivec2 pixel) { return pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x; }
-
 // Direction i of n about the normal, in the weighting the settings ask for.
 vec3 aoDirection(uint i, uint n, vec2 rotation, vec3 normal) {
     const vec2 u = rotateSample(hammersley(i, n), rotation);
@@ -96,8 +93,8 @@ void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
 #if METHOD == AO_METHOD_RAYMARCH
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel);
-    const float jitter = pixelJitter(pixel);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
+    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
@@ -112,8 +109,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
 // occluded at its distance.
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel);
-    const float jitter = pixelJitter(pixel);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
+    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
     const uint n = uint(ao.counts.x);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
@@ -161,8 +158,8 @@ vec2 aoBentArc(float h1, float h2, float g) {
 // nothing above it is exactly 1 for any number of slices. Slices are this batch's "rays".
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel);
-    const float jitter = pixelJitter(pixel);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
+    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
     const vec3 v = viewDirectionTo(p);
     const int slices = max(ao.counts.x / 2, 1);
     // Pixels per world unit at p (perspective: the projection's y scale over the distance).
@@ -234,8 +231,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
 // only as far as it provably stays above them (surface_rays.glsl).
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel);
-    const float jitter = pixelJitter(pixel);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
+    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
     const VoxelSurfaceStart from =
         voxelSurfaceStart(p, texelFetch(visDepth, fullPixel, 0).r, normal, normalError, ao.shape.z);
     const vec3 startVoxel = (ao.viewToVoxel * vec4(from.start, 1.0)).xyz;

@@ -41,10 +41,12 @@ struct FrameData {
     vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float;
                          // y: GBufferView::normalError of the normals read;
                          // z: DepthReconstruction::farthestDepth
+    vec4 sampleShift;    // xyz: the frame's shift of every pixel's sample rotation (xy) and
+                         // jitter (z) in [0, 1) (sampling.glsl); 0 for frame index 0
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 3 * 64 + 4 * 16, "FrameData must match std140");
+static_assert(sizeof(FrameData) == 3 * 64 + 5 * 16, "FrameData must match std140");
 } // namespace obscura::shader
 #endif
 

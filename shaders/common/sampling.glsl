@@ -35,6 +35,14 @@ vec2 rotateSample(vec2 u, vec2 offset) {
 }
 float rotateSample(float u, float offset) { return rotateSample(vec2(u), vec2(offset)).x; }
 
+// The pixel's rotation and its offset along rays (independent of the rotation) in a frame
+// whose sampling is shifted by `frameShift` (FrameData::sampleShift: 0 for frame index 0, then
+// the R3 sequence), so that successive frames rotate every pixel's points anew.
+vec2 pixelRotation(ivec2 pixel, vec3 frameShift) { return rotateSample(pixelRotation(pixel), frameShift.xy); }
+float pixelJitter(ivec2 pixel, vec3 frameShift) {
+    return rotateSample(pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x, frameShift.z);
+}
+
 // Cosine-weighted direction about +z (pdf cos / pi): the disc point of radius sqrt(u.x)
 // lifted onto the hemisphere.
 vec3 cosineHemisphere(vec2 u) {

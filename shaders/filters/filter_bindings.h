@@ -10,6 +10,7 @@
 namespace obscura::shader {
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
 #endif
 
 // The low-resolution images are read with imageLoad, not texelFetch: the same texels, and on
@@ -25,6 +26,14 @@ using ivec4 = glm::ivec4;
 #define FILTER_TILES_SSBO 5          // the tiles with geometry (geometry_tiles.glsl), with TILES
 #define FILTER_REFINE_SSBO 6         // the pixels to refine (refine_list.glsl), with REFINE
 #define FILTER_MODULATE_UNIT 12      // read: a G-buffer-sized factor of the last step's rgb, with MODULATE
+
+// Temporal accumulation (temporal.comp.glsl), at the G-buffer's resolution.
+#define TEMPORAL_PARAMS_UBO_BINDING 6
+#define TEMPORAL_VALUE_IMAGE 0            // read and written in place: the result (r16f, or rgba16f with RGB)
+#define TEMPORAL_HISTORY_OUT_IMAGE 1      // written: the new history (rgba16f: value, a = frames in it)
+#define TEMPORAL_GEOMETRY_OUT_IMAGE 2     // written: the new history's geometry (rg32ui)
+#define TEMPORAL_HISTORY_IMAGE 3          // read: the last frame's history (rgba16f)
+#define TEMPORAL_GEOMETRY_IMAGE 4         // read: its geometry (rg32ui: view depth's float bits, octahedral world normal)
 
 #define FILTER_LOC_STEP 0 // blur: ivec2 pixel step of this pass
 #define FILTER_LOC_TILE_SCALE 1 // geometry_tiles.comp.glsl: int scale to the full resolution, 2 or 4
@@ -49,7 +58,16 @@ struct FilterParams {
     ivec4 flags;   // x: FILTER_FLAG_*, y, z, w: unused
 };
 
+struct TemporalParams {
+    mat4 previousView;           // world -> the last frame's view
+    mat4 previousViewProjection; // world -> the last frame's clip space
+    vec4 previousRays;           // the last frame's DepthReconstruction: xyScale.xy, xyOffset.xy
+    vec4 weights;                // x: depth tolerance (relative), y: normal threshold (cosine), z: most frames, w: unused
+    ivec4 flags;                 // x: 1 if there is a history, y: 1 if the last frame's camera is perspective
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(TemporalParams) == 2 * 64 + 3 * 16, "TemporalParams must match std140");
 static_assert(sizeof(FilterParams) == 48, "FilterParams must match std140");
 } // namespace obscura::shader
 #endif

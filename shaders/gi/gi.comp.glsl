@@ -84,8 +84,8 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
 
 // The sum of the radiance read over this batch's rays (ray_batch.glsl).
 vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pixel) {
-    const vec2 rotation = pixelRotation(pixel);
-    const float jitter = pixelRotation(pixel + ivec2(OBSCURA_NOISE_SIZE / 2, 7)).x;
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
+    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
     const uint n = uint(gi.counts.x);
     const float radius = gi.shape.x;
     vec3 sum = vec3(0.0);

@@ -9,6 +9,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "filters/temporal_history.hpp"
 #include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
@@ -68,6 +69,7 @@ void validateSettings(const AmbientOcclusionSettings& s) {
                                                 "obscurance: set AmbientOcclusionSettings::falloff to None or use "
                                                 "another method");
     if (s.method == AoMethod::Voxel) requireVoxelGrid(s.voxels, s.voxelTraversal, "AmbientOcclusionSettings");
+    validateTemporalSettings(s.temporal, "AmbientOcclusionSettings");
 }
 
 bool filtered(const AmbientOcclusionSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
@@ -135,6 +137,7 @@ struct AmbientOcclusion::Impl {
     SizedTexture ao, bent, guide, fullAo, fullBent;
     GuidedFilters filters;
     RayBatches batches;
+    TemporalHistory temporal;
     bool refinedLastRun = false; //!< lastRefinement reads the list
 
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
@@ -187,7 +190,8 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
-    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError);
+    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError,
+                 s.frameIndex);
     bindScreenInputs(ctx, view, peeled);
     ctx.bindNoiseTexture();
     if (marchOf(s) == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, thickness, "ao.hiz");
@@ -241,6 +245,8 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
         out.ao = {fullAo, GL_R16F, view.width, view.height};
         if (bent) out.bentNormal = {fullBent, GL_RGBA16F, view.width, view.height};
     }
+    if (s.temporal.enabled) d.temporal.accumulate(ctx, view, out.ao.name, false, s.temporal, "ao.temporal");
+    else d.temporal.reset(); // not asked for: not kept
     barrierForReaders(ctx);
     return out;
 }
@@ -256,7 +262,10 @@ void AmbientOcclusion::prepare(const AmbientOcclusionSettings& s) {
     if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
     // Only which images a run gives the filters matters here, not their names.
     if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, s.bentNormals ? 1u : 0u, false, {}, scale}, filterSettings(s, tiled));
+    if (s.temporal.enabled) TemporalHistory::prepare(ctx, false);
 }
+
+void AmbientOcclusion::resetHistory() { impl_->temporal.reset(); }
 
 RefinementCount AmbientOcclusion::lastRefinement() const {
     return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
@@ -265,7 +274,8 @@ RefinementCount AmbientOcclusion::lastRefinement() const {
 std::size_t AmbientOcclusion::memoryBytes() const {
     const auto& d = *impl_;
     return d.ao.bytes() + d.bent.bytes() + d.guide.bytes() + d.fullAo.bytes() + d.fullBent.bytes() + d.frame.memoryBytes() +
-           d.filters.memoryBytes() + d.hiz.memoryBytes() + d.batches.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
+           d.filters.memoryBytes() + d.hiz.memoryBytes() + d.batches.memoryBytes() + d.temporal.memoryBytes() +
+           (d.params ? sizeof(shader::AoParams) : 0);
 }
 
 } // namespace obscura

@@ -153,10 +153,20 @@ glm::vec3 parseColor(const std::string& key, const std::string& value, double lo
     return color;
 }
 
-int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit) {
+namespace {
+double parseWhole(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
     const double v = parseNumber(key, value, lo, hi, unit);
     if (v != std::floor(v)) throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a whole number");
-    return static_cast<int>(v);
+    return v;
+}
+} // namespace
+
+int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit) {
+    return static_cast<int>(parseWhole(key, value, lo, hi, unit));
+}
+
+std::uint32_t parseUnsigned32(const std::string& key, const std::string& value) {
+    return static_cast<std::uint32_t>(parseWhole(key, value, 0.0, 4294967295.0, ""));
 }
 
 namespace {

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -169,6 +170,8 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
 glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
 //! parseNumber for counts: a value with a fraction is refused, not cut.
 int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit);
+//! A whole number in [0, 2^32 - 1] (frame indices).
+std::uint32_t parseUnsigned32(const std::string& key, const std::string& value);
 //! One of the named values; throws Error{Parse} listing them.
 template <typename E>
 E parseChoice(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {

@@ -3,9 +3,24 @@
 #include "shaders/common/common_bindings.h"
 #include "core/context_impl.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace obscura::detail {
 
-void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep, float normalError) {
+glm::vec3 frameSampleShift(std::uint32_t index) {
+    // 1 / phi3^k, phi3 = 1.2207440846... the real root of x^4 = x + 1.
+    constexpr double alpha[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
+    glm::vec3 shift;
+    for (int k = 0; k < 3; ++k) {
+        const double v = double(index) * alpha[k]; // < 2^32: the fraction keeps 20 bits or more
+        shift[k] = std::min(static_cast<float>(v - std::floor(v)), 0.99999994f);
+    }
+    return shift;
+}
+
+void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int height, double depthStep, float normalError,
+                         std::uint32_t frameIndex) {
     const DepthReconstruction r = depthReconstruction(camera);
     const ProjectionInfo info = analyzeProjection(camera);
     shader::FrameData data;
@@ -19,6 +34,7 @@ void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int 
                                                                      : OBSCURA_PROJECTION_ORTHOGRAPHIC,
                                info.reversedZ ? 1 : 0);
     data.depthPrecision = glm::vec4(static_cast<float>(depthStep), normalError, r.farthestDepth, 0.0f);
+    data.sampleShift = glm::vec4(frameSampleShift(frameIndex), 0.0f);
     if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
     ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
     ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());

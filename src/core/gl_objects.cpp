@@ -151,7 +151,7 @@ std::size_t bytesPerTexel(GLenum f) {
     case GL_R16F: case GL_RG8: return 2;
     case GL_R32F: case GL_R32UI: case GL_RG16F: case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_RGB10_A2:
     case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: return 4;
-    case GL_RG32F: case GL_RGBA16F: case GL_DEPTH32F_STENCIL8: return 8;
+    case GL_RG32F: case GL_RG32UI: case GL_RGBA16F: case GL_DEPTH32F_STENCIL8: return 8;
     case GL_RGBA32F: case GL_RGBA32UI: return 16;
     default: return 0;
     }

@@ -9,6 +9,7 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "filters/guided_filters.hpp"
+#include "filters/temporal_history.hpp"
 #include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
@@ -43,6 +44,7 @@ void validateSettings(const IndirectLightSettings& s) {
     validateRefineThreshold(s.refineThreshold, "IndirectLightSettings");
     validateRayLanes(s.rayLanes, "IndirectLightSettings::rayLanes");
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
+    validateTemporalSettings(s.temporal, "IndirectLightSettings");
 }
 
 bool filtered(const IndirectLightSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
@@ -81,6 +83,7 @@ struct IndirectLight::Impl {
     SizedTexture radiance, guide, full;
     GuidedFilters filters;
     RayBatches batches;
+    TemporalHistory temporal;
     bool refinedLastRun = false; //!< lastRefinement reads the list
 
     void bindRead(int unit, GLuint texture) {
@@ -150,7 +153,7 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     d.refinedLastRun = false;
     StateScope scope(ctx);
     d.uploadParams(g, s, size, scale);
-    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError);
+    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError, s.frameIndex);
     bindScreenInputs(ctx, view, peeled);
     if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, thickness, "gi.hiz");
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
@@ -197,6 +200,8 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         }
         out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
     }
+    if (s.temporal.enabled) d.temporal.accumulate(ctx, view, out.radiance.name, true, s.temporal, "gi.temporal");
+    else d.temporal.reset(); // not asked for: not kept
     barrierForReaders(ctx);
     return out;
 }
@@ -212,7 +217,10 @@ void IndirectLight::prepare(const IndirectLightSettings& s) {
     if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
     // Only which images a run gives the filters matters here: the radiance (rgb) and the albedo.
     if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, 0, true, {}, scale, 1}, filterSettings(s, tiled));
+    if (s.temporal.enabled) TemporalHistory::prepare(ctx, true);
 }
+
+void IndirectLight::resetHistory() { impl_->temporal.reset(); }
 
 RefinementCount IndirectLight::lastRefinement() const {
     return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
@@ -221,7 +229,7 @@ RefinementCount IndirectLight::lastRefinement() const {
 std::size_t IndirectLight::memoryBytes() const {
     const auto& d = *impl_;
     return d.radiance.bytes() + d.guide.bytes() + d.full.bytes() + d.frame.memoryBytes() + d.filters.memoryBytes() +
-           d.hiz.memoryBytes() + d.batches.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
+           d.hiz.memoryBytes() + d.batches.memoryBytes() + d.temporal.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
 }
 
 } // namespace obscura

@@ -117,6 +117,27 @@ endif()
 refused("near and far must satisfy" "${OBSCURA}" render --scene "${WORK_DIR}/floor_wall.obj" --size 8x8
         --technique gbuffer --out "${WORK_DIR}/x.exr" --camera 0,1,1,0,0.5,-2,0,1,0,60,5,1)
 
+# Temporal accumulation over the rendered frames: 8 frames with temporal=1 (the frame index
+# counted up each frame) give another AO image than 1 frame; without it every frame is the
+# same, as the bench measures it.
+foreach(case "1;0" "8;0" "8;1")
+  list(GET case 0 frames)
+  list(GET case 1 temporal)
+  run("${OBSCURA}" render --scene cornell --size 32x24 --technique ao.raymarch --set rays=4 --set temporal=${temporal}
+      --frames ${frames} --output ao --out "${WORK_DIR}/temporal_${frames}_${temporal}.exr")
+endforeach()
+foreach(pair "8_0;1_0;0" "8_1;1_0;1")
+  list(GET pair 0 a)
+  list(GET pair 1 b)
+  list(GET pair 2 differ)
+  execute_process(COMMAND "${IDIFF}" -fail 0 -warn 0 "${WORK_DIR}/temporal_${a}.exr" "${WORK_DIR}/temporal_${b}.exr"
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+  if((differ AND rc EQUAL 0) OR (NOT differ AND NOT rc EQUAL 0))
+    message(FATAL_ERROR "temporal ${a} against ${b}: idiff exit ${rc}, expected them to differ: ${differ}")
+  endif()
+endforeach()
+refused("frame_index=1.5.*whole number"
+        "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.raymarch --set frame_index=1.5 --out "${WORK_DIR}/x.exr")
 # Counts are whole numbers: a fraction is refused, not cut.
 refused("rays=7.9.*whole number"
         "${OBSCURA}" render --scene cornell --size 8x8 --technique ao.raymarch --set rays=7.9 --out "${WORK_DIR}/x.exr")

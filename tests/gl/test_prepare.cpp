@@ -44,7 +44,7 @@ struct PrepareFixture {
 
 TEST_CASE("prepare() compiles every program a call with the same settings takes", "[prepare]") {
     PrepareFixture f;
-    SECTION("ambient occlusion, every method, full and half resolution, filtered, bent normals") {
+    SECTION("ambient occlusion, every method, full and half resolution, filtered, bent normals, temporal") {
         Voxelizer voxelizer(f.ctx);
         for (const AoMethod method : {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel})
             for (const AoResolution resolution : {AoResolution::Full, AoResolution::Half})
@@ -57,6 +57,7 @@ TEST_CASE("prepare() compiles every program a call with the same settings takes"
                     s.blurRadius = blur;
                     s.rays = 4;
                     s.bentNormals = blur > 0;
+                    s.temporal.enabled = blur > 0;
                     s.march = method == AoMethod::RayMarch && blur > 0 ? ScreenMarch::HiZ : ScreenMarch::View;
                     if (method == AoMethod::Voxel) s.voxels = &voxelizer.voxelize(f.scene, {});
                     f.check([&] { ao.prepare(s); }, [&] { ao.run(f.view, s); });
@@ -72,6 +73,7 @@ TEST_CASE("prepare() compiles every program a call with the same settings takes"
             s.resolution = AoResolution::Quarter;
             s.blurRadius = 1;
             s.rays = 4;
+            s.temporal.enabled = method == GiMethod::Screen;
             if (method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(f.scene, {});
             CHECK(f.check([&] { gi.prepare(s); }, [&] { gi.run(f.view, s); }) > 0);
             // prepare() holds no memory of its own.

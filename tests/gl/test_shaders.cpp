@@ -3,6 +3,7 @@
 #include "core/sampling.hpp"
 #include "frame_checks.hpp"
 #include "gl_fixture.hpp"
+#include "shaders/common/common_bindings.h"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
 
@@ -81,8 +82,9 @@ TEST_CASE("Memory is allocated on first use and reported by the module", "[shade
     const GBufferView view = gbuffer.render(scene, camera, {32, 16, true, {}});
     // Targets: 32F depth + 2 x RGBA16F + SRGB8_ALPHA8 = 24 bytes per pixel; the mesh (4
     // positions and 4 normals of 12 bytes, 6 indices of 4 = 120 bytes); one 80-byte light
-    // slot (kept even without lights); the 256-byte frame block.
-    CHECK(gbuffer.memoryBytes() == 32 * 16 * 24 + 120 + 80 + 256);
+    // slot (kept even without lights); the 272-byte frame block (common_bindings.h's FrameData).
+    CHECK(gbuffer.memoryBytes() == 32 * 16 * 24 + 120 + 80 + sizeof(shader::FrameData));
+    CHECK(sizeof(shader::FrameData) == 272);
     const std::size_t before = gbuffer.memoryBytes();
     gbuffer.positions(view);
     CHECK(gbuffer.memoryBytes() == before + 32 * 16 * 16);

@@ -306,6 +306,22 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         a.bentNormals = true;
         aoView = ao->run(view, a);
     });
+    check("AmbientOcclusion::prepare", [&] {
+        AmbientOcclusionSettings a;
+        a.method = AoMethod::Horizon;
+        a.resolution = AoResolution::Quarter;
+        a.temporal.enabled = true;
+        ao->prepare(a);
+    });
+    check("AmbientOcclusion::run (temporal, twice: the history reprojected)", [&] {
+        AmbientOcclusionSettings a;
+        a.rays = 4;
+        a.temporal.enabled = true;
+        for (std::uint32_t frame = 0; frame < 2; ++frame) {
+            a.frameIndex = frame;
+            ao->run(view, a);
+        }
+    });
     check("AmbientOcclusion::run (voxel)", [&] {
         AmbientOcclusionSettings a;
         a.rays = 4;
@@ -320,6 +336,13 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         g.rays = 4;
         g.resolution = AoResolution::Half;
         g.blurRadius = 1;
+        gi->run(view, g);
+    });
+    check("IndirectLight::run (temporal) and prepare", [&] {
+        IndirectLightSettings g;
+        g.rays = 4;
+        g.temporal.enabled = true;
+        gi->prepare(g);
         gi->run(view, g);
     });
     // The view compose reads below comes last: a run replaces the module's images.
@@ -376,6 +399,13 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     check("ShadowMaps::~ShadowMaps", [&] { shadows.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
     TextureView display;
+    check("Composer::prepare and GBuffer::prepareAdopt", [&] {
+        composer->prepare({});
+        HostGBuffer unsignedNormals;
+        unsignedNormals.normal = {1, 0, 0, 0}; // not read: only its presence and encoding
+        unsignedNormals.normalEncoding = NormalEncoding::Unsigned;
+        gbuffer->prepareAdopt(unsignedNormals);
+    });
     check("Composer::compose", [&] {
         ComposeSettings c;
         c.toneMapper = ToneMapper::Drago;
@@ -451,7 +481,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 42);
+    CHECK(checked == 46);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

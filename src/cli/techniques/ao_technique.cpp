@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 
@@ -33,6 +34,8 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
     {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
+    {"frame_index", "", "[0, 4294967295]", "sampling shift of the first rendered frame (0: none); temporal=1 counts it up each frame"},
+    {"temporal", "", "0|1", "accumulate the result over the rendered frames (--frames), reprojected; see TemporalSettings"},
     {"bent_normals", "", "0|1", "also compute the bent normal (default 1; horizon: of the directions above its slices' horizons)"},
 }, voxelGridSettings("ao.voxel"));
 
@@ -87,6 +90,8 @@ public:
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
         else if (key == "geometry_tiles") s.geometryTiles = parseBool(key, value);
+        else if (key == "frame_index") firstFrame_ = parseUnsigned32(key, value);
+        else if (key == "temporal") s.temporal.enabled = parseBool(key, value);
         else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
         else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
@@ -97,6 +102,8 @@ public:
         g.depthLayers = depthLayersFor(settings_.thicknessMode);
         view_ = gbuffer_.render(frame.scene.scene, frame.camera, g);
         if (settings_.method == AoMethod::Voxel) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
+        // Without temporal accumulation every frame is the same (the bench times and measures that).
+        settings_.frameIndex = firstFrame_ + (settings_.temporal.enabled ? framesRun_++ : 0u);
         result_ = ao_.run(view_, settings_);
     }
 
@@ -172,6 +179,7 @@ private:
     AmbientOcclusion ao_;
     Voxelizer voxelizer_;
     AmbientOcclusionSettings settings_;
+    std::uint32_t firstFrame_ = 0, framesRun_ = 0;
     VoxelGridOptions voxelGrid_;
     std::optional<double> radius_;
     GBufferView view_;

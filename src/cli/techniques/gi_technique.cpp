@@ -7,6 +7,7 @@
 #include "lit_gbuffer.hpp"
 #include "technique_registry.hpp"
 
+#include <cstdint>
 #include <optional>
 
 namespace obscura::cli {
@@ -27,6 +28,8 @@ const std::vector<SettingInfo> kSettings = joinSettings({
     {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
     {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
     {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
+    {"frame_index", "", "[0, 4294967295]", "sampling shift of the first rendered frame (0: none); temporal=1 counts it up each frame"},
+    {"temporal", "", "0|1", "accumulate the result over the rendered frames (--frames), reprojected; see TemporalSettings"},
 }, joinSettings(voxelGridSettings("gi.hybrid"), LitGBuffer::settings()));
 
 // Each method's keys, less those it does not read (as ao_technique.cpp): the hybrid method's
@@ -57,6 +60,8 @@ public:
         else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
         else if (key == "geometry_tiles") s.geometryTiles = parseBool(key, value);
+        else if (key == "frame_index") firstFrame_ = parseUnsigned32(key, value);
+        else if (key == "temporal") s.temporal.enabled = parseBool(key, value);
         else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal) && !lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
     }
 
@@ -66,6 +71,8 @@ public:
         g.depthLayers = depthLayersFor(settings_.thicknessMode);
         view_ = lit_.render(frame, g);
         if (settings_.method == GiMethod::Hybrid) settings_.voxels = &voxelizer_.voxelize(frame.scene.scene, voxelGrid_.settings());
+        // Without temporal accumulation every frame is the same (the bench times and measures that).
+        settings_.frameIndex = firstFrame_ + (settings_.temporal.enabled ? framesRun_++ : 0u);
         result_ = gi_.run(view_, settings_);
     }
 
@@ -131,6 +138,7 @@ private:
     IndirectLight gi_;
     Voxelizer voxelizer_;
     IndirectLightSettings settings_;
+    std::uint32_t firstFrame_ = 0, framesRun_ = 0;
     VoxelGridOptions voxelGrid_;
     std::optional<double> radius_;
     GBufferView view_;
