@@ -107,9 +107,7 @@ int main(int argc, char** argv) {
                     ComposeInputs inputs{view, {}, result.radiance};
                     // AO shades the ambient term (and, in the thesis's formula, the direct
                     // light); the physical combine uses neither next to L1: no AO pass then.
-                    const bool aoRead = c.formula == CombineFormula::Thesis ||
-                                        (c.formula == CombineFormula::Standard && ambient > 0.0f);
-                    if (aoRead && withAo) {
+                    if (combineReadsAo(c, true) && withAo) {
                         AmbientOcclusionSettings a;
                         a.radius = s.radius;
                         a.resolution = s.resolution;

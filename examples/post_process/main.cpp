@@ -70,8 +70,8 @@ struct PostProcess {
         if (o.temporal) aoSettings.frameIndex = giSettings.frameIndex = giSettings.frameIndex + 1;
         const GBufferView view = gbuffer.adopt(hostBuffers(engine, w, h), camera);
         ComposeInputs inputs{view, {}, {}};
-        if (o.ao) inputs.ao = ao.run(view, aoSettings).ao;
         if (o.gi) inputs.indirect = gi.run(view, giSettings).radiance;
+        if (o.ao && combineReadsAo(composeSettings, o.gi)) inputs.ao = ao.run(view, aoSettings).ao;
         composer.drawToHost(composer.compose(inputs, composeSettings), {engine.displayFramebuffer(), 0, 0, w, h});
     }
 };
@@ -114,6 +114,8 @@ int main(int argc, char** argv) {
         int frames = 0;
         {
             examples::HostEngine engine(example.loaded, w, h);
+            std::printf("HostGBuffer::normalDeviation: %.1f degrees (the engine's smooth normals)\n",
+                        double(engine.normalDeviation()) * 57.29577951308232);
             Context ctx(app.contextDesc());
             PostProcess post(ctx);
             post.configure(o, 0.1f * example.diagonal);

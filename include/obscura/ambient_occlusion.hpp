@@ -76,7 +76,11 @@ enum class AoResolution { Full = 1, Half = 2, Quarter = 4 }; //!< of the G-buffe
 //! counts its frames n; the result is history + (current - history) / min(n + 1, maxFrames):
 //! the plain mean of up to maxFrames frames, then an exponential average of weight
 //! 1 / maxFrames. Give each frame its own `frameIndex` (the settings' field), so that the
-//! frames' samples differ. Bent normals are not accumulated. The history costs two RGBA16F
+//! frames' samples differ. Points are reprojected with the camera's motion only: a moving
+//! object's history is found where the object was (there is no motion-vector input), so its
+//! contact shadows trail by up to maxFrames frames or are dropped by the plane and normal
+//! tests. Changing other settings (radius, method) keeps the history, which fades over
+//! maxFrames frames: call resetHistory() for a clean start. Bent normals are not accumulated. The history costs two RGBA16F
 //! and two RG32UI textures of the G-buffer's size (32 bytes a pixel), held while enabled.
 struct TemporalSettings {
     bool enabled = false;

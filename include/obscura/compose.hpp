@@ -21,7 +21,7 @@
 // docs/compose.md shows the three side by side.
 // Missing inputs count as absent: no AO = 1, no L1 = 0. Background pixels (depth at the
 // camera's clear depth, or one no surface has: see HostGBuffer::depth) get L = L_dir with
-// either formula: no AO, ambient or indirect term, whatever the albedo there.
+// every formula: no AO, ambient or indirect term, whatever the albedo there.
 //
 // Tone mapping of exposure * L: None (clamp), Drago et al. 2003 (logarithmic, adapted to the
 // frame's largest luminance or a given one), or ACES (Narkowicz's fit of the ACES RRT+ODT).
@@ -101,6 +101,12 @@ struct HostTarget {
     HostBlend blend = HostBlend::Overwrite;
     HostSourceEncoding encoding = HostSourceEncoding::Auto;
 };
+
+//! Whether a combine with these settings reads the AO input (its result depends on it): the
+//! thesis's formula always (AO darkens the direct light too); the others only as the ambient
+//! term's factor, with an ambient above 0 and, for Physical, no indirect light. Where it does
+//! not, a host need not run AO for the combine.
+OBSCURA_API bool combineReadsAo(const ComposeSettings& settings, bool withIndirect);
 
 class OBSCURA_API Composer {
 public:

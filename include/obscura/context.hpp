@@ -133,13 +133,14 @@ enum class Diagnostic : unsigned {
     //! projection matrix alone cannot tell a [-1, 1] projection from a [0, 1] one (read as the
     //! other it is just another valid near plane), so a wrong ClipDepth gives quietly wrong
     //! AO and GI; a host whose depth pass ran under another clip control than the one current
-    //! at adopt() gets a false alarm.
+    //! at adopt() gets a false alarm, once for each GBuffer while the mismatch lasts.
     ClipDepthMismatch = 0x0B5C0001u,
     //! GBuffer::adopt: at least 1 % of the host's depth pixels lie exactly on the camera's
     //! near plane (depth 0, or 1 with reversed-Z), where no rendered surface lies: a depth
     //! buffer cleared for the other depth convention, or a projection other than the one it
     //! was rendered with. Counted only while diagnostics can be delivered (debugOutput set,
-    //! strictChecks, or the host's GL_DEBUG_OUTPUT enabled), as it reads a count back (a stall).
+    //! strictChecks, or the host's GL_DEBUG_OUTPUT enabled), and then once per depth texture,
+    //! size and depth convention, as it reads a count back (a stall).
     DepthOnNearPlane = 0x0B5C0002u,
 };
 

@@ -5,10 +5,13 @@
 // and optionally its normals, albedo, lit image and second depth layer (adopt, post-process
 // mode). Both give a GBufferView with the same contract:
 //   depth           hardware depth of `camera` (32F when ours); background = clear depth
-//   normal          GL_RGBA16F, view-space *geometric* (face) normal, unit length, turned
-//                   toward the camera; alpha = 0 on background, and on geometry the
-//                   pixel's normal error in units of normalError, >= 1: 1 for ours and
-//                   for a host's normals, more for normals reconstructed from depth
+//   normal          GL_RGBA16F (a host's GL_RGBA32F with NormalEncoding::ViewContract),
+//                   view-space normal, unit length, turned toward the camera: the geometric
+//                   (face) normal for ours, the host's (face or shading) normal otherwise;
+//                   alpha = 0 on background, and on geometry the pixel's normal error in
+//                   units of normalError, >= 1: 1 for ours and for a host's face normals,
+//                   more for shading normals (HostGBuffer::normalDeviation), bent ones and
+//                   normals reconstructed from depth
 //   albedo          GL_SRGB8_ALPHA8, linear diffuse reflectance when sampled (ours; or the
 //                   host's, HostGBuffer::albedo)
 //   backDepth       second depth layer (depthLayers = 2, or HostGBuffer::backDepth): per
@@ -66,8 +69,9 @@ struct GBufferView {
     //! the stored tangent plane (so a plane does not occlude itself). Ours and the default:
     //! 2^-10, the half-float store's rounding. adopt() adds what the host's format lost
     //! before that store (an 8-bit encoding: 7.8e-3 in all), see kHalfNormalError and
-    //! adoptedNormalError, or, reconstructing normals from depth, puts each pixel's own
-    //! bound in alpha.
+    //! adoptedNormalError, and puts in alpha what a pixel's normal may lie off its face
+    //! beyond that (shading normals' HostGBuffer::normalDeviation, a bend at a silhouette,
+    //! the bound of a normal reconstructed from depth).
     float normalError = kHalfNormalError;
     Camera camera;
     int width = 0;  //!< pixels
@@ -177,10 +181,12 @@ struct HostGBuffer {
     float normalDeviation = 0.0f;
     NormalSpace normalSpace = NormalSpace::View;
     NormalEncoding normalEncoding = NormalEncoding::Signed;
-    //! Optional, same size, used in place: diffuse reflectance, for IndirectLight and
-    //! Composer. A normalized or float RGB/RGBA format; sRGB ones (GL_SRGB8,
-    //! GL_SRGB8_ALPHA8) are decoded when read, others hold linear reflectance in [0, 1]
-    //! (read clamped to it, NaN as 0).
+    //! Optional, same size, used in place: diffuse reflectance, which IndirectLight and
+    //! Composer need (AO does not read it). A normalized or float RGB/RGBA format; sRGB ones
+    //! (GL_SRGB8, GL_SRGB8_ALPHA8) are decoded when read, others hold linear reflectance in
+    //! [0, 1] (read clamped to it, NaN as 0); alpha is not read. In a metallic workflow that is
+    //! base colour times (1 - metallic); baked AO or cavity do not belong in it (AO multiplies
+    //! the ambient term itself).
     TextureView albedo;
     //! Optional, same size, used in place: the radiance each pixel sends to the camera from
     //! direct light, W/(sr·m²), linear (the host's lit image before AO, indirect light and
@@ -225,13 +231,19 @@ public:
     GBufferView render(const Scene& scene, const Camera& camera, const GBufferSettings& settings);
 
     //! Wraps the host's depth (and normal, albedo, radiance, back depth) textures. Depth,
-    //! albedo, radiance and back depth are used in place (or their region's copies); normals are converted to the
-    //! view-space contract above, or reconstructed from depth when absent (pass
-    //! "gbuffer.normals"), and HostGBuffer::region is copied out where it is not the whole
-    //! textures. Throws Error{InvalidArgument} for a wrong target, format, sample count or
-    //! size, a region outside the depth texture, a backDepth that names the depth texture,
-    //! and for a texture of a view this GBuffer's adopt() returned (its normals or a region's
-    //! copy, which this call would overwrite or free; another GBuffer may adopt it).
+    //! albedo, radiance and back depth are used in place (or their region's copies); normals
+    //! are converted to the view-space contract above, or reconstructed from depth when
+    //! absent (pass "gbuffer.normals"), or used in place with NormalEncoding::ViewContract;
+    //! HostGBuffer::region is copied out where it is not the whole textures. Throws
+    //! Error{InvalidArgument} for a wrong target, format, sample count or size, a stated
+    //! format or size other than GL's, a region outside the depth texture, a backDepth that
+    //! names the depth texture, and for a texture of a view this GBuffer's adopt() returned
+    //! (its normals or a region's copy, which this call would overwrite or free; another
+    //! GBuffer may adopt it). Reports Diagnostic::ClipDepthMismatch and DepthOnNearPlane
+    //! (context.hpp), once for each change of what they compare; with
+    //! ContextDesc::strictChecks it throws them as Error{InvalidArgument} instead, the clip
+    //! depth before any GL work, the near-plane count after the normals pass (which wrote
+    //! only this GBuffer's own texture).
     GBufferView adopt(const HostGBuffer& host, const Camera& camera);
 
     //! Compiles the program adopt() runs for such host buffers ahead of time (from whether

@@ -10,5 +10,6 @@ bool isPerspective() { return frame.viewport.z == OBSCURA_PROJECTION_PERSPECTIVE
 // GBufferView::normalError: how far the stored normals may lie from the true ones.
 float storedNormalError() { return frame.depthPrecision.y; }
 // One pixel's bound: normalError times the normal texel's alpha (1 for our normals and a
-// host's; normals reconstructed from depth carry their own bound there, normals.comp.glsl).
+// host's face normals; shading, bent and reconstructed normals carry their own bound there,
+// normals.comp.glsl).
 float storedNormalError(vec4 normalTexel) { return storedNormalError() * normalTexel.a; }

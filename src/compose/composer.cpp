@@ -130,6 +130,12 @@ struct Composer::Impl {
     }
 };
 
+bool combineReadsAo(const ComposeSettings& s, bool withIndirect) {
+    if (s.formula == CombineFormula::Thesis) return true;
+    const bool ambient = s.ambient.r > 0.0f || s.ambient.g > 0.0f || s.ambient.b > 0.0f;
+    return ambient && (s.formula == CombineFormula::Standard || !withIndirect);
+}
+
 Composer::Composer(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
 Composer::~Composer() = default;
 

@@ -80,6 +80,14 @@ struct GBuffer::Impl {
     SizedTexture adoptedNormal; //!< adopt() output
     Buffer nearPlaneCount;      //!< Diagnostic::DepthOnNearPlane's count, while diagnostics are delivered
     GLuint nearPlanePixels = 0; //!< its last value
+    //! The depth texture, size and convention the near plane was last counted for.
+    struct DepthKey {
+        GLuint name = 0;
+        int width = 0, height = 0;
+        bool reversed = false;
+        bool operator==(const DepthKey&) const = default;
+    } nearPlaneChecked;
+    bool clipDepthMismatchReported = false; //!< Diagnostic::ClipDepthMismatch was reported and still holds
     //! adopt()'s copies of HostGBuffer::region: depth, normal, albedo, radiance, back depth
     RegionCopy regionDepth, regionNormal, regionAlbedo, regionRadiance, regionBackDepth;
     SizedTexture positions;     //!< positions() output
@@ -421,9 +429,12 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
         if (backDepth) requireCopyable(ctx, backDepth.name, backDepth.internalFormat, "HostGBuffer::backDepth");
     }
 
-    reportClipDepthMismatch(ctx, camera);
-    // Queried before the scope, which may turn the host's GL_DEBUG_OUTPUT on or off.
-    const bool countNearPlane = !normals.inPlace && diagnosticsDelivered(ctx);
+    reportClipDepthMismatch(ctx, camera, impl_->clipDepthMismatchReported);
+    // Counted once per depth texture, size and convention: the count is a read-back, which
+    // stalls. Queried before the scope, which may turn the host's GL_DEBUG_OUTPUT on or off.
+    const Impl::DepthKey depthKey{host.depth.name, depth.width, depth.height, analyzeProjection(camera).reversedZ};
+    const bool countNearPlane = !normals.inPlace && !(depthKey == impl_->nearPlaneChecked) && diagnosticsDelivered(ctx);
+    if (countNearPlane) impl_->nearPlaneChecked = depthKey;
     StateScope scope(ctx);
     TextureView depthIn{host.depth.name, depth.internalFormat, depth.width, depth.height};
     if (coversWhole(region, depth)) impl_->releaseRegionCopies();
@@ -448,12 +459,16 @@ GBufferView GBuffer::adopt(const HostGBuffer& host, const Camera& camera) {
 }
 
 void GBuffer::prepareAdopt(const HostGBuffer& host) {
-    requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned, NormalEncoding::ViewContract},
-                      "HostGBuffer::normalEncoding");
-    requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
+    requireNormalEnumerators(host);
     if (host.normal.name != 0 && host.normalEncoding == NormalEncoding::ViewContract) return; // no pass
-    StateScope scope(impl_->ctx);
-    impl_->ctx.shaders->program({"gbuffer/normals.comp.glsl"}, normalDefines(host));
+    auto& ctx = impl_->ctx;
+    const bool counting = diagnosticsDelivered(ctx); // the first adopt() counts (Diagnostic::DepthOnNearPlane)
+    StateScope scope(ctx);
+    Defines defines = normalDefines(host);
+    ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
+    if (!counting) return;
+    defines.push_back("COUNT_NEAR_PLANE");
+    ctx.shaders->program({"gbuffer/normals.comp.glsl"}, defines);
 }
 
 TextureView GBuffer::positions(const GBufferView& view) {

@@ -53,10 +53,14 @@ Defines normalDefines(const HostGBuffer& host) {
     return defines;
 }
 
-HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const TextureInfo& depth) {
+void requireNormalEnumerators(const HostGBuffer& host) {
     requireEnumerator(host.normalEncoding, {NormalEncoding::Signed, NormalEncoding::Unsigned, NormalEncoding::ViewContract},
                       "HostGBuffer::normalEncoding");
     requireEnumerator(host.normalSpace, {NormalSpace::View, NormalSpace::World}, "HostGBuffer::normalSpace");
+}
+
+HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const TextureInfo& depth) {
+    requireNormalEnumerators(host);
     requireInRange(host.normalDeviation, 0.0, kHalfPi, "HostGBuffer::normalDeviation", "radians");
     HostNormals out;
     out.defines = normalDefines(host);
@@ -101,11 +105,14 @@ HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const Te
     return out;
 }
 
-void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera) {
+void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera, bool& reported) {
     GLint mode = GL_NEGATIVE_ONE_TO_ONE;
     ctx.gl.GetIntegerv(GL_CLIP_DEPTH_MODE, &mode);
     const bool zeroToOne = camera.clipDepth == ClipDepth::ZeroToOne;
-    if (zeroToOne == (mode == GL_ZERO_TO_ONE)) return;
+    const bool mismatch = zeroToOne != (mode == GL_ZERO_TO_ONE);
+    const bool repeated = reported;
+    reported = mismatch;
+    if (!mismatch || (repeated && !ctx.desc.strictChecks)) return; // a host that means it hears it once
     reportDiagnostic(
         ctx, Diagnostic::ClipDepthMismatch,
         std::string("GBuffer::adopt: the camera's ClipDepth is ") + (zeroToOne ? "ZeroToOne" : "NegativeOneToOne") +

@@ -38,12 +38,19 @@ struct HostNormals {
 //! The conversion pass's defines for the host's normals (none given: FROM_DEPTH).
 Defines normalDefines(const HostGBuffer& host);
 
+//! HostGBuffer::normalEncoding and normalSpace among their enumerators, else
+//! Error{InvalidArgument}.
+void requireNormalEnumerators(const HostGBuffer& host);
+
 //! Checks the normals' enumerators, deviation, format and encoding. Throws
 //! Error{InvalidArgument} naming what is wrong and what is accepted.
 HostNormals checkHostNormals(ContextImpl& ctx, const HostGBuffer& host, const TextureInfo& depth);
 
 //! Diagnostic::ClipDepthMismatch: the camera's ClipDepth against the current clip control.
-void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera);
+//! Reported once while a mismatch lasts (`reported` carries that between calls: a host whose
+//! depth pass ran under another clip control hears it once, not every frame); with
+//! ContextDesc::strictChecks thrown every time.
+void reportClipDepthMismatch(ContextImpl& ctx, const Camera& camera, bool& reported);
 
 //! Diagnostic::DepthOnNearPlane, from the count of the normals pass (from 1 % of w x h).
 void reportNearPlanePixels(ContextImpl& ctx, GLuint pixels, int w, int h, const Camera& camera);

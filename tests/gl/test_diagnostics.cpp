@@ -65,6 +65,8 @@ TEST_CASE("A camera's ClipDepth other than the current clip control is reported,
     claimed.clipDepth = ClipDepth::ZeroToOne; // the copied snippet
     adopter.adopt(host, claimed);
     REQUIRE(f.count(Diagnostic::ClipDepthMismatch) == 1);
+    adopter.adopt(host, claimed); // the next frames: said once while it lasts
+    CHECK(f.count(Diagnostic::ClipDepthMismatch) == 1);
     const DebugMessage& m = f.messages.back();
     CHECK(m.type == GL_DEBUG_TYPE_OTHER);
     CHECK(m.severity == GL_DEBUG_SEVERITY_MEDIUM);
@@ -81,7 +83,8 @@ TEST_CASE("A camera's ClipDepth other than the current clip control is reported,
         Context strict(f.desc(true));
         GBuffer g(strict);
         const auto objects = test::liveGlObjects();
-        CHECK_THROWS_WITH(g.adopt(host, claimed), Catch::Contains("GL_CLIP_DEPTH_MODE") && Catch::Contains("strictChecks"));
+        for (int frame = 0; frame < 2; ++frame) // refused every time
+            CHECK_THROWS_WITH(g.adopt(host, claimed), Catch::Contains("GL_CLIP_DEPTH_MODE") && Catch::Contains("strictChecks"));
         CHECK(test::liveGlObjects() == objects);
         CHECK_NOTHROW(g.adopt(host, standard));
     }
@@ -123,6 +126,9 @@ TEST_CASE("Host depth whose background lies on the camera's near plane is report
     adopter.adopt(host, reversed);
     REQUIRE(f.count(Diagnostic::DepthOnNearPlane) == 1);
     CHECK_THAT(f.messages.back().text, Catch::Contains("near plane") && Catch::Contains("background must hold 0"));
+    // Counted once per depth texture, size and convention (a read-back): not every frame.
+    adopter.adopt(host, reversed);
+    CHECK(f.count(Diagnostic::DepthOnNearPlane) == 1);
     CHECK(f.count(Diagnostic::ClipDepthMismatch) == 0);
     // Nobody to tell: the count (a read-back) is not taken.
     {

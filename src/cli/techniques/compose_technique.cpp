@@ -129,15 +129,8 @@ public:
     std::vector<Measurement> measurements() override { return {}; }
 
 private:
-    // Whether the combine reads AO (compose.hpp): the thesis's formula always (AO darkens the
-    // direct light too), the others only as the ambient term's factor, with an ambient above 0
-    // (and, for the physical one, no indirect light). Otherwise no AO pass runs.
-    bool combineReadsAo() const {
-        const auto& s = settings_;
-        const bool ambient = glm::any(glm::greaterThan(s.ambient, glm::vec3(0.0f)));
-        if (s.formula == CombineFormula::Thesis) return true;
-        return ambient && (s.formula == CombineFormula::Standard || !withGi_);
-    }
+    // Whether the combine reads AO (obscura::combineReadsAo): otherwise no AO pass runs.
+    bool combineReadsAo() const { return obscura::combineReadsAo(settings_, withGi_); }
     bool aoUsed() const { return withAo_ && combineReadsAo(); }
 
     Context& ctx_;
