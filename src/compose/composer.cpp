@@ -243,7 +243,8 @@ void Composer::drawToHost(const TextureView& source, const HostTarget& target) {
                                                     std::to_string(ctx.info.maxViewportDims[1]) + ")");
     // Likewise an origin outside the bounds range, which would shift the source.
     const float* bounds = ctx.info.viewportBoundsRange;
-    if (!(target.x >= bounds[0] && target.x <= bounds[1] && target.y >= bounds[0] && target.y <= bounds[1]))
+    const double x = target.x, y = target.y; // exact: ints in double
+    if (!(x >= bounds[0] && x <= bounds[1] && y >= bounds[0] && y <= bounds[1]))
         throw Error(ErrorCode::InvalidArgument, "HostTarget: x and y must lie in GL_VIEWPORT_BOUNDS_RANGE [" +
                                                     shortNumber(bounds[0]) + ", " + shortNumber(bounds[1]) + "], got (" +
                                                     std::to_string(target.x) + ", " + std::to_string(target.y) + ")");

@@ -1,8 +1,11 @@
 #include "core/state_guard.hpp"
 
 #include "core/context_impl.hpp"
+#include "core/extension_state.hpp"
 #include "obscura/error.hpp"
 
+#include <iterator>
+#include <memory>
 #include <vector>
 
 namespace obscura::detail {
@@ -27,7 +30,7 @@ constexpr GLenum kEnables[] = {
     GL_CLIP_DISTANCE0,      GL_CLIP_DISTANCE1,         GL_CLIP_DISTANCE2,      GL_CLIP_DISTANCE3,
     GL_CLIP_DISTANCE4,      GL_CLIP_DISTANCE5,         GL_CLIP_DISTANCE6,      GL_CLIP_DISTANCE7,
     GL_POLYGON_SMOOTH};
-constexpr std::size_t kEnableCount = sizeof(kEnables) / sizeof(kEnables[0]);
+constexpr std::size_t kEnableCount = std::size(kEnables);
 
 // Generic buffer bindings: target and its binding query.
 constexpr GLenum kBufferTargets[13][2] = {
@@ -53,74 +56,6 @@ constexpr GLenum kPixelStore[16][2] = {
     {GL_UNPACK_SKIP_ROWS, 0},  {GL_UNPACK_SKIP_IMAGES, 0}, {GL_UNPACK_SWAP_BYTES, 0}, {GL_UNPACK_LSB_FIRST, 0}};
 
 void setEnabled(GladGLContext& gl, GLenum cap, bool on) { on ? gl.Enable(cap) : gl.Disable(cap); }
-
-// Enables that extensions add, saved and reset only where the context has the extension (GL
-// refuses the enum elsewhere). Each can change which pixels our draws write: conservative
-// rasterization adds fragments; the depth bounds test (against the depth already stored: our
-// G-buffer's clear value) and the exclusive scissor drop some; a shading rate image shades
-// several pixels with one invocation, or none. The representative fragment test drops
-// fragments only of shaders with early_fragment_tests (none of ours today); it is reset so
-// that one added later cannot lose pixels. The exclusive scissor and the shading rate image
-// are per viewport: only index 0, the one we draw with, is touched. Blackhole rendering
-// turns every draw, dispatch and blit into a no-op, and viewport W scaling divides our clip
-// positions by another w; its coefficients are left alone, as they act only when enabled.
-struct ExtensionEnable {
-    int GladGLContext::*present;
-    GLenum cap;
-    bool indexed;
-};
-constexpr ExtensionEnable kExtensionEnables[] = {
-    {&GladGLContext::NV_conservative_raster, GL_CONSERVATIVE_RASTERIZATION_NV, false},
-    {&GladGLContext::INTEL_conservative_rasterization, GL_CONSERVATIVE_RASTERIZATION_INTEL, false},
-    {&GladGLContext::EXT_depth_bounds_test, GL_DEPTH_BOUNDS_TEST_EXT, false},
-    {&GladGLContext::NV_representative_fragment_test, GL_REPRESENTATIVE_FRAGMENT_TEST_NV, false},
-    {&GladGLContext::NV_scissor_exclusive, GL_SCISSOR_TEST_EXCLUSIVE_NV, true},
-    {&GladGLContext::NV_shading_rate_image, GL_SHADING_RATE_IMAGE_NV, true},
-    {&GladGLContext::INTEL_blackhole_render, GL_BLACKHOLE_RENDER_INTEL, false},
-    {&GladGLContext::NV_clip_space_w_scaling, GL_VIEWPORT_POSITION_W_SCALE_NV, false}};
-constexpr std::size_t kExtensionEnableCount = sizeof(kExtensionEnables) / sizeof(kExtensionEnables[0]);
-
-bool isEnabled(GladGLContext& gl, const ExtensionEnable& e) { return e.indexed ? gl.IsEnabledi(e.cap, 0) : gl.IsEnabled(e.cap); }
-
-void setEnabled(GladGLContext& gl, const ExtensionEnable& e, bool on) {
-    if (e.indexed) on ? gl.Enablei(e.cap, 0) : gl.Disablei(e.cap, 0);
-    else setEnabled(gl, e.cap, on);
-}
-
-// Window rectangles (EXT_window_rectangles) clip every draw, clear and blit into any
-// framebuffer: inclusive ones to their union, exclusive ones to the rest. Our baseline is
-// GL's initial state, exclusive with none (nothing clipped).
-struct WindowRectangles {
-    GLint mode = GL_EXCLUSIVE_EXT;
-    std::vector<GLint> boxes; // x, y, width, height per rectangle in use
-};
-
-// Fills `w` in place: the saved state is reused call after call, so its storage is too.
-void saveWindowRectangles(GladGLContext& gl, WindowRectangles& w) {
-    GLint count = 0;
-    gl.GetIntegerv(GL_WINDOW_RECTANGLE_MODE_EXT, &w.mode);
-    gl.GetIntegerv(GL_NUM_WINDOW_RECTANGLES_EXT, &count);
-    w.boxes.resize(4 * static_cast<std::size_t>(count));
-    for (std::size_t i = 0; i < w.boxes.size() / 4; ++i)
-        gl.GetIntegeri_v(GL_WINDOW_RECTANGLE_EXT, static_cast<GLuint>(i), &w.boxes[4 * i]);
-}
-
-void applyWindowRectangles(GladGLContext& gl, const WindowRectangles& w) {
-    gl.WindowRectanglesEXT(static_cast<GLenum>(w.mode), static_cast<GLsizei>(w.boxes.size() / 4),
-                           w.boxes.empty() ? nullptr : w.boxes.data());
-}
-
-// A viewport swizzle (NV_viewport_swizzle) permutes and negates the clip coordinates of
-// everything drawn through that viewport: ours is index 0, identity in GL's initial state.
-constexpr GLenum kViewportSwizzleQueries[4] = {GL_VIEWPORT_SWIZZLE_X_NV, GL_VIEWPORT_SWIZZLE_Y_NV,
-                                               GL_VIEWPORT_SWIZZLE_Z_NV, GL_VIEWPORT_SWIZZLE_W_NV};
-constexpr GLint kIdentitySwizzle[4] = {GL_VIEWPORT_SWIZZLE_POSITIVE_X_NV, GL_VIEWPORT_SWIZZLE_POSITIVE_Y_NV,
-                                       GL_VIEWPORT_SWIZZLE_POSITIVE_Z_NV, GL_VIEWPORT_SWIZZLE_POSITIVE_W_NV};
-
-void applyViewportSwizzle(GladGLContext& gl, const GLint (&swizzle)[4]) {
-    gl.ViewportSwizzleNV(0, static_cast<GLenum>(swizzle[0]), static_cast<GLenum>(swizzle[1]),
-                         static_cast<GLenum>(swizzle[2]), static_cast<GLenum>(swizzle[3]));
-}
 
 void GLAD_API_PTR forwardDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                       const GLchar* message, const void* user) {
@@ -161,9 +96,7 @@ struct SavedGlobalState {
     GLfloat offsetFactor = 0, offsetUnits = 0;
     GLint frontFace = 0, cullFaceMode = 0, activeTexture = 0, provokingVertex = 0, clampReadColor = 0;
     GLboolean dither = GL_TRUE;
-    bool extensionEnables[kExtensionEnableCount]{}; // kExtensionEnables' where present
-    WindowRectangles windowRectangles;               // with EXT_window_rectangles
-    GLint viewportSwizzle[4]{};                      // index 0, with NV_viewport_swizzle
+    ExtensionState extensions; // vendor extensions' state, where the context has them
     GLint pixelStore[16]{};
     GLint buffers[13]{};
     bool debug = false;
@@ -228,11 +161,7 @@ void saveGlobal(ContextImpl& ctx, SavedGlobalState& s) {
     gl.GetIntegerv(GL_PROVOKING_VERTEX, &s.provokingVertex);
     gl.GetIntegerv(GL_CLAMP_READ_COLOR, &s.clampReadColor);
     s.dither = gl.IsEnabled(GL_DITHER);
-    for (std::size_t i = 0; i < kExtensionEnableCount; ++i)
-        if (gl.*kExtensionEnables[i].present) s.extensionEnables[i] = isEnabled(gl, kExtensionEnables[i]);
-    if (gl.EXT_window_rectangles) saveWindowRectangles(gl, s.windowRectangles);
-    if (gl.NV_viewport_swizzle)
-        for (int i = 0; i < 4; ++i) gl.GetIntegeri_v(kViewportSwizzleQueries[i], 0, &s.viewportSwizzle[i]);
+    s.extensions.save(gl);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     for (int i = 0; i < 16; ++i) gl.GetIntegerv(kPixelStore[i][0], &s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.GetIntegerv(kBufferTargets[i][1], &s.buffers[i]);
@@ -287,10 +216,7 @@ void restoreGlobal(ContextImpl& ctx, const SavedGlobalState& s) {
     gl.ProvokingVertex(static_cast<GLenum>(s.provokingVertex));
     gl.ClampColor(GL_CLAMP_READ_COLOR, static_cast<GLenum>(s.clampReadColor));
     setEnabled(gl, GL_DITHER, s.dither);
-    for (std::size_t i = 0; i < kExtensionEnableCount; ++i)
-        if (gl.*kExtensionEnables[i].present) setEnabled(gl, kExtensionEnables[i], s.extensionEnables[i]);
-    if (gl.EXT_window_rectangles) applyWindowRectangles(gl, s.windowRectangles);
-    if (gl.NV_viewport_swizzle) applyViewportSwizzle(gl, s.viewportSwizzle);
+    s.extensions.restore(gl);
     for (int i = 0; i < 16; ++i) gl.PixelStorei(kPixelStore[i][0], s.pixelStore[i]);
     for (int i = 0; i < 13; ++i) gl.BindBuffer(kBufferTargets[i][0], static_cast<GLuint>(s.buffers[i]));
     gl.ActiveTexture(static_cast<GLenum>(s.activeTexture));
@@ -331,10 +257,7 @@ void applyBaseline(ContextImpl& ctx) {
     // TRUE would clamp float readbacks (readTexture) to [0,1].
     gl.ClampColor(GL_CLAMP_READ_COLOR, GL_FIXED_ONLY);
     gl.Enable(GL_DITHER);
-    for (const ExtensionEnable& e : kExtensionEnables)
-        if (gl.*e.present) setEnabled(gl, e, false);
-    if (gl.EXT_window_rectangles) applyWindowRectangles(gl, WindowRectangles{});
-    if (gl.NV_viewport_swizzle) applyViewportSwizzle(gl, kIdentitySwizzle);
+    ExtensionState::applyBaseline(gl);
     for (const auto& p : kPixelStore) gl.PixelStorei(p[0], static_cast<GLint>(p[1]));
     for (const auto& b : kBufferTargets) gl.BindBuffer(b[0], 0);
     gl.ActiveTexture(GL_TEXTURE0);
@@ -366,8 +289,8 @@ void requireNoActiveTransformFeedback(ContextImpl& ctx) {
 
 } // namespace
 
-StateTracker::StateTracker() : global_(new SavedGlobalState) {}
-StateTracker::~StateTracker() { delete global_; }
+StateTracker::StateTracker() : global_(std::make_unique<SavedGlobalState>()) {}
+StateTracker::~StateTracker() = default;
 
 void StateTracker::enter(ContextImpl& ctx) {
     if (depth_++ > 0) return;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 
 namespace obscura::detail {
 
@@ -55,7 +56,7 @@ private:
 
     int depth_ = 0;
     bool preserving_ = false;
-    SavedGlobalState* global_ = nullptr; // owned; pimpl keeps the long list out of this header
+    std::unique_ptr<SavedGlobalState> global_; // pimpl: keeps the long list out of this header
     std::map<GLuint, TextureUnit> textureUnits_;
     std::map<GLuint, ImageUnit> imageUnits_;
     std::map<GLuint, BufferPoint> uniformPoints_;
