@@ -8,7 +8,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
-#include "filters/guided_filters.hpp"
+#include "filters/screen_integrator.hpp"
 #include "filters/temporal_history.hpp"
 #include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
@@ -121,8 +121,24 @@ GLuint integratorProgram(ContextImpl& ctx, const AmbientOcclusionSettings& s, co
     return ctx.shaders->program({"ao/ao.comp.glsl"}, defines);
 }
 
-GuidedFilterSettings filterSettings(const AmbientOcclusionSettings& s, bool tiled) {
-    return {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, tiled};
+// The run the settings ask for, on a view of `fullSize` (only the ray batches read it).
+IntegratorShape shapeOf(const AmbientOcclusionSettings& s, glm::ivec2 fullSize) {
+    IntegratorShape shape;
+    shape.module = "ao";
+    shape.pass = passName(s.method);
+    shape.workgroup = AO_WORKGROUP;
+    shape.scale = static_cast<int>(s.resolution);
+    shape.direction = s.bentNormals;
+    // AO lies in [0, 1], background pixels 1.
+    shape.filter = {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, s.geometryTiles};
+    shape.rayLanes = s.rayLanes;
+    shape.batchItems = batchItems(s);
+    shape.iterationsPerItem = iterationsPerItem(s, fullSize);
+    shape.hiz = marchOf(s) == ScreenMarch::HiZ;
+    shape.hizThickness = s.thickness > 0.0f ? s.thickness : s.radius;
+    shape.hizMode = thicknessOf(s);
+    shape.temporal = s.temporal;
+    return shape;
 }
 
 } // namespace
@@ -131,14 +147,8 @@ struct AmbientOcclusion::Impl {
     explicit Impl(ContextImpl& c) : ctx(c) {}
 
     ContextImpl& ctx;
-    FrameUniforms frame;
-    HiZPyramid hiz;
+    ScreenIntegrator screen;
     Buffer params;
-    SizedTexture ao, bent, guide, fullAo, fullBent;
-    GuidedFilters filters;
-    RayBatches batches;
-    TemporalHistory temporal;
-    bool refinedLastRun = false; //!< lastRefinement reads the list
 
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
         shader::AoParams p{};
@@ -156,10 +166,6 @@ struct AmbientOcclusion::Impl {
         }
         return p;
     }
-
-    void bindWrite(int unit, GLuint texture, GLenum format) {
-        ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
-    }
 };
 
 AmbientOcclusion::AmbientOcclusion(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
@@ -170,112 +176,48 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
-    const ScreenThickness thickness = thicknessOf(s);
-    const bool peeled = depthLayersFor(thickness) == 2;
+    const bool peeled = depthLayersFor(thicknessOf(s)) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "AmbientOcclusionSettings");
-    const int scale = static_cast<int>(s.resolution);
+    const IntegratorShape shape = shapeOf(s, {view.width, view.height});
     // What this run writes (or reallocates): an earlier run's other outputs may be read.
-    const bool reduced = scale > 1;
     requireNotOwnOutput({{"GBufferView::depth", view.depth.name},
                          {"GBufferView::normal", view.normal.name},
                          {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u}},
-                        {d.ao.get(), filtered(s) ? d.guide.get() : 0u, s.bentNormals ? d.bent.get() : 0u,
-                         reduced ? d.fullAo.get() : 0u, reduced && s.bentNormals ? d.fullBent.get() : 0u},
-                        "AmbientOcclusion");
-    const glm::ivec2 size((view.width + scale - 1) / scale, (view.height + scale - 1) / scale);
+                        d.screen.written(shape), "AmbientOcclusion");
 
-    d.refinedLastRun = false;
     StateScope scope(ctx);
-    const shader::AoParams p = d.makeParams(view, s, size, scale);
+    const shader::AoParams p = d.makeParams(view, s, ScreenIntegrator::reducedSize(view, shape.scale), shape.scale);
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
-    d.frame.bind(ctx, view.camera, view.width, view.height, depthStepOf(ctx, view.depth.name), view.normalError,
-                 s.frameIndex);
-    bindScreenInputs(ctx, view, peeled);
-    ctx.bindNoiseTexture();
-    if (marchOf(s) == ScreenMarch::HiZ) d.hiz.build(ctx, view, p.shape.y, thickness, "ao.hiz");
-    const GLuint aoTexture = d.ao.ensure(ctx, GL_R16F, size.x, size.y, "ao.occlusion");
-    // The guide is only for the filters: a full-resolution result without blur needs none.
-    const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "ao.guide") : 0;
-    const GLuint bent = s.bentNormals ? d.bent.ensure(ctx, GL_RGBA16F, size.x, size.y, "ao.bent") : 0;
-    const bool refine = scale > 1 && s.refineThreshold > 0.0f;
-    const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
-    const FilterImages images{guide, aoTexture, bent, false, size, scale};
-    const GuidedFilterSettings filter = filterSettings(s, tiled);
-    if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "ao.tiles");
-    d.batches.plan(ctx, batchItems(s), iterationsPerItem(s, {view.width, view.height}),
-                   std::max(std::size_t(size.x) * std::size_t(size.y),
-                            refine ? GuidedFilters::refineCapacity({view.width, view.height}) : std::size_t{0}),
-                   s.rayLanes);
-    {
-        PassScope pass(ctx, passName(s.method));
-        const GLuint program = integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-        ctx.gl.UseProgram(program);
-        if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
-        d.bindWrite(AO_OUT_IMAGE, aoTexture, GL_R16F);
-        if (guide) d.bindWrite(AO_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
-        if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, bent, GL_RGBA16F);
-        d.batches.run(ctx, program, [&] {
-            if (tiled) d.filters.dispatchGeometryTiles(ctx);
-            else dispatchCompute2D(ctx, size.x, size.y, AO_WORKGROUP);
+    d.screen.begin(ctx, view, peeled, s.frameIndex, shape);
+    const IntegratorResult result = d.screen.run(
+        ctx, view, shape, {AO_OUT_IMAGE, AO_BENT_OUT_IMAGE, AO_GUIDE_OUT_IMAGE},
+        [&](const char* variant) { return integratorProgram(ctx, s, variant); },
+        [&] {
+            if (s.method == AoMethod::Voxel) bindVoxelGrid(ctx, *s.voxels);
         });
-        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
-    d.filters.blur(ctx, images, filter, "ao.blur");
-    AmbientOcclusionView out;
-    out.width = view.width;
-    out.height = view.height;
-    if (scale == 1) {
-        out.ao = {aoTexture, GL_R16F, size.x, size.y};
-        if (bent) out.bentNormal = {bent, GL_RGBA16F, size.x, size.y};
-    } else {
-        const GLuint fullAo = d.fullAo.ensure(ctx, GL_R16F, view.width, view.height, "ao.output");
-        const GLuint fullBent = bent ? d.fullBent.ensure(ctx, GL_RGBA16F, view.width, view.height, "ao.bent_normal") : 0;
-        d.filters.upsample(ctx, images, filter, fullAo, fullBent, {view.width, view.height}, "ao.upsample");
-        if (refine) {
-            PassScope pass(ctx, "ao.refine");
-            const GLuint program = integratorProgram(ctx, s, "REFINE");
-            ctx.gl.UseProgram(program);
-            d.bindWrite(AO_OUT_IMAGE, fullAo, GL_R16F);
-            if (bent) d.bindWrite(AO_BENT_OUT_IMAGE, fullBent, GL_RGBA16F);
-            d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
-            d.refinedLastRun = true;
-        }
-        out.ao = {fullAo, GL_R16F, view.width, view.height};
-        if (bent) out.bentNormal = {fullBent, GL_RGBA16F, view.width, view.height};
-    }
-    if (s.temporal.enabled) d.temporal.accumulate(ctx, view, out.ao.name, false, s.temporal, "ao.temporal");
-    else d.temporal.reset(); // not asked for: not kept
-    barrierForReaders(ctx);
-    return out;
+    return {result.value, result.direction, view.width, view.height};
 }
 
 void AmbientOcclusion::prepare(const AmbientOcclusionSettings& s) {
     validateSettings(s);
     auto& ctx = impl_->ctx;
     StateScope scope(ctx);
-    const int scale = static_cast<int>(s.resolution);
-    const bool tiled = scale > 1 && s.geometryTiles;
-    if (marchOf(s) == ScreenMarch::HiZ) HiZPyramid::prepare(ctx, thicknessOf(s));
+    const IntegratorShape shape = shapeOf(s, {0, 0});
+    const bool tiled = shape.scale > 1 && s.geometryTiles;
     integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-    if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
-    // Only which images a run gives the filters matters here, not their names.
-    if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, s.bentNormals ? 1u : 0u, false, {}, scale}, filterSettings(s, tiled));
-    if (s.temporal.enabled) TemporalHistory::prepare(ctx, false);
+    if (shape.scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
+    ScreenIntegrator::prepare(ctx, shape);
 }
 
-void AmbientOcclusion::resetHistory() { impl_->temporal.reset(); }
+void AmbientOcclusion::resetHistory() { impl_->screen.resetHistory(); }
 
-RefinementCount AmbientOcclusion::lastRefinement() const {
-    return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
-}
+RefinementCount AmbientOcclusion::lastRefinement() const { return impl_->screen.lastRefinement(impl_->ctx); }
 
 std::size_t AmbientOcclusion::memoryBytes() const {
     const auto& d = *impl_;
-    return d.ao.bytes() + d.bent.bytes() + d.guide.bytes() + d.fullAo.bytes() + d.fullBent.bytes() + d.frame.memoryBytes() +
-           d.filters.memoryBytes() + d.hiz.memoryBytes() + d.batches.memoryBytes() + d.temporal.memoryBytes() +
-           (d.params ? sizeof(shader::AoParams) : 0);
+    return d.screen.memoryBytes() + (d.params ? sizeof(shader::AoParams) : 0);
 }
 
 } // namespace obscura

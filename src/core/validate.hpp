@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 namespace obscura::detail {
 
@@ -77,7 +78,7 @@ struct NamedInput {
 //! its passes would read the texture while they write it, or reallocate it at a new size,
 //! and GL leaves such a feedback undefined (a pass reads other pixels than it writes). A
 //! host feeding a result back alternates two objects of the module instead.
-inline void requireNotOwnOutput(std::initializer_list<NamedInput> inputs, std::initializer_list<unsigned> outputs,
+inline void requireNotOwnOutput(std::initializer_list<NamedInput> inputs, const std::vector<unsigned>& outputs,
                                 const std::string& module) {
     for (const NamedInput& input : inputs)
         for (const unsigned output : outputs)

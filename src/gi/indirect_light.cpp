@@ -8,8 +8,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
-#include "filters/guided_filters.hpp"
-#include "filters/temporal_history.hpp"
+#include "filters/screen_integrator.hpp"
 #include "visibility/hiz_pyramid.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "voxel/voxel_queries.hpp"
@@ -67,8 +66,25 @@ GLuint integratorProgram(ContextImpl& ctx, const IndirectLightSettings& s, const
     return ctx.shaders->program({"gi/gi.comp.glsl"}, defines);
 }
 
-GuidedFilterSettings filterSettings(const IndirectLightSettings& s, bool tiled) {
-    return {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, tiled};
+// The run the settings ask for, on a view of `fullSize` (only the ray batches read it).
+IntegratorShape shapeOf(const IndirectLightSettings& s, glm::ivec2 fullSize) {
+    IntegratorShape shape;
+    shape.module = "gi";
+    shape.pass = hybrid(s) ? "gi.hybrid" : "gi.screen";
+    shape.workgroup = GI_WORKGROUP;
+    shape.scale = static_cast<int>(s.resolution);
+    shape.rgb = true;
+    // Radiance, unbounded; background pixels 0.
+    shape.filter = {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, s.geometryTiles};
+    shape.rayLanes = s.rayLanes;
+    shape.batchItems = s.rays;
+    shape.iterationsPerItem = hybrid(s) ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
+                                        : screenRayIterations(s.march, s.steps, fullSize);
+    shape.hiz = !hybrid(s) && s.march == ScreenMarch::HiZ;
+    shape.hizThickness = s.thickness > 0.0f ? s.thickness : s.radius;
+    shape.hizMode = thicknessOf(s);
+    shape.temporal = s.temporal;
+    return shape;
 }
 
 } // namespace
@@ -77,25 +93,13 @@ struct IndirectLight::Impl {
     explicit Impl(ContextImpl& c) : ctx(c) {}
 
     ContextImpl& ctx;
-    FrameUniforms frame;
-    HiZPyramid hiz;
+    ScreenIntegrator screen;
     Buffer params;
-    SizedTexture radiance, guide, full;
-    GuidedFilters filters;
-    RayBatches batches;
-    TemporalHistory temporal;
-    bool refinedLastRun = false; //!< lastRefinement reads the list
 
     void bindRead(int unit, GLuint texture) {
         ctx.state.bindTexture(ctx, unit, texture);
         ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
     }
-
-    void bindWrite(int unit, GLuint texture, GLenum format) {
-        ctx.state.bindImage(ctx, unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
-    }
-
-    float thickness = 0.0f; // of the last run, world units (params.shape.y)
 
     void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
         shader::GiParams p{};
@@ -112,7 +116,6 @@ struct IndirectLight::Impl {
             p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));
             if (s.thickness <= 0.0f) p.shape.y = 2.0f * p.shape.z;
         }
-        thickness = p.shape.y;
         if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "gi.params");
         ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
         ctx.state.bindUniformBuffer(ctx, GI_PARAMS_UBO_BINDING, params.get());
@@ -132,104 +135,52 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
         throw Error(ErrorCode::InvalidArgument, "indirect light gathers the G-buffer's direct radiance and albedo: render "
                                                 "the G-buffer with GBuffer::render, or give HostGBuffer::albedo and "
                                                 "directRadiance to GBuffer::adopt");
-    const bool hybrid = s.method == GiMethod::Hybrid;
-    const ScreenThickness thickness = thicknessOf(s);
-    const bool peeled = depthLayersFor(thickness) == 2;
+    const bool peeled = depthLayersFor(thicknessOf(s)) == 2;
     const GBufferView view = checkScreenInputs(ctx, g, peeled, "IndirectLightSettings");
     requireViewInput(ctx, g.albedo, view, "albedo", SampledAs::Rgb);
     requireViewInput(ctx, g.directRadiance, view, "directRadiance", SampledAs::Rgb);
+    IntegratorShape shape = shapeOf(s, {view.width, view.height});
+    shape.modulate = g.albedo.name;
     requireNotOwnOutput({{"GBufferView::depth", view.depth.name},
                          {"GBufferView::normal", view.normal.name},
                          {"GBufferView::backDepth", peeled ? view.backDepth.name : 0u},
                          {"GBufferView::albedo", g.albedo.name},
                          {"GBufferView::directRadiance", g.directRadiance.name}},
-                        {d.radiance.get(), filtered(s) ? d.guide.get() : 0u,
-                         s.resolution != AoResolution::Full ? d.full.get() : 0u},
-                        "IndirectLight"); // what this run writes: an earlier run's other output may be read
-    const int scale = static_cast<int>(s.resolution);
-    const glm::ivec2 fullSize(view.width, view.height);
-    const glm::ivec2 size((fullSize.x + scale - 1) / scale, (fullSize.y + scale - 1) / scale);
+                        d.screen.written(shape), "IndirectLight"); // an earlier run's other output may be read
 
-    d.refinedLastRun = false;
     StateScope scope(ctx);
-    d.uploadParams(g, s, size, scale);
-    d.frame.bind(ctx, g.camera, fullSize.x, fullSize.y, depthStepOf(ctx, view.depth.name), view.normalError, s.frameIndex);
-    bindScreenInputs(ctx, view, peeled);
-    if (!hybrid && s.march == ScreenMarch::HiZ) d.hiz.build(ctx, view, d.thickness, thickness, "gi.hiz");
+    d.uploadParams(g, s, ScreenIntegrator::reducedSize(view, shape.scale), shape.scale);
+    d.screen.begin(ctx, view, peeled, s.frameIndex, shape);
     d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
     d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
-    ctx.bindNoiseTexture();
-    const GLuint radiance = d.radiance.ensure(ctx, GL_RGBA16F, size.x, size.y, "gi.radiance");
-    // The guide is only for the filters: a full-resolution result without blur needs none.
-    const GLuint guide = filtered(s) ? d.guide.ensure(ctx, GL_RGBA32F, size.x, size.y, "gi.guide") : 0;
-    const bool refine = scale > 1 && s.refineThreshold > 0.0f;
-    const bool tiled = scale > 1 && s.geometryTiles && GuidedFilters::geometryTilesFit(size);
-    const FilterImages images{guide, radiance, 0, true, size, scale, g.albedo.name};
-    const GuidedFilterSettings filter = filterSettings(s, tiled);
-    if (tiled) d.filters.findGeometryTiles(ctx, images, filter.background, "gi.tiles");
-    const std::int64_t perRay = hybrid ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
-                                       : screenRayIterations(s.march, s.steps, fullSize);
-    d.batches.plan(ctx, s.rays, perRay,
-                   std::max(std::size_t(size.x) * std::size_t(size.y), refine ? GuidedFilters::refineCapacity(fullSize) : std::size_t{0}),
-                   s.rayLanes);
-    {
-        PassScope pass(ctx, hybrid ? "gi.hybrid" : "gi.screen");
-        const GLuint program = integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-        ctx.gl.UseProgram(program);
-        if (hybrid) bindVoxelGrid(ctx, *s.voxels);
-        d.bindWrite(GI_OUT_IMAGE, radiance, GL_RGBA16F);
-        if (guide) d.bindWrite(GI_GUIDE_OUT_IMAGE, guide, GL_RGBA32F);
-        d.batches.run(ctx, program, [&] {
-            if (tiled) d.filters.dispatchGeometryTiles(ctx);
-            else dispatchCompute2D(ctx, size.x, size.y, GI_WORKGROUP);
+    const IntegratorResult result = d.screen.run(
+        ctx, view, shape, {GI_OUT_IMAGE, GI_OUT_IMAGE, GI_GUIDE_OUT_IMAGE},
+        [&](const char* variant) { return integratorProgram(ctx, s, variant); },
+        [&] {
+            if (hybrid(s)) bindVoxelGrid(ctx, *s.voxels);
         });
-        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
-    d.filters.blur(ctx, images, filter, "gi.blur");
-    IndirectLightView out{{radiance, GL_RGBA16F, size.x, size.y}, fullSize.x, fullSize.y};
-    if (scale > 1) {
-        const GLuint full = d.full.ensure(ctx, GL_RGBA16F, fullSize.x, fullSize.y, "gi.output");
-        d.filters.upsample(ctx, images, filter, full, 0, fullSize, "gi.upsample");
-        if (refine) {
-            PassScope pass(ctx, "gi.refine");
-            const GLuint program = integratorProgram(ctx, s, "REFINE");
-            ctx.gl.UseProgram(program);
-            d.bindWrite(GI_OUT_IMAGE, full, GL_RGBA16F);
-            d.batches.run(ctx, program, [&] { d.filters.dispatchRefinement(ctx); });
-            d.refinedLastRun = true;
-        }
-        out.radiance = {full, GL_RGBA16F, fullSize.x, fullSize.y};
-    }
-    if (s.temporal.enabled) d.temporal.accumulate(ctx, view, out.radiance.name, true, s.temporal, "gi.temporal");
-    else d.temporal.reset(); // not asked for: not kept
-    barrierForReaders(ctx);
-    return out;
+    return {result.value, view.width, view.height};
 }
 
 void IndirectLight::prepare(const IndirectLightSettings& s) {
     validateSettings(s);
     auto& ctx = impl_->ctx;
     StateScope scope(ctx);
-    const int scale = static_cast<int>(s.resolution);
-    const bool tiled = scale > 1 && s.geometryTiles;
-    if (!hybrid(s) && s.march == ScreenMarch::HiZ) HiZPyramid::prepare(ctx, thicknessOf(s));
+    IntegratorShape shape = shapeOf(s, {0, 0});
+    shape.modulate = 1; // the albedo: only that there is one matters here
+    const bool tiled = shape.scale > 1 && s.geometryTiles;
     integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-    if (scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
-    // Only which images a run gives the filters matters here: the radiance (rgb) and the albedo.
-    if (filtered(s)) GuidedFilters::prepare(ctx, {1, 1, 0, true, {}, scale, 1}, filterSettings(s, tiled));
-    if (s.temporal.enabled) TemporalHistory::prepare(ctx, true);
+    if (shape.scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
+    ScreenIntegrator::prepare(ctx, shape);
 }
 
-void IndirectLight::resetHistory() { impl_->temporal.reset(); }
+void IndirectLight::resetHistory() { impl_->screen.resetHistory(); }
 
-RefinementCount IndirectLight::lastRefinement() const {
-    return impl_->refinedLastRun ? impl_->filters.refinementCount(impl_->ctx) : RefinementCount{};
-}
+RefinementCount IndirectLight::lastRefinement() const { return impl_->screen.lastRefinement(impl_->ctx); }
 
 std::size_t IndirectLight::memoryBytes() const {
     const auto& d = *impl_;
-    return d.radiance.bytes() + d.guide.bytes() + d.full.bytes() + d.frame.memoryBytes() + d.filters.memoryBytes() +
-           d.hiz.memoryBytes() + d.batches.memoryBytes() + d.temporal.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
+    return d.screen.memoryBytes() + (d.params ? sizeof(shader::GiParams) : 0);
 }
 
 } // namespace obscura
