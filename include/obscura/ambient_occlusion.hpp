@@ -23,6 +23,7 @@
 // occludes, a curved surface keeps its own normals.
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
+#include "obscura/settings_table.hpp"
 #include "obscura/screen_visibility.hpp"
 #include "obscura/texture.hpp"
 #include "obscura/voxelizer.hpp"
@@ -56,11 +57,8 @@ enum class AoMethod {
     //! more for a pixel whose normal is only known within a bound (HostGBuffer::normal); a
     //! segment that may sink back toward its own plane ends where it might (open beyond).
     //! Where other geometry lies within about a voxel diagonal of the lifted start (an inner
-    //! corner, a gap narrower than a voxel), the start is inside its voxels and every ray hits
-    //! at once: AO 0, whatever the radius (the grid cannot tell nearer geometry apart). Measured
-    //! at 128 x 128: 230 of the Cornell box's 15252 geometry pixels (its corners' edges) and
-    //! 552 of 2CylinderEngine's 2720 at voxel_resolution 128, 74 and 423 at 256, 51 and 43 at
-    //! 512; the ray march gives 0 at none.
+    //! corner, a gap narrower than a voxel), every ray hits at once: AO 0, whatever the radius
+    //! (docs/ambient-occlusion.md counts such pixels per grid resolution).
     Voxel,
 };
 
@@ -69,102 +67,136 @@ enum class AoResolution { Full = 1, Half = 2, Quarter = 4 }; //!< of the G-buffe
 //! Temporal accumulation of a result (AO, indirect light) over frames, at the G-buffer's
 //! resolution, pass "<module>.temporal": each pixel's value is averaged with its history, the
 //! last run's result at the same surface point, found by reprojecting the point through the
-//! last run's camera and read bilinearly from the four texels around it; a texel whose stored
-//! point lies off the point's tangent plane, or whose normal differs (a surface the camera did
-//! not see last frame), is left out, so that what comes into view starts afresh instead of
-//! ghosting. The history
-//! counts its frames n; the result is history + (current - history) / min(n + 1, maxFrames):
-//! the plain mean of up to maxFrames frames, then an exponential average of weight
-//! 1 / maxFrames. Give each frame its own `frameIndex` (the settings' field), so that the
-//! frames' samples differ. Points are reprojected with the camera's motion only: a moving
-//! object's history is found where the object was (there is no motion-vector input), so its
-//! contact shadows trail by up to maxFrames frames or are dropped by the plane and normal
-//! tests. Changing other settings (radius, method) keeps the history, which fades over
-//! maxFrames frames: call resetHistory() for a clean start. Bent normals are not accumulated. The history costs two RGBA16F
-//! and two RG32UI textures of the G-buffer's size (32 bytes a pixel), held while enabled.
+//! last run's camera (bilinearly, from the four texels around it). A texel whose stored point
+//! lies off the point's tangent plane, or whose normal differs, is left out, so that what
+//! comes into view starts afresh instead of ghosting. The result is history + (current -
+//! history) / min(n + 1, maxFrames): the mean of up to maxFrames frames, then an exponential
+//! average. Give each frame its own `frameIndex`. Points are reprojected with the camera's
+//! motion only (no motion vectors): a moving object's contact shadows trail by up to maxFrames
+//! frames or are dropped by the tests. Other settings' changes keep the history: call
+//! resetHistory() for a clean start. Bent normals are not accumulated. The history costs 32
+//! bytes a G-buffer pixel, held while enabled.
 struct TemporalSettings {
     bool enabled = false;
-    int maxFrames = 16;           //!< frames averaged at most, [1, 256]
-    //! (0, 1]: a history texel whose point lies further from the point's tangent plane than
-    //! this share of its view depth is another surface.
+    int maxFrames = 16;
     float depthTolerance = 0.02f;
-    float normalThreshold = 0.9f; //!< [-1, 1]: the least cosine between the texel's normal and the point's
+    float normalThreshold = 0.9f;
+
+    static const SettingsTable<TemporalSettings>& table();
 };
 
-// Setting keys for tools (`--set`) are the field names in snake case (blurRadius: blur_radius).
+inline const SettingsTable<TemporalSettings>& TemporalSettings::table() {
+    using S = TemporalSettings;
+    static const SettingsTable<S> rows = {
+        settings::flag("enabled", &S::enabled, "accumulate over frames, reprojected"),
+        settings::number("maxFrames", &S::maxFrames, "frames", "[1, 256]", "frames averaged at most"),
+        settings::number("depthTolerance", &S::depthTolerance, "of view depth", "(0, 1]",
+                         "a history point further off the tangent plane is another surface"),
+        settings::number("normalThreshold", &S::normalThreshold, "cosine", "[-1, 1]",
+                         "the least cosine between a history texel's normal and the pixel's"),
+    };
+    return rows;
+}
+
+namespace settings {
+
+//! The rows AO and indirect light share (the same fields, by name): resolution, filters,
+//! lanes, tiles, frame index, temporal accumulation.
+template <class S>
+SettingsTable<S> integratorRows() {
+    return join<S>(
+        {
+            choice("resolution", &S::resolution,
+                   {{"full", AoResolution::Full}, {"half", AoResolution::Half}, {"quarter", AoResolution::Quarter}},
+                   "resolution of the integrator, relative to the G-buffer"),
+            number("blurRadius", &S::blurRadius, "taps", "[0, 16]",
+                   "geometry-aware separable blur at the integrator's resolution, taps each side (0: off)"),
+            number("blurDepthSigma", &S::blurDepthSigma, "", "(0, 1]",
+                   "blur and upsampling: relative view-depth difference weighted e^-1/2"),
+            number("blurNormalPower", &S::blurNormalPower, "", "[0, 256]",
+                   "blur and upsampling: normal weight max(0, n.n')^power"),
+            // The share of a pixel's bilinear weight that similar reduced-resolution
+            // neighbours must carry (see RefinementCount for the list's bound).
+            number("refineThreshold", &S::refineThreshold, "", "[0, 1]",
+                   "half, quarter: pixels with less similar-neighbour weight are computed at full resolution (0: none)"),
+            // More lanes pay where a pass covers few pixels (refinement, small objects).
+            number("rayLanes", &S::rayLanes, "", "1|2|4|8|16",
+                   "invocations sharing each pixel's rays (the same rays; sums in another order)"),
+            flag("geometryTiles", &S::geometryTiles,
+                 "half, quarter: run only over the 8x8 tiles holding geometry (the same result; false: every tile)"),
+            number("frameIndex", &S::frameIndex, "", "[0, 4294967295]",
+                   "shifts every pixel's samples by this point of a low-discrepancy sequence (0: none)"),
+        },
+        nested("temporal", &S::temporal, TemporalSettings::table()));
+}
+
+} // namespace settings
+
 struct AmbientOcclusionSettings {
     AoMethod method = AoMethod::RayMarch;
-    float radius = 1.0f;        //!< world units, (0, inf): the reach r of V_r and obscurance's distance scale
-    int rays = 16;              //!< directions (points for Points) per pixel, [1, 1024]; Horizon: [2, 1024], even
-    int steps = 8;              //!< depth samples per ray (RayMarch) or per side (Horizon), [1, 256]
-    bool cosineWeighted = true; //!< cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only
-    //! rho of obscurance (None: AO); not for Horizon, whose slices find horizons, not hits
+    float radius = 1.0f;
+    int rays = 16;
+    int steps = 8;
+    bool cosineWeighted = true;
     ObscuranceFalloff falloff = ObscuranceFalloff::None;
-    //! RayMarch, Points: how far behind a depth sample's tangent plane (along its normal), in
-    //! world units, a point still counts as inside the object, [0, inf); 0 = the radius.
     //! Larger closes gaps behind thin objects, smaller lets rays pass behind them. With
     //! DepthPeeling it applies only where the second layer is empty; with PeelingOrConstant
-    //! it applies everywhere and matters where the second layer is nearer than it.
+    //! everywhere, and matters where the second layer is nearer than it.
     float thickness = 0.0f;
-    //! RayMarch, Points: Constant (`thickness`) or DepthPeeling: down to the second depth
-    //! layer, GBufferView::backDepth (GBufferSettings::depthLayers = 2, or
-    //! HostGBuffer::backDepth): objects are as thick as they are, so rays pass behind them
-    //! and are not cut off inside them; or
-    //! PeelingOrConstant: the deeper of the two, which keeps a constant slab behind thin
-    //! parts (where other parts lie behind them, stacked). With the default thickness (the
-    //! radius) that is nearly Constant: the slab runs along the normal, so on faces seen at
-    //! grazing angles it reaches far along the view ray; a thickness well below the radius
-    //! (a tenth in docs/results.md, "Screen-space thickness") keeps peeling's depth.
+    //! DepthPeeling needs GBufferView::backDepth (GBufferSettings::depthLayers = 2, or
+    //! HostGBuffer::backDepth). PeelingOrConstant keeps a slab behind thin parts; the slab runs
+    //! along the normal, so with the default thickness it is nearly Constant at grazing angles:
+    //! a thickness well below the radius keeps peeling's depth.
     ScreenThickness thicknessMode = ScreenThickness::Constant;
-    //! RayMarch: View (3D samples), Texture (2D samples, classified like View) or HiZ (the
-    //! Texture samples, with runs skipped through a min/max depth pyramid: the same result
-    //! with fewer fetches; pass "ao.hiz" builds it). See ScreenVisibility.
     ScreenMarch march = ScreenMarch::View;
     AoResolution resolution = AoResolution::Full;
-    //! Geometry-aware separable blur at the AO resolution: taps each side, [0, 16] (0 = off).
     int blurRadius = 0;
-    //! Blur and upsampling: relative view-depth difference weighted e^-1/2, (0, 1].
     float blurDepthSigma = 0.05f;
-    //! Blur and upsampling: normal weight max(0, n.n')^power, [0, 256].
     float blurNormalPower = 16.0f;
-    //! Upsampling (Half, Quarter): G-buffer pixels whose similar low-resolution neighbours
-    //! carry less than this share of their bilinear weight (the guide weights times the
-    //! bilinear ones, summed) are computed at full resolution instead, pass "ao.refine":
-    //! mostly the edges of parts thinner than the low resolution's pixels. [0, 1]; 0: none
-    //! (where no neighbour is similar, the one nearest in depth fills in). At most a quarter
-    //! of the G-buffer's pixels, and at most 65535 x 64 = 4194240, are refined: when more ask
-    //! for it, none is (all are blended as with 0), so that a frame does not depend on the
-    //! order the GPU lists them.
     float refineThreshold = 0.25f;
-    //! Invocations that share each pixel's rays (Horizon: slices): 1, 2, 4, 8 or 16. With 1 a
-    //! pixel's rays run one after another in one invocation, so a pass over few pixels (the
-    //! refinement, a reduced resolution, a small object) lasts as long as its slowest pixel
-    //! however idle the GPU; more lanes split them, at the cost of a sum in shared memory.
-    //! The same rays either way: results differ only in the order the sums are added.
     int rayLanes = 1;
-    //! Half, Quarter: the integrator, the blur and the upsampling run only over the tiles of
-    //! 8 x 8 AO pixels that hold geometry, listed by a pass over the depth ("ao.tiles"); the
-    //! other tiles get the background values by a clear. The same results either way. Pays
-    //! where background covers much of the image: on llvmpipe at 512 x 512, ao.points at half
-    //! resolution took 12.0 ms instead of 25.2 on 2CylinderEngine (17 % geometry), and 4 %
-    //! longer on the Cornell box (no background). false: every tile, without the pass. Images
-    //! of more than 65535 tiles (above about 4096 x 4096 at half resolution: GL guarantees no
-    //! larger indirect dispatch) run every tile.
     bool geometryTiles = true;
-    //! Also write `bentNormal`, the cosine-weighted mean of the open directions (Horizon: of the
-    //! directions above its slices' horizons, integrated over each slice's visible arc).
     bool bentNormals = false;
-    //! [0, 2^32 - 1]: shifts every pixel's sampling pattern (rotation and offsets along the
-    //! rays) by point frameIndex of a low-discrepancy sequence. 0 (the default) is no shift;
-    //! counting it up every frame gives each frame other samples, whose noise a host's TAA, or
-    //! `temporal`, averages away.
     std::uint32_t frameIndex = 0;
-    TemporalSettings temporal; //!< off by default
-    //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; world units via
-    //! grid.worldToVoxel; octree needed for Hierarchical). Ignored by the other methods.
+    TemporalSettings temporal;
+    //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; octree needed for
+    //! Hierarchical). Ignored by the other methods.
     const VoxelGrid* voxels = nullptr;
-    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Voxel; March takes `steps` samples
+    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical;
+
+    //! Units, ranges and meanings of the fields above (settings_table.hpp).
+    static const SettingsTable<AmbientOcclusionSettings>& table();
 };
+
+inline const SettingsTable<AmbientOcclusionSettings>& AmbientOcclusionSettings::table() {
+    using S = AmbientOcclusionSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = join<S>(
+        {
+            choice("method", &S::method,
+                   {{"raymarch", AoMethod::RayMarch}, {"points", AoMethod::Points}, {"horizon", AoMethod::Horizon},
+                    {"voxel", AoMethod::Voxel}},
+                   "the estimator (AoMethod)"),
+            number("radius", &S::radius, "world units", "(0, inf)", "the reach r of V_r and obscurance's distance scale"),
+            number("rays", &S::rays, "", "[1, 1024]", "directions (Points: points) per pixel; Horizon: 2 per slice, even"),
+            number("steps", &S::steps, "", "[1, 256]",
+                   "depth samples per ray (RayMarch), per side (Horizon), or voxel march samples"),
+            flag("cosineWeighted", &S::cosineWeighted, "cosine (AO_r) or uniform hemisphere weighting; Horizon: cosine only"),
+            choice("falloff", &S::falloff,
+                   {{"none", ObscuranceFalloff::None}, {"linear", ObscuranceFalloff::Linear},
+                    {"quadratic", ObscuranceFalloff::Quadratic}, {"smooth", ObscuranceFalloff::Smooth}},
+                   "obscurance's rho (none: AO); not for Horizon"),
+            number("thickness", &S::thickness, "world units", "[0, inf)",
+                   "RayMarch, Points: how far behind a depth sample's tangent plane a point is inside (0: the radius)"),
+            screenThicknessRow(&S::thicknessMode,
+                               "RayMarch, Points: constant thickness, the second depth layer, or the deeper of both"),
+            screenMarchRow(&S::march, "RayMarch: 3D samples, 2D samples, or 2D samples skipping runs through a Hi-Z pyramid"),
+            flag("bentNormals", &S::bentNormals, "also write `bentNormal`, the cosine-weighted mean open direction"),
+            voxelTraversalRow("voxelTraversal", &S::voxelTraversal, "Voxel: the visibility query (March takes `steps` samples)"),
+        },
+        integratorRows<S>());
+    return rows;
+}
 
 struct AmbientOcclusionView {
     TextureView ao;         //!< GL_R16F, the G-buffer's size
@@ -201,7 +233,7 @@ public:
     AmbientOcclusionView run(const GBufferView& gbuffer, const AmbientOcclusionSettings& settings);
 
     //! Compiles every shader program run() takes for these settings, ahead of time, so that
-    //! the first frame does not stall on compiling (0.2-1 s for a method's programs). Allocates
+    //! the first frame does not stall on compiling (docs/integration.md). Allocates
     //! nothing. Throws as run() does for the settings (the Voxel method needs its grid). For
     //! images of more than 65535 geometry tiles (`geometryTiles`), run() compiles the untiled
     //! integrator on its first call.

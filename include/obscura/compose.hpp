@@ -30,6 +30,7 @@
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
+#include "obscura/settings_table.hpp"
 #include "obscura/texture.hpp"
 
 #include <glm/glm.hpp>
@@ -44,25 +45,46 @@ class Context;
 enum class CombineFormula { Thesis, Physical, Standard };
 enum class ToneMapper { None, Drago, Aces };
 
-// Setting keys for tools are the field names in snake case.
 struct ComposeSettings {
     CombineFormula formula = CombineFormula::Standard;
-    //! L_amb, W/(sr m^2), [0, 65504] per channel (Physical: only without indirect light)
-    glm::vec3 ambient{0.0f};
-    float indirectScale = 1.0f;  //!< k, [0, 1e6]
-    float exposure = 1.0f;       //!< multiplies the radiance before tone mapping, (0, 1e6]
+    glm::vec3 ambient{0.0f}; //!< Physical: only without indirect light
+    float indirectScale = 1.0f;
+    float exposure = 1.0f;
     ToneMapper toneMapper = ToneMapper::Aces;
-    //! Drago: the largest scene luminance L_wmax, W/(sr m^2) after exposure, [0, inf); 0 = the
-    //! frame's own maximum (a reduction pass). Either counts as at least 1e-30: a frame is mapped to
-    //! its own maximum down to 1e-30 after exposure (applied in float, after the half-float
-    //! radiance(), so a small exposure costs no precision).
+    //! Either counts as at least 1e-30: a frame is mapped to its own maximum down to 1e-30
+    //! after exposure (applied in float, after the half-float radiance(), so a small exposure
+    //! costs no precision).
     float dragoMaxLuminance = 0.0f;
-    float dragoBias = 0.85f;     //!< Drago's bias b, [0.5, 1]
-    float dragoDisplayMax = 100.0f; //!< Drago's L_dmax, cd/m^2 of the display, (0, 1e4]
-    //! Display encoding: the sRGB transfer function when true, else x^(1/gamma).
+    float dragoBias = 0.85f;
+    float dragoDisplayMax = 100.0f;
     bool srgb = true;
-    float gamma = 2.2f;          //!< [1, 4], used when srgb is off
+    float gamma = 2.2f;
+
+    static const SettingsTable<ComposeSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<ComposeSettings>& ComposeSettings::table() {
+    using S = ComposeSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        choice("formula", &S::formula,
+               {{"standard", CombineFormula::Standard}, {"thesis", CombineFormula::Thesis},
+                {"physical", CombineFormula::Physical}},
+               "how AO, ambient and indirect light combine (CombineFormula)"),
+        color("ambient", &S::ambient, "W/(sr m^2)", "[0, 65504]", "ambient radiance L_amb, per channel"),
+        number("indirectScale", &S::indirectScale, "", "[0, 1e6]", "k, the weight of the indirect light"),
+        number("exposure", &S::exposure, "", "(0, 1e6]", "multiplies the radiance before tone mapping"),
+        choice("toneMapper", &S::toneMapper, {{"none", ToneMapper::None}, {"drago", ToneMapper::Drago}, {"aces", ToneMapper::Aces}},
+               "tone mapping operator"),
+        number("dragoMaxLuminance", &S::dragoMaxLuminance, "W/(sr m^2)", "[0, inf)",
+               "Drago's largest scene luminance L_wmax after exposure; 0: the frame's own (a reduction pass)"),
+        number("dragoBias", &S::dragoBias, "", "[0.5, 1]", "Drago's bias b"),
+        number("dragoDisplayMax", &S::dragoDisplayMax, "cd/m^2", "(0, 1e4]", "Drago's display maximum L_dmax"),
+        flag("srgb", &S::srgb, "display encoding: the sRGB transfer function, else x^(1/gamma)"),
+        number("gamma", &S::gamma, "", "[1, 4]", "display gamma when srgb is off"),
+    };
+    return rows;
+}
 
 //! The inputs of the combine; ao and indirect may be empty.
 struct ComposeInputs {

@@ -25,9 +25,12 @@ class OBSCURA_API Error : public std::runtime_error {
 public:
     Error(ErrorCode code, const std::string& message);
     ErrorCode code() const noexcept { return code_; }
+    //! The message alone, without what()'s "obscura: <code>: " prefix (to wrap it in context).
+    const std::string& message() const noexcept { return message_; }
 
 private:
     ErrorCode code_;
+    std::string message_;
 };
 
 } // namespace obscura

@@ -27,10 +27,8 @@
 // (shaders/common/depth.glsl, DepthReconstruction in camera.hpp), along each pixel centre's
 // ray. Their precision is the rasterizer's: one that interpolates depth from vertices
 // snapped to its sub-pixel grid (NVIDIA, GL_SUBPIXEL_BITS = 8) puts the point off the
-// surface by up to the depth's change over 1/256 of a pixel (measured on 2CylinderEngine at
-// 128x128: RMSE 7.1e-3 world units, about 2e-5 of its size; llvmpipe's depth follows the
-// exact vertices, 7.2e-5). Obscura's passes tolerate that (their bench errors are the same
-// with vertices snapped so on llvmpipe), and the reference moves such samples onto the surface.
+// surface by up to the depth's change over 1/256 of a pixel (docs/integration.md). Obscura's
+// passes tolerate that, and the reference moves such samples onto the surface.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
 #include "obscura/scene.hpp"
@@ -79,20 +77,34 @@ struct GBufferView {
 };
 
 struct GBufferSettings {
-    int width = 0;               //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
-    int height = 0;              //!< pixels, [1, GL_MAX_TEXTURE_SIZE]
-    bool directLighting = true;  //!< add the lights to directRadiance; off: emission only
-    glm::vec3 background{0.0f};  //!< radiance of background pixels, W/(sr·m²), [0, 65504] per channel
-    //! Depth layers, [1, 2]: 2 adds `backDepth` (a second, depth-only pass over the scene
-    //! that peels the first layer), for ScreenThickness::DepthPeeling and PeelingOrConstant
-    //! (depthLayersFor).
+    int width = 0;  //!< also at most GL_MAX_TEXTURE_SIZE
+    int height = 0; //!< also at most GL_MAX_TEXTURE_SIZE
+    bool directLighting = true;
+    glm::vec3 background{0.0f};
+    //! 2 adds `backDepth` (a second, depth-only pass over the scene that peels the first
+    //! layer), for ScreenThickness::DepthPeeling and PeelingOrConstant (depthLayersFor).
     int depthLayers = 1;
     //! With directLighting: each light that has maps here is multiplied by its shadow, looked
     //! up per fragment as ShadowMaps::mask does (ShadowMaps::render with this camera, whose
     //! set must outlive the call). Null: unshadowed lights.
     const ShadowMapSet* shadows = nullptr;
-    ShadowMaskSettings shadowFilter{}; //!< how `shadows` are filtered and biased
+    ShadowMaskSettings shadowFilter{}; //!< how `shadows` are filtered and biased: Hard or Pcf
+
+    static const SettingsTable<GBufferSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<GBufferSettings>& GBufferSettings::table() {
+    using S = GBufferSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        number("width", &S::width, "pixels", "[1, 65536]", "image width"),
+        number("height", &S::height, "pixels", "[1, 65536]", "image height"),
+        flag("directLighting", &S::directLighting, "add the lights to directRadiance (off: emission only)"),
+        color("background", &S::background, "W/(sr m^2)", "[0, 65504]", "radiance of background pixels, per channel"),
+        number("depthLayers", &S::depthLayers, "layers", "[1, 2]", "2: also the second depth layer (backDepth)"),
+    };
+    return rows;
+}
 
 enum class NormalSpace { View, World };
 enum class NormalEncoding {

@@ -44,37 +44,53 @@ enum class GiMethod {
     Hybrid, //!< "gi.hybrid": rays through `voxels`, radiance from the screen
 };
 
-// Setting keys for tools (`--set`) are the field names in snake case, as for AO.
 struct IndirectLightSettings {
     GiMethod method = GiMethod::Screen;
-    float radius = 1.0f;      //!< world units, (0, inf): hits farther away are not gathered
-    int rays = 16;            //!< cosine-weighted directions per pixel, [1, 1024]
-    int steps = 8;            //!< Screen: depth samples per ray; Hybrid with March traversal: samples, [1, 256]
-    //! Screen: how far behind a depth sample a point still counts as inside (as AO); Hybrid:
-    //! how far a voxel hit may lie from the tangent plane of the surface its pixel shows (a
-    //! plane, not the pixel centre's depth, so that surfaces seen edge-on, whose pixels span
-    //! more depth than a fine grid's voxels, are still found). World units,
-    //! [0, inf); 0 = the radius (Screen) or two voxel diagonals (Hybrid).
+    float radius = 1.0f;
+    int rays = 16;
+    int steps = 8;
+    //! Hybrid: a plane, not the pixel centre's depth, so that surfaces seen edge-on, whose
+    //! pixels span more depth than a fine grid's voxels, are still found.
     float thickness = 0.0f;
-    //! Screen: Constant, DepthPeeling or PeelingOrConstant (as AmbientOcclusionSettings::thicknessMode).
     ScreenThickness thicknessMode = ScreenThickness::Constant;
-    //! Screen: View, Texture or HiZ (as AmbientOcclusionSettings::march; pass "gi.hiz").
     ScreenMarch march = ScreenMarch::View;
     AoResolution resolution = AoResolution::Full;
-    //! Geometry-aware separable blur taps each side, [0, 16]. The blur and the upsampling
-    //! filter the incident light alone; each G-buffer pixel's own albedo multiplies it after
-    //! them, so albedo (texture) edges stay sharp.
+    //! The blur and the upsampling filter the incident light alone; each G-buffer pixel's own
+    //! albedo multiplies it after them, so albedo (texture) edges stay sharp.
     int blurRadius = 0;
-    float blurDepthSigma = 0.05f;  //!< as AmbientOcclusionSettings, (0, 1]
-    float blurNormalPower = 16.0f; //!< as AmbientOcclusionSettings, [0, 256]
-    float refineThreshold = 0.25f; //!< as AmbientOcclusionSettings (pass "gi.refine"), [0, 1]
-    int rayLanes = 1;              //!< as AmbientOcclusionSettings: 1, 2, 4, 8 or 16
-    bool geometryTiles = true;     //!< as AmbientOcclusionSettings (pass "gi.tiles")
-    std::uint32_t frameIndex = 0;      //!< as AmbientOcclusionSettings::frameIndex
-    TemporalSettings temporal;         //!< as AmbientOcclusionSettings::temporal (of the radiance; off by default)
+    float blurDepthSigma = 0.05f;
+    float blurNormalPower = 16.0f;
+    float refineThreshold = 0.25f;
+    int rayLanes = 1;
+    bool geometryTiles = true;
+    std::uint32_t frameIndex = 0;
+    TemporalSettings temporal; //!< of the radiance
     const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
-    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical; //!< Hybrid
+    VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical;
+
+    static const SettingsTable<IndirectLightSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<IndirectLightSettings>& IndirectLightSettings::table() {
+    using S = IndirectLightSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = join<S>(
+        {
+            choice("method", &S::method, {{"screen", GiMethod::Screen}, {"hybrid", GiMethod::Hybrid}},
+                   "where rays find hits (GiMethod)"),
+            number("radius", &S::radius, "world units", "(0, inf)", "hits farther away are not gathered"),
+            number("rays", &S::rays, "", "[1, 1024]", "cosine-weighted directions per pixel"),
+            number("steps", &S::steps, "", "[1, 256]", "depth samples per ray (Hybrid: march samples)"),
+            number("thickness", &S::thickness, "world units", "[0, inf)",
+                   "Screen: as AO's; Hybrid: how far a voxel hit may lie off the pixel's tangent plane "
+                   "(0: the radius, or two voxel diagonals)"),
+            screenThicknessRow(&S::thicknessMode, "Screen: constant thickness, the second depth layer, or the deeper of both"),
+            screenMarchRow(&S::march, "Screen: 3D samples, 2D samples, or 2D samples skipping runs through a Hi-Z pyramid"),
+            voxelTraversalRow("voxelTraversal", &S::voxelTraversal, "Hybrid: the visibility query"),
+        },
+        integratorRows<S>());
+    return rows;
+}
 
 struct IndirectLightView {
     TextureView radiance; //!< GL_RGBA16F, W/(sr m^2)

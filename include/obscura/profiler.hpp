@@ -6,8 +6,8 @@
 // query the host may have active around our calls.
 //
 // On a software renderer (llvmpipe & co.) GPU timer queries under-report by an order of
-// magnitude (measured: 5-7 ms reported for a 512x512 pass with 256 fetches per pixel that
-// takes 130-165 ms), so each pass is bracketed with glFinish and a steady clock instead.
+// magnitude (docs/integration.md), so each pass is bracketed with glFinish and a steady clock
+// instead.
 // Every result says which clock produced it.
 #include "obscura/export.hpp"
 

@@ -28,6 +28,7 @@
 //            surfaces. To test every pixel a segment crosses, take steps >= its length in
 //            pixels.
 #include "obscura/export.hpp"
+#include "obscura/settings_table.hpp"
 #include "obscura/gbuffer.hpp"
 
 #include <cstddef>
@@ -53,15 +54,51 @@ enum class ScreenThickness {
 //! post-process mode: HostGBuffer::backDepth).
 constexpr int depthLayersFor(ScreenThickness mode) { return mode == ScreenThickness::Constant ? 1 : 2; }
 
+namespace settings {
+
+//! The march and thickness rows of every screen-space ray tracer (same names, same values).
+template <class S>
+Setting<S> screenMarchRow(ScreenMarch S::*member, std::string doc) {
+    return choice("march", member,
+                  {{"view", ScreenMarch::View}, {"texture", ScreenMarch::Texture}, {"hiz", ScreenMarch::HiZ}},
+                  std::move(doc));
+}
+
+template <class S>
+Setting<S> screenThicknessRow(ScreenThickness S::*member, std::string doc) {
+    return choice("thicknessMode", member,
+                  {{"constant", ScreenThickness::Constant},
+                   {"depth_peeling", ScreenThickness::DepthPeeling},
+                   {"peeling_or_constant", ScreenThickness::PeelingOrConstant}},
+                  std::move(doc));
+}
+
+} // namespace settings
+
 struct ScreenTraceSettings {
     ScreenMarch march = ScreenMarch::View;
-    int steps = 32;             //!< samples per segment, [1, 4096]
-    float jitter = 0.5f;        //!< offset of the samples in units of the spacing, [0, 1)
+    int steps = 32;
+    float jitter = 0.5f;
     ScreenThickness thicknessMode = ScreenThickness::Constant;
-    //! world units, (0, inf); with DepthPeeling only where no back layer exists, with
-    //! PeelingOrConstant everywhere (the deeper of it and the back layer)
+    //! With DepthPeeling only where no back layer exists, with PeelingOrConstant everywhere
+    //! (the deeper of it and the back layer).
     float thickness = 1.0f;
+
+    static const SettingsTable<ScreenTraceSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<ScreenTraceSettings>& ScreenTraceSettings::table() {
+    using S = ScreenTraceSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        screenMarchRow(&S::march, "3D samples, 2D samples, or 2D samples skipping runs through a Hi-Z pyramid"),
+        number("steps", &S::steps, "", "[1, 4096]", "samples per segment"),
+        number("jitter", &S::jitter, "of the spacing", "[0, 1)", "offset of the samples"),
+        screenThicknessRow(&S::thicknessMode, "constant thickness, the second depth layer, or the deeper of both"),
+        number("thickness", &S::thickness, "world units", "(0, inf)", "how far behind a depth sample a point is inside"),
+    };
+    return rows;
+}
 
 //! A segment in the G-buffer camera's view space (world units). NaN or Inf: a miss.
 struct ScreenSegment {

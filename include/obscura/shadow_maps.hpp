@@ -84,6 +84,7 @@
 // Between cascades the mask blends linearly over the last `cascadeBlend` of each slice.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
+#include "obscura/settings_table.hpp"
 #include "obscura/scene.hpp"
 #include "obscura/texture.hpp"
 
@@ -109,14 +110,30 @@ enum class PointShadowMapping {
 };
 
 struct ShadowMapSettings {
-    int resolution = 1024;     //!< texels per side of every map, [16, min(8192, GL_MAX_TEXTURE_SIZE)]
-    int cascades = 3;          //!< maps per directional light, [1, kMaxShadowCascades]
-    float splitLambda = 0.75f; //!< PSSM weight of the logarithmic split (0: uniform), [0, 1]
+    int resolution = 1024; //!< also at most GL_MAX_TEXTURE_SIZE
+    int cascades = 3;      //!< at most kMaxShadowCascades
+    float splitLambda = 0.75f;
     PointShadowMapping pointMapping = PointShadowMapping::Cube;
-    //! Also render reflective shadow maps (ShadowMapSet::flux, normal, position) of the spot
-    //! and directional lights' maps, in the same draws as their depth.
+    //! Rendered in the same draws as the depth (ShadowMapSet::flux, normal, position).
     bool reflective = false;
+
+    static const SettingsTable<ShadowMapSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<ShadowMapSettings>& ShadowMapSettings::table() {
+    using S = ShadowMapSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        number("resolution", &S::resolution, "texels", "[16, 8192]", "side of every map"),
+        number("cascades", &S::cascades, "maps", "[1, 4]", "maps per directional light"),
+        number("splitLambda", &S::splitLambda, "", "[0, 1]", "PSSM weight of the logarithmic split (0: uniform)"),
+        choice("pointMapping", &S::pointMapping,
+               {{"cube", PointShadowMapping::Cube}, {"paraboloid", PointShadowMapping::DualParaboloid}},
+               "how point lights are mapped"),
+        flag("reflective", &S::reflective, "also render reflective shadow maps of spot and directional lights"),
+    };
+    return rows;
+}
 
 //! The maps of one light.
 struct ShadowMapInfo {
@@ -195,46 +212,77 @@ enum class ShadowFilter {
     Pcss,  //!< "shadow.pcss": percentage-closer soft shadows for a light of Light::radius (rect: its area's disc)
 };
 
-// Setting keys for tools (`--set`) are the field names in snake case.
 struct ShadowMaskSettings {
     ShadowFilter filter = ShadowFilter::Pcf;
-    int pcfRadius = 1;         //!< Pcf: comparisons each side of the centre, [0, 8]
+    int pcfRadius = 1;
     PcfKernel pcfKernel = PcfKernel::Grid;
-    //! Pcss: the blocker search covers blockers down to this fraction of the receiver's
-    //! distance from the light, (0, 1): a disc of R (1 - f) / f world units at the receiver
-    //! (at most 128 texels). Nearer blockers are found only in part.
+    //! The search covers a disc of R (1 - f) / f world units at the receiver (at most 128
+    //! texels); nearer blockers are found only in part.
     float pcssBlockerFraction = 0.25f;
-    float constantBias = 0.0f; //!< world units toward the light, [0, inf)
-    float slopeBias = 1.0f;    //!< texels of depth per unit tan(theta) (tan clamped at 16), [0, 16]
-    float normalOffset = 1.0f; //!< texels along the geometric normal, [0, 16]
-    float cascadeBlend = 0.1f; //!< fraction of each cascade's slice blended into the next, [0, 0.5]
-    //! Pcf: compare each tap with the receiver's plane extended to it (receiver-plane depth
-    //! bias), so that wide kernels on sloped receivers do not shadow the receiver itself; not
-    //! where the light sees the plane edge-on (within 1e-3 rad: a plane through it). Past
-    //! tan theta = 16 (3.6 degrees off edge-on) the slope bias is clamped, and PCF's own taps
-    //! may meet acne there; PCSS, which finds no blocker, does not.
+    float constantBias = 0.0f;
+    float slopeBias = 1.0f; //!< tan(theta) clamped at 16
+    float normalOffset = 1.0f;
+    float cascadeBlend = 0.1f;
+    //! Not where the light sees the plane edge-on (within 1e-3 rad). Past tan theta = 16 (3.6
+    //! degrees off edge-on) the slope bias is clamped, and PCF's own taps may meet acne there;
+    //! PCSS, which finds no blocker, does not.
     bool receiverPlane = true;
     // Moment filters (Vsm .. Msm): the maps' distances t in [0, 1] (near to far plane) become
-    // moments in a 32F array, blurred by a separable Gaussian, sampled bilinearly.
-    int momentBlur = 2;               //!< Gaussian radius, texels (sigma = radius / 2), [0, 8]
+    // moments, blurred by a separable Gaussian, sampled bilinearly.
+    int momentBlur = 2; //!< sigma = radius / 2
     ShadowMomentPrecision momentPrecision = ShadowMomentPrecision::Float32;
-    float minVariance = 1e-6f;        //!< Vsm, Evsm: variance floor, units of t^2 (warped: scaled), [0, 1]
-    float lightBleedReduction = 0.2f; //!< Vsm, Evsm: Chebyshev bounds below this count as 0, [0, 1)
-    //! Esm: exponent c, [0, 80] (log-space filtering keeps e^(c t) out of the float range);
-    //! Evsm: the positive warp's c+, clamped to 42 so that e^(2 c+) stays finite in 32F
-    //! (5.54 with Bits16).
+    float minVariance = 1e-6f;
+    float lightBleedReduction = 0.2f;
+    //! Log-space filtering keeps e^(c t) out of the float range; Evsm's c+ is clamped to 42
+    //! so that e^(2 c+) stays finite in 32F (5.54 with Bits16).
     float exponent = 40.0f;
-    float negativeExponent = 5.0f;    //!< Evsm4: the negative warp's c-, [0, 42]
-    //! ShadowMaps::mask only: a screen-space ray this long toward the light (ScreenVisibility's
-    //! view-space march, from the receiver lifted by a texel) shadows pixels it finds hidden:
-    //! the contact shadows that the biases remove. World units, [0, inf); 0: off.
+    float negativeExponent = 5.0f;
+    //! ShadowMaps::mask only: ScreenVisibility's view-space march from the receiver lifted by a
+    //! texel; restores the contact shadows that the biases remove.
     float contactLength = 0.0f;
-    int contactSteps = 16;            //!< samples of the contact ray, [1, 256]
-    //! How far behind a depth sample the contact ray counts as inside (ScreenVisibility's
-    //! constant thickness): thin, so that rays passing behind an occluder stay lit. World
-    //! units, (0, inf).
+    int contactSteps = 16;
+    //! Thin, so that rays passing behind an occluder stay lit.
     float contactThickness = 0.05f;
+
+    static const SettingsTable<ShadowMaskSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<ShadowMaskSettings>& ShadowMaskSettings::table() {
+    using S = ShadowMaskSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        choice("filter", &S::filter,
+               {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}, {"vsm", ShadowFilter::Vsm},
+                {"esm", ShadowFilter::Esm}, {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
+                {"msm", ShadowFilter::Msm}, {"pcss", ShadowFilter::Pcss}},
+               "the lookup (ShadowFilter)"),
+        number("pcfRadius", &S::pcfRadius, "texels", "[0, 8]", "Pcf: comparisons each side of the centre"),
+        choice("pcfKernel", &S::pcfKernel,
+               {{"grid", PcfKernel::Grid}, {"optimized", PcfKernel::OptimizedGrid}, {"poisson", PcfKernel::PoissonDisc}},
+               "Pcf: the taps (PcfKernel)"),
+        number("pcssBlockerFraction", &S::pcssBlockerFraction, "", "(0, 1)",
+               "Pcss: blockers searched down to this fraction of the receiver's distance"),
+        number("constantBias", &S::constantBias, "world units", "[0, inf)", "receiver moved toward the light"),
+        number("slopeBias", &S::slopeBias, "texels", "[0, 16]", "depth per unit tan(theta), toward the light"),
+        number("normalOffset", &S::normalOffset, "texels", "[0, 16]", "receiver moved along its geometric normal"),
+        number("cascadeBlend", &S::cascadeBlend, "", "[0, 0.5]", "fraction of each cascade's slice blended into the next"),
+        flag("receiverPlane", &S::receiverPlane, "Pcf: compare each tap with the receiver's plane extended to it"),
+        number("momentBlur", &S::momentBlur, "texels", "[0, 8]", "moment filters: Gaussian prefilter radius"),
+        choice("momentPrecision", &S::momentPrecision,
+               {{"32", ShadowMomentPrecision::Float32}, {"16", ShadowMomentPrecision::Bits16}},
+               "moment filters: RGBA32F, or 8 bytes a texel (ShadowMomentPrecision)"),
+        number("minVariance", &S::minVariance, "t^2", "[0, 1]", "Vsm, Evsm: variance floor (warped: scaled)"),
+        number("lightBleedReduction", &S::lightBleedReduction, "", "[0, 1)", "Vsm, Evsm: Chebyshev bounds below it count as 0"),
+        number("exponent", &S::exponent, "", "[0, 80]", "Esm: c; Evsm: the positive warp's c+"),
+        number("negativeExponent", &S::negativeExponent, "", "[0, 42]", "Evsm4: the negative warp's c-"),
+        number("contactLength", &S::contactLength, "world units", "[0, inf)",
+               "screen-space contact-shadow ray toward the light (0: off)"),
+        number("contactSteps", &S::contactSteps, "samples", "[1, 256]", "samples of the contact ray"),
+        number("contactThickness", &S::contactThickness, "world units", "(0, inf)",
+               "how far behind a depth sample the contact ray counts as inside"),
+    };
+    return rows;
+}
 
 class OBSCURA_API ShadowMaps {
 public:

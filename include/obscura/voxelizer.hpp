@@ -36,6 +36,7 @@
 // VoxelGrid::texture, ::octree and ::params at the points voxel_bindings.h names.
 #include "obscura/camera.hpp"
 #include "obscura/export.hpp"
+#include "obscura/settings_table.hpp"
 #include "obscura/scene.hpp"
 
 #include <cstdint>
@@ -50,27 +51,46 @@ class Context;
 enum class VoxelMode { Surface, Solid };
 
 struct VoxelizerSettings {
-    int resolution = 128;  //!< R: voxels along x and y, a power of two in [8, 2048]
-    int targets = 1;       //!< k: render targets, [1, 8]; D = 128 k slices along z
+    int resolution = 128; //!< R: voxels along x and y
+    int targets = 1;      //!< k: D = 128 k slices along z
     VoxelMode mode = VoxelMode::Surface;
     //! Fit the box to the scene's bounds (CPU meshes), grown by `margin` of its largest
     //! extent on every side (an axis of zero extent gets that thickness too). Off: use
-    //! boxMin and boxMax as given.
+    //! boxMin and boxMax as given (boxMin < boxMax per axis).
     bool fitBox = true;
-    //! Fraction of the largest extent, [0, 1]; at least 1e-6 is used, so that geometry on
-    //! the bounds stays inside the box.
-    float margin = 0.02f;
-    glm::vec3 boxMin{0.0f}, boxMax{1.0f}; //!< world units, boxMin < boxMax per axis (fitBox off)
-    //! Re-voxelize on every call. Off (static scenes): only when the scene's meshes (their
-    //! MeshData objects and transforms), the box or the settings change. Scenes with host
-    //! MeshRefs are always re-voxelized (their buffers can change behind our back).
+    float margin = 0.02f; //!< at least 1e-6 is used, so that geometry on the bounds stays inside
+    glm::vec3 boxMin{0.0f};
+    glm::vec3 boxMax{1.0f};
+    //! Off (static scenes): re-voxelize only when the scene's meshes (their MeshData objects
+    //! and transforms), the box or the settings change. Scenes with host MeshRefs are always
+    //! re-voxelized (their buffers can change behind our back).
     bool dynamic = false;
-    bool octree = true;             //!< build the octree mips (needed by hierarchical traversal)
-    //! Solid mode: read the open-column count back (VoxelGrid::openColumns and a warning).
-    //! The read-back waits for the GPU; per-frame users may turn it off (the columns are
-    //! still cleared, openColumns stays 0).
+    bool octree = true;
+    //! The read-back waits for the GPU; per-frame users may turn it off (the columns are still
+    //! cleared, openColumns stays 0).
     bool countOpenColumns = true;
+
+    static const SettingsTable<VoxelizerSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<VoxelizerSettings>& VoxelizerSettings::table() {
+    using S = VoxelizerSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        number("resolution", &S::resolution, "voxels", "8|16|32|64|128|256|512|1024|2048", "R: columns along x and y"),
+        number("targets", &S::targets, "render targets", "[1, 8]", "k: 128 slices each along z"),
+        choice("mode", &S::mode, {{"surface", VoxelMode::Surface}, {"solid", VoxelMode::Solid}},
+               "surfaces (OR) or solid interiors (XOR)"),
+        flag("fitBox", &S::fitBox, "fit the box to the scene's bounds (else boxMin, boxMax)"),
+        number("margin", &S::margin, "of the largest extent", "[0, 1]", "fitBox: the box grown by this on every side"),
+        color("boxMin", &S::boxMin, "world units", "(-inf, inf)", "the box's lower corner (fitBox off)"),
+        color("boxMax", &S::boxMax, "world units", "(-inf, inf)", "the box's upper corner (fitBox off)"),
+        flag("dynamic", &S::dynamic, "re-voxelize on every call"),
+        flag("octree", &S::octree, "build the octree mips (hierarchical traversal needs them)"),
+        flag("countOpenColumns", &S::countOpenColumns, "solid mode: read the open-column count back"),
+    };
+    return rows;
+}
 
 //! The voxel grid, owned by the Voxelizer; valid until its next call.
 struct VoxelGrid {
@@ -92,11 +112,37 @@ enum class VoxelTraversal {
     Hierarchical, //!< (c) the same first hit as (b), skipping empty octree cells (exact, fewer fetches)
 };
 
+namespace settings {
+
+//! The traversal row of the modules that trace through a grid.
+template <class S>
+Setting<S> voxelTraversalRow(std::string field, VoxelTraversal S::*member, std::string doc) {
+    return choice(std::move(field), member,
+                  {{"march", VoxelTraversal::March}, {"exact", VoxelTraversal::Exact},
+                   {"hierarchical", VoxelTraversal::Hierarchical}},
+                  std::move(doc));
+}
+
+} // namespace settings
+
 struct TraversalSettings {
     VoxelTraversal method = VoxelTraversal::Hierarchical;
-    int marchSteps = 64;     //!< March: samples per segment, [1, 4096]
-    std::uint32_t seed = 1;  //!< March: the per-segment jitter's seed
+    int marchSteps = 64;
+    std::uint32_t seed = 1;
+
+    static const SettingsTable<TraversalSettings>& table(); //!< units and ranges (settings_table.hpp)
 };
+
+inline const SettingsTable<TraversalSettings>& TraversalSettings::table() {
+    using S = TraversalSettings;
+    using namespace settings;
+    static const SettingsTable<S> rows = {
+        voxelTraversalRow("method", &S::method, "march (approximate), exact 3D DDA, or hierarchical (exact, fewer fetches)"),
+        number("marchSteps", &S::marchSteps, "samples", "[1, 4096]", "March: occupancy samples per segment"),
+        number("seed", &S::seed, "", "[0, 4294967295]", "March: the per-segment jitter's seed"),
+    };
+    return rows;
+}
 
 //! A segment in voxel coordinates ([0, dims] per axis; VoxelGrid::worldToVoxel maps world
 //! points there). Parts outside the grid are empty space. Endpoints are accepted within

@@ -38,29 +38,12 @@ const char* passName(AoMethod m) {
     return "ao";
 }
 
+// The table's ranges, then what ties fields together.
 void validateSettings(const AmbientOcclusionSettings& s) {
-    requireEnumerator(s.method, {AoMethod::RayMarch, AoMethod::Points, AoMethod::Horizon, AoMethod::Voxel},
-                      "AmbientOcclusionSettings::method");
-    requireEnumerator(s.falloff,
-                      {ObscuranceFalloff::None, ObscuranceFalloff::Linear, ObscuranceFalloff::Quadratic, ObscuranceFalloff::Smooth},
-                      "AmbientOcclusionSettings::falloff");
-    requireEnumerator(s.resolution, {AoResolution::Full, AoResolution::Half, AoResolution::Quarter},
-                      "AmbientOcclusionSettings::resolution");
-    validateScreenModes(s.march, s.thicknessMode, "AmbientOcclusionSettings");
-    if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
-        throw Error(ErrorCode::InvalidArgument,
-                    "AmbientOcclusionSettings::radius must be in (0, inf) world units, got " + std::to_string(s.radius));
-    requireInRange(s.rays, s.method == AoMethod::Horizon ? 2 : 1, 1024, "AmbientOcclusionSettings::rays", "");
+    obscura::validateSettings(AmbientOcclusionSettings::table(), s, "AmbientOcclusionSettings");
     if (s.method == AoMethod::Horizon && s.rays % 2 != 0)
         throw Error(ErrorCode::InvalidArgument, "AmbientOcclusionSettings::rays must be even for the horizon method "
                                                 "(two directions per slice), got " + std::to_string(s.rays));
-    requireInRange(s.steps, 1, 256, "AmbientOcclusionSettings::steps", "");
-    if (!(s.thickness >= 0.0f) || std::isinf(s.thickness))
-        throw Error(ErrorCode::InvalidArgument, "AmbientOcclusionSettings::thickness must be in [0, inf) world units (0: "
-                                                "the radius), got " + std::to_string(s.thickness));
-    validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "AmbientOcclusionSettings");
-    validateRefineThreshold(s.refineThreshold, "AmbientOcclusionSettings");
-    validateRayLanes(s.rayLanes, "AmbientOcclusionSettings::rayLanes");
     if (s.method == AoMethod::Horizon && !s.cosineWeighted)
         throw Error(ErrorCode::InvalidArgument, "the horizon method integrates the cosine-weighted AO only: set "
                                                 "AmbientOcclusionSettings::cosineWeighted");
@@ -69,7 +52,6 @@ void validateSettings(const AmbientOcclusionSettings& s) {
                                                 "obscurance: set AmbientOcclusionSettings::falloff to None or use "
                                                 "another method");
     if (s.method == AoMethod::Voxel) requireVoxelGrid(s.voxels, s.voxelTraversal, "AmbientOcclusionSettings");
-    validateTemporalSettings(s.temporal, "AmbientOcclusionSettings");
 }
 
 bool filtered(const AmbientOcclusionSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }

@@ -12,5 +12,6 @@ void addInfoCommand(CLI::App& app);
 //! Adds `obscura reference` and `obscura bench` (need obscura::reference).
 void addReferenceCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addSettingsCommand(CLI::App& app);
 
 } // namespace obscura::cli

@@ -6,16 +6,16 @@ namespace obscura::cli {
 
 const std::vector<SettingInfo>& LitGBuffer::settings() {
     static const std::vector<SettingInfo> s = {
-        {"shadows", "", "0|1", "shadow the direct light of shadow-casting lights (default 1)"},
-        {"shadow_resolution", "texels", "[16, 8192]", "side of every shadow map (default 1024)"},
-        {"shadow_filter", "", "hard|pcf", "shadow lookups (default pcf)"},
+        {"shadows", "", "0|1", "shadow the direct light of shadow-casting lights", "1"},
+        renamedSetting(ShadowMapSettings{}, "resolution", "shadow_resolution", "side of every shadow map"),
+        {"shadow_filter", "", "hard|pcf", "shadow lookups (the G-buffer's: hard or pcf)", "pcf"},
     };
     return s;
 }
 
 bool LitGBuffer::set(const std::string& key, const std::string& value) {
     if (key == "shadows") enabled_ = parseBool(key, value);
-    else if (key == "shadow_resolution") maps_.resolution = parseInteger(key, value, 16, 8192, "texels");
+    else if (key == "shadow_resolution") setRenamed(maps_, "resolution", key, value);
     else if (key == "shadow_filter")
         filter_.filter = parseChoice<ShadowFilter>(key, value, {{"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf}});
     else return false;

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
 #ifdef OBSCURA_WITH_REFERENCE
     obscura::cli::addReferenceCommand(app);
     obscura::cli::addBenchCommand(app);
+    obscura::cli::addSettingsCommand(app);
 #endif
     try {
         app.parse(argc, argv);

@@ -158,8 +158,9 @@ void addInfoCommand(CLI::App& app) {
             for (const auto& o : t.outputs) outs += " " + o;
             std::printf("  %-16s outputs:%s\n", "", outs.c_str());
             for (const auto& s : t.settings)
-                std::printf("  %-16s --set %s (%s%s%s): %s\n", "", s.key.c_str(), s.range.c_str(), s.unit.empty() ? "" : " ",
-                            s.unit.c_str(), s.description.c_str());
+                std::printf("  %-16s --set %s (%s%s%s%s%s): %s\n", "", s.key.c_str(), s.range.c_str(), s.unit.empty() ? "" : " ",
+                            s.unit.c_str(), s.defaultValue.empty() ? "" : "; default ", s.defaultValue.c_str(),
+                            s.description.c_str());
         }
         std::printf("\nbuilt-in scenes:");
         for (const auto& n : assets::builtinSceneNames()) std::printf(" %s", n.c_str());

@@ -136,22 +136,6 @@ double parseNumber(const std::string& key, const std::string& value, double lo, 
     return numberIn(value, lo, hi, unit, "--set " + key + "=" + value);
 }
 
-glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
-    // ':' as well as ',': bench --variant splits its settings on commas.
-    std::vector<std::string> parts(1);
-    for (const char c : value) {
-        if (c == ':' || c == ',') parts.emplace_back();
-        else parts.back() += c;
-    }
-    if (parts.size() == 1) return glm::vec3(static_cast<float>(parseNumber(key, value, lo, hi, unit)));
-    if (parts.size() != 3)
-        throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one value (grey) or r:g:b");
-    glm::vec3 color(0.0f);
-    for (int c = 0; c < 3; ++c)
-        color[c] = static_cast<float>(
-            numberIn(parts[std::size_t(c)], lo, hi, unit, "--set " + key + "=" + value + ": " + "rgb"[c]));
-    return color;
-}
 
 namespace {
 double parseWhole(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit) {
@@ -165,20 +149,21 @@ int parseInteger(const std::string& key, const std::string& value, int lo, int h
     return static_cast<int>(parseWhole(key, value, lo, hi, unit));
 }
 
-std::uint32_t parseUnsigned32(const std::string& key, const std::string& value) {
-    return static_cast<std::uint32_t>(parseWhole(key, value, 0.0, 4294967295.0, ""));
-}
 
 namespace {
 constexpr int kSlicesPerTarget = 128; // one RGBA32UI render target
 constexpr int kMaxTargets = 8;
 } // namespace
 
+// The grid's resolution row as a technique's key; the slices are the CLI's own (the
+// voxelizer counts render targets).
 std::vector<SettingInfo> voxelGridSettings(const std::string& technique) {
-    return {{"voxel_resolution", "voxels", "8..2048, power of two",
-             technique + ": grid columns along x and y; also the slices along z unless voxel_slices is set (cubic cells, 128..1024 slices)"},
-            {"voxel_slices", "voxels", "128..1024, a multiple of 128", technique + ": grid slices along z (128 per render target)"},
-            {"voxel_traversal", "", "march|exact|hierarchical", technique + ": visibility query"}};
+    const SettingInfo resolution = renamedSetting(VoxelizerSettings{}, "resolution", "voxel_resolution",
+                                                  technique + ": grid columns along x and y; also the slices along z "
+                                                              "unless voxel_slices is set (cubic cells, 128..1024 slices)");
+    return {resolution,
+            {"voxel_slices", "voxels", "[128, 1024], a multiple of 128", technique + ": grid slices along z (128 per render target)",
+             ""}};
 }
 
 VoxelizerSettings VoxelGridOptions::settings() const {
@@ -188,22 +173,41 @@ VoxelizerSettings VoxelGridOptions::settings() const {
     return grid;
 }
 
-bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal) {
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid) {
     if (key == "voxel_resolution") {
-        grid.resolution = parseInteger(key, value, 8, 2048, "voxels");
+        VoxelizerSettings settings;
+        setRenamed(settings, "resolution", key, value);
+        grid.resolution = settings.resolution;
     } else if (key == "voxel_slices") {
         const double slices = parseNumber(key, value, kSlicesPerTarget, kMaxTargets * kSlicesPerTarget, "voxels");
         if (std::fmod(slices, kSlicesPerTarget) != 0.0)
             throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": must be a multiple of 128 (slices per render target)");
         grid.slices = static_cast<int>(slices);
-    } else if (key == "voxel_traversal") {
-        traversal = parseChoice<VoxelTraversal>(key, value, {{"march", VoxelTraversal::March},
-                                                             {"exact", VoxelTraversal::Exact},
-                                                             {"hierarchical", VoxelTraversal::Hierarchical}});
     } else {
         return false;
     }
     return true;
+}
+
+std::vector<SettingInfo> describedAs(std::vector<SettingInfo> rows, const std::string& key, const std::string& description,
+                                     const std::string& defaultValue) {
+    for (SettingInfo& row : rows)
+        if (row.key == key) {
+            row.description = description;
+            row.defaultValue = defaultValue;
+            return rows;
+        }
+    throw std::logic_error("describedAs: no setting " + key);
+}
+
+std::vector<SettingInfo> integratorSettings(std::vector<SettingInfo> rows, const std::string& radiusMeaning) {
+    rows = describedAs(rows, "radius", radiusMeaning + " (default: a tenth of the scene's bounding-box diagonal)", "");
+    return describedAs(rows, "frame_index",
+                       "sampling shift of the first rendered frame (0: none); temporal=1 counts it up each frame", "0");
+}
+
+void unknownSetting(const std::string& module, const std::string& key, const std::vector<SettingInfo>& settings) {
+    throw Error(ErrorCode::Parse, module + " has no setting \"" + key + "\" (settings: " + settingKeys(settings) + ")");
 }
 
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b) {
@@ -224,6 +228,7 @@ const std::vector<std::string>& voxelGridKeys() {
     static const std::vector<std::string> keys = [] {
         std::vector<std::string> k;
         for (const SettingInfo& s : voxelGridSettings("")) k.push_back(s.key);
+        k.push_back("voxel_traversal");
         return k;
     }();
     return keys;
@@ -235,15 +240,6 @@ std::string settingKeys(const std::vector<SettingInfo>& settings) {
     return keys;
 }
 
-ScreenMarch parseScreenMarch(const std::string& key, const std::string& value) {
-    return parseChoice<ScreenMarch>(key, value, {{"view", ScreenMarch::View}, {"texture", ScreenMarch::Texture}, {"hiz", ScreenMarch::HiZ}});
-}
-
-ScreenThickness parseScreenThickness(const std::string& key, const std::string& value) {
-    return parseChoice<ScreenThickness>(key, value, {{"constant", ScreenThickness::Constant},
-                                                     {"depth_peeling", ScreenThickness::DepthPeeling},
-                                                     {"peeling_or_constant", ScreenThickness::PeelingOrConstant}});
-}
 
 GBufferSamples readSamples(Context& ctx, GBuffer& gbuffer, const GBufferView& view) {
     return {readTexture(ctx, gbuffer.positions(view)), readTexture(ctx, view.normal)};

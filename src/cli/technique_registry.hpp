@@ -31,10 +31,65 @@ struct TechniqueOutput {
     bool displayOnly = false;
 };
 
-//! A `--set key=value` setting: name, unit and range as documented in the settings struct.
+//! A `--set key=value` setting: name, unit and range as documented in the settings table.
 struct SettingInfo {
     std::string key, unit, range, description;
+    std::string defaultValue{}; //!< as written after '='; empty: decided by the scene or the technique
 };
+
+//! The `--set` rows of S's settings table (settings_table.hpp), with the defaults of
+//! `defaults` (a technique's own, which may differ from S{}), less the keys in `leaveOut`.
+template <class S>
+std::vector<SettingInfo> tableSettings(const S& defaults, const std::vector<std::string>& leaveOut = {}) {
+    std::vector<SettingInfo> rows;
+    for (const Setting<S>& row : S::table()) {
+        bool left = false;
+        for (const std::string& key : leaveOut) left = left || key == row.key;
+        if (!left) rows.push_back({row.key, row.unit, row.range, row.doc, row.format(row.values(defaults))});
+    }
+    return rows;
+}
+
+//! Sets `key` of `s` from `value` through S's table: false when the table has no such key;
+//! Error{Parse} "--set key=value: why" for a value the table refuses.
+template <class S>
+bool setFromTable(S& s, const std::string& key, const std::string& value) {
+    try {
+        return applySetting(S::table(), s, key, value);
+    } catch (const Error& e) {
+        throw Error(ErrorCode::Parse, "--set " + e.message());
+    }
+}
+
+//! S's row `tableKey` under the technique's key `key` (e.g. "shadow_resolution" for
+//! ShadowMapSettings' "resolution"), described as `description`.
+template <class S>
+SettingInfo renamedSetting(const S& defaults, const std::string& tableKey, const std::string& key,
+                           const std::string& description) {
+    const Setting<S>& row = *findSetting(S::table(), tableKey);
+    return {key, row.unit, row.range, description, row.format(row.values(defaults))};
+}
+
+//! Sets S's `tableKey` from the technique's `key` (renamedSetting); errors name `key`.
+template <class S>
+void setRenamed(S& s, const std::string& tableKey, const std::string& key, const std::string& value) {
+    try {
+        applySetting(S::table(), s, tableKey, value);
+    } catch (const Error& e) {
+        throw Error(ErrorCode::Parse, "--set " + key + e.message().substr(tableKey.size()));
+    }
+}
+
+//! `rows` with the description and default of `key` replaced (a technique's own meaning).
+std::vector<SettingInfo> describedAs(std::vector<SettingInfo> rows, const std::string& key, const std::string& description,
+                                     const std::string& defaultValue);
+
+//! An integrator's (AO's, GI's) table rows as the tools read them: the radius's default is
+//! the scene's (defaultRadius), and frame_index is the first rendered frame's.
+std::vector<SettingInfo> integratorSettings(std::vector<SettingInfo> rows, const std::string& radiusMeaning);
+
+//! Throws Error{Parse}: "<module> has no setting "<key>" (settings: ...)".
+[[noreturn]] void unknownSetting(const std::string& module, const std::string& key, const std::vector<SettingInfo>& settings);
 
 struct FrameSetup {
     const assets::LoadedScene& scene;
@@ -165,13 +220,8 @@ std::string ignoredIntegratorSetting(const std::string& key, AoResolution resolu
 bool parseBool(const std::string& key, const std::string& value);
 //! Parses a number in [lo, hi]; throws Error{Parse} naming the key, the range and the unit.
 double parseNumber(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
-//! A colour: one number (grey) or three separated by ':' (or ',' outside bench --variant),
-//! each in [lo, hi].
-glm::vec3 parseColor(const std::string& key, const std::string& value, double lo, double hi, const std::string& unit);
 //! parseNumber for counts: a value with a fraction is refused, not cut.
 int parseInteger(const std::string& key, const std::string& value, int lo, int hi, const std::string& unit);
-//! A whole number in [0, 2^32 - 1] (frame indices).
-std::uint32_t parseUnsigned32(const std::string& key, const std::string& value);
 //! One of the named values; throws Error{Parse} listing them.
 template <typename E>
 E parseChoice(const std::string& key, const std::string& value, const std::map<std::string, E>& names) {
@@ -181,12 +231,8 @@ E parseChoice(const std::string& key, const std::string& value, const std::map<s
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
     throw Error(ErrorCode::Parse, "--set " + key + "=" + value + ": expected one of " + known);
 }
-//! The screen-space marching settings AO and GI share: "view|texture|hiz" and
-//! "constant|depth_peeling|peeling_or_constant".
-ScreenMarch parseScreenMarch(const std::string& key, const std::string& value);
-ScreenThickness parseScreenThickness(const std::string& key, const std::string& value);
-//! The voxel-grid settings ao.voxel and gi.hybrid share ("voxel_resolution",
-//! "voxel_slices", "voxel_traversal"), for their settings lists.
+//! The voxel-grid settings ao.voxel and gi.hybrid share ("voxel_resolution" and
+//! "voxel_slices"; "voxel_traversal" is their settings' own), for their settings lists.
 std::vector<SettingInfo> voxelGridSettings(const std::string& technique);
 //! The grid as set. Without voxel_slices, in whatever order the settings come, the slices
 //! follow voxel_resolution (a cubic grid, within the 128..1024 slices the voxelizer has), so
@@ -198,14 +244,14 @@ struct VoxelGridOptions {
     VoxelizerSettings settings() const;
 };
 //! Applies one of them; false when `key` is none of them.
-bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid, VoxelTraversal& traversal);
+bool setVoxelGridOption(const std::string& key, const std::string& value, VoxelGridOptions& grid);
 //! a followed by b.
 std::vector<SettingInfo> joinSettings(std::vector<SettingInfo> a, const std::vector<SettingInfo>& b);
 //! Whether `key` is one of `settings`' keys.
 bool hasSetting(const std::vector<SettingInfo>& settings, const std::string& key);
 //! `settings` without `keys` (each must be there): a method's list from its module's.
 std::vector<SettingInfo> withoutSettings(std::vector<SettingInfo> settings, const std::vector<std::string>& keys);
-//! The keys of voxelGridSettings, which only the voxel methods read.
+//! The keys of voxelGridSettings and "voxel_traversal", which only the voxel methods read.
 const std::vector<std::string>& voxelGridKeys();
 //! "a, b, c": the keys of the settings, for error messages.
 std::string settingKeys(const std::vector<SettingInfo>& settings);

@@ -22,22 +22,7 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ComposeSettings& s) {
-    requireEnumerator(s.formula, {CombineFormula::Thesis, CombineFormula::Physical, CombineFormula::Standard},
-                      "ComposeSettings::formula");
-    requireEnumerator(s.toneMapper, {ToneMapper::None, ToneMapper::Drago, ToneMapper::Aces}, "ComposeSettings::toneMapper");
-    requireFinite(s.ambient, "ComposeSettings::ambient");
-    for (int c = 0; c < 3; ++c) requireInRange(s.ambient[c], 0.0, 65504.0, "ComposeSettings::ambient", "W/(sr m^2)");
-    requireInRange(s.indirectScale, 0.0, 1e6, "ComposeSettings::indirectScale", "");
-    if (!(s.exposure > 0.0f && s.exposure <= 1e6f))
-        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::exposure must be in (0, 1e6], got " + std::to_string(s.exposure));
-    if (!(s.dragoMaxLuminance >= 0.0f) || std::isinf(s.dragoMaxLuminance))
-        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::dragoMaxLuminance must be finite and >= 0 (0: measured), got " +
-                                                    std::to_string(s.dragoMaxLuminance));
-    requireInRange(s.dragoBias, 0.5, 1.0, "ComposeSettings::dragoBias", "");
-    if (!(s.dragoDisplayMax > 0.0f && s.dragoDisplayMax <= 1e4f))
-        throw Error(ErrorCode::InvalidArgument, "ComposeSettings::dragoDisplayMax must be in (0, 1e4] cd/m^2, got " +
-                                                    std::to_string(s.dragoDisplayMax));
-    requireInRange(s.gamma, 1.0, 4.0, "ComposeSettings::gamma", "");
+    obscura::validateSettings(ComposeSettings::table(), s, "ComposeSettings");
 }
 
 // An input that is empty (when optional), or readable as `kind` and exactly the G-buffer's size.

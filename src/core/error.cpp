@@ -16,6 +16,6 @@ const char* toString(ErrorCode code) noexcept {
 }
 
 Error::Error(ErrorCode code, const std::string& message)
-    : std::runtime_error(std::string("obscura: ") + toString(code) + ": " + message), code_(code) {}
+    : std::runtime_error(std::string("obscura: ") + toString(code) + ": " + message), code_(code), message_(message) {}
 
 } // namespace obscura

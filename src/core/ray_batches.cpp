@@ -35,11 +35,6 @@ void RayBatches::select(ContextImpl& ctx, GLuint program, int b) const {
 // The next batch reads the partial sums this one wrote.
 void RayBatches::barrier(ContextImpl& ctx) { ctx.gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
 
-void validateRayLanes(int lanes, const std::string& field) {
-    if (lanes != 1 && lanes != 2 && lanes != 4 && lanes != 8 && lanes != 16)
-        throw Error(ErrorCode::InvalidArgument, field + " must be 1, 2, 4, 8 or 16, got " + std::to_string(lanes));
-}
-
 void addRayLaneDefine(std::vector<std::string>& defines, int lanes) {
     if (lanes > 1) defines.push_back("RAY_LANES=" + std::to_string(lanes));
 }

@@ -51,8 +51,6 @@ private:
     std::size_t bytes_ = 0;
 };
 
-//! Checks an integrator's rayLanes setting (1, 2, 4, 8 or 16; `field` names it in errors).
-void validateRayLanes(int lanes, const std::string& field);
 //! The shader define for `lanes` ray lanes (none for 1, which the shaders default to).
 void addRayLaneDefine(std::vector<std::string>& defines, int lanes);
 

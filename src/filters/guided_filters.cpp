@@ -84,18 +84,6 @@ void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GL
 
 } // namespace
 
-void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner) {
-    requireInRange(taps, 0, 16, owner + "::blurRadius", "taps");
-    if (!(depthSigma > 0.0f && depthSigma <= 1.0f))
-        throw Error(ErrorCode::InvalidArgument, owner + "::blurDepthSigma must be in (0, 1], got " + std::to_string(depthSigma));
-    requireInRange(normalPower, 0.0, 256.0, owner + "::blurNormalPower", "");
-}
-
-void validateRefineThreshold(float threshold, const std::string& owner) {
-    if (!(threshold >= 0.0f && threshold <= 1.0f))
-        throw Error(ErrorCode::InvalidArgument, owner + "::refineThreshold must be in [0, 1], got " + std::to_string(threshold));
-}
-
 void GuidedFilters::upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s) {
     shader::FilterParams p{};
     p.sizes = glm::ivec4(images.size, images.scale, s.taps);

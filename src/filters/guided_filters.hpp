@@ -49,10 +49,6 @@ struct FilterImages {
 //! blurred or upsampled, and so needs a guide image from its integrator.
 inline bool filtersRun(int scale, int taps) { return scale > 1 || taps > 0; }
 
-//! Throws Error{InvalidArgument} for blur settings out of range; `owner` names the struct.
-void validateBlurSettings(int taps, float depthSigma, float normalPower, const std::string& owner);
-//! Throws Error{InvalidArgument} for a refinement threshold outside [0, 1].
-void validateRefineThreshold(float threshold, const std::string& owner);
 
 class GuidedFilters {
 public:

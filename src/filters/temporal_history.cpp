@@ -16,14 +16,6 @@ GLuint temporalProgram(ContextImpl& ctx, bool rgb) {
 
 } // namespace
 
-void validateTemporalSettings(const TemporalSettings& s, const std::string& owner) {
-    requireInRange(s.maxFrames, 1, 256, owner + "::temporal.maxFrames", "frames");
-    if (!(s.depthTolerance > 0.0f && s.depthTolerance <= 1.0f))
-        throw Error(ErrorCode::InvalidArgument, owner + "::temporal.depthTolerance must be in (0, 1], got " +
-                                                    std::to_string(s.depthTolerance));
-    requireInRange(s.normalThreshold, -1.0, 1.0, owner + "::temporal.normalThreshold", "(cosine)");
-}
-
 void TemporalHistory::accumulate(ContextImpl& ctx, const GBufferView& view, GLuint value, bool rgb,
                                  const TemporalSettings& s, const char* passName) {
     PassScope pass(ctx, passName);

@@ -14,8 +14,6 @@ namespace obscura::detail {
 
 struct ContextImpl;
 
-//! Throws Error{InvalidArgument} for temporal settings out of range; `owner` names the struct.
-void validateTemporalSettings(const TemporalSettings& s, const std::string& owner);
 
 class TemporalHistory {
 public:

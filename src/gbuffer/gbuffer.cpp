@@ -294,10 +294,7 @@ GBuffer::~GBuffer() = default;
 GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
     auto& ctx = impl_->ctx;
     requireImageSize(settings.width, settings.height, ctx.info.maxTextureSize, "GBufferSettings");
-    requireInRange(settings.depthLayers, 1, 2, "GBufferSettings::depthLayers", "layers");
-    for (int c = 0; c < 3; ++c)
-        requireInRange(settings.background[c], 0.0, 65504.0, "GBufferSettings::background",
-                       "W/(sr m^2) (RGBA16F storage)");
+    validateSettings(GBufferSettings::table(), settings, "GBufferSettings");
     const ProjectionInfo projection = analyzeProjection(camera);
     validateScene(scene);
     if (settings.shadows) {

@@ -27,23 +27,8 @@ namespace {
 using namespace detail;
 
 void validateSettings(const IndirectLightSettings& s) {
-    requireEnumerator(s.method, {GiMethod::Screen, GiMethod::Hybrid}, "IndirectLightSettings::method");
-    requireEnumerator(s.resolution, {AoResolution::Full, AoResolution::Half, AoResolution::Quarter},
-                      "IndirectLightSettings::resolution");
-    validateScreenModes(s.march, s.thicknessMode, "IndirectLightSettings");
-    if (!(s.radius > 0.0f) || !std::isfinite(s.radius))
-        throw Error(ErrorCode::InvalidArgument,
-                    "IndirectLightSettings::radius must be in (0, inf) world units, got " + std::to_string(s.radius));
-    requireInRange(s.rays, 1, 1024, "IndirectLightSettings::rays", "");
-    requireInRange(s.steps, 1, 256, "IndirectLightSettings::steps", "");
-    if (!(s.thickness >= 0.0f) || std::isinf(s.thickness))
-        throw Error(ErrorCode::InvalidArgument, "IndirectLightSettings::thickness must be in [0, inf) world units, got " +
-                                                    std::to_string(s.thickness));
-    validateBlurSettings(s.blurRadius, s.blurDepthSigma, s.blurNormalPower, "IndirectLightSettings");
-    validateRefineThreshold(s.refineThreshold, "IndirectLightSettings");
-    validateRayLanes(s.rayLanes, "IndirectLightSettings::rayLanes");
+    obscura::validateSettings(IndirectLightSettings::table(), s, "IndirectLightSettings");
     if (s.method == GiMethod::Hybrid) requireVoxelGrid(s.voxels, s.voxelTraversal, "IndirectLightSettings");
-    validateTemporalSettings(s.temporal, "IndirectLightSettings");
 }
 
 bool filtered(const IndirectLightSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }

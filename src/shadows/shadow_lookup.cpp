@@ -57,37 +57,7 @@ float pcfKernelCode(PcfKernel kernel) {
 } // namespace
 
 void validateShadowMask(const ShadowMaskSettings& s, const std::string& owner) {
-    requireEnumerator(s.filter,
-                      {ShadowFilter::Hard, ShadowFilter::Pcf, ShadowFilter::Vsm, ShadowFilter::Esm, ShadowFilter::Evsm2,
-                       ShadowFilter::Evsm4, ShadowFilter::Msm, ShadowFilter::Pcss},
-                      owner + "::filter");
-    requireEnumerator(s.pcfKernel, {PcfKernel::Grid, PcfKernel::PoissonDisc, PcfKernel::OptimizedGrid}, owner + "::pcfKernel");
-    requireEnumerator(s.momentPrecision, {ShadowMomentPrecision::Float32, ShadowMomentPrecision::Bits16},
-                      owner + "::momentPrecision");
-    requireInRange(s.pcfRadius, 0, 8, owner + "::pcfRadius", "texels");
-    if (!(s.pcssBlockerFraction > 0.0f && s.pcssBlockerFraction < 1.0f))
-        throw Error(ErrorCode::InvalidArgument,
-                    owner + "::pcssBlockerFraction must be in (0, 1), got " + std::to_string(s.pcssBlockerFraction));
-    if (!(s.constantBias >= 0.0f) || std::isinf(s.constantBias))
-        throw Error(ErrorCode::InvalidArgument,
-                    owner + "::constantBias must be in [0, inf) world units, got " + std::to_string(s.constantBias));
-    requireInRange(s.slopeBias, 0.0, 16.0, owner + "::slopeBias", "texels");
-    requireInRange(s.normalOffset, 0.0, 16.0, owner + "::normalOffset", "texels");
-    requireInRange(s.cascadeBlend, 0.0, 0.5, owner + "::cascadeBlend");
-    requireInRange(s.momentBlur, 0, 8, owner + "::momentBlur", "texels");
-    requireInRange(s.minVariance, 0.0, 1.0, owner + "::minVariance");
-    if (!(s.lightBleedReduction >= 0.0f && s.lightBleedReduction < 1.0f))
-        throw Error(ErrorCode::InvalidArgument,
-                    owner + "::lightBleedReduction must be in [0, 1), got " + std::to_string(s.lightBleedReduction));
-    requireInRange(s.exponent, 0.0, 80.0, owner + "::exponent");
-    requireInRange(s.negativeExponent, 0.0, 42.0, owner + "::negativeExponent");
-    if (!(s.contactLength >= 0.0f) || std::isinf(s.contactLength))
-        throw Error(ErrorCode::InvalidArgument,
-                    owner + "::contactLength must be in [0, inf) world units, got " + std::to_string(s.contactLength));
-    requireInRange(s.contactSteps, 1, 256, owner + "::contactSteps", "samples");
-    if (!(s.contactThickness > 0.0f) || std::isinf(s.contactThickness))
-        throw Error(ErrorCode::InvalidArgument,
-                    owner + "::contactThickness must be in (0, inf) world units, got " + std::to_string(s.contactThickness));
+    validateSettings(ShadowMaskSettings::table(), s, owner);
 }
 
 void requireMapsFor(const ShadowMapSet& maps, const Camera& camera, const std::string& owner) {

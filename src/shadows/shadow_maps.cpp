@@ -29,11 +29,9 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
+    obscura::validateSettings(ShadowMapSettings::table(), s, "ShadowMapSettings");
+    static_assert(kMaxShadowCascades == 4, "the table's cascades range");
     requireInRange(s.resolution, 16, std::min(8192, maxTextureSize), "ShadowMapSettings::resolution", "texels");
-    requireInRange(s.cascades, 1, kMaxShadowCascades, "ShadowMapSettings::cascades", "maps");
-    requireInRange(s.splitLambda, 0.0, 1.0, "ShadowMapSettings::splitLambda");
-    requireEnumerator(s.pointMapping, {PointShadowMapping::Cube, PointShadowMapping::DualParaboloid},
-                      "ShadowMapSettings::pointMapping");
 }
 
 glm::dmat4 worldToClip(const Camera& c) { return glm::dmat4(c.projection) * glm::dmat4(c.view); }

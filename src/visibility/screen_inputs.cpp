@@ -52,12 +52,6 @@ void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled) {
     if (peeled) bindNearest(ctx, VIS_BACK_DEPTH_UNIT, view.backDepth.name);
 }
 
-void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner) {
-    requireEnumerator(march, {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}, owner + "::march");
-    requireEnumerator(thickness, {ScreenThickness::Constant, ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant},
-                      owner + "::thicknessMode");
-}
-
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness) {
     const int code = march == ScreenMarch::View ? VIS_MARCH_VIEW : march == ScreenMarch::Texture ? VIS_MARCH_TEXTURE : VIS_MARCH_HIZ;
     std::vector<std::string> defines{"SCREEN_MARCH=" + std::to_string(code)};

@@ -27,8 +27,5 @@ void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness);
 //! The defines of screen_march.glsl's thickness mode alone (none for Constant).
 std::vector<std::string> screenThicknessDefines(ScreenThickness thickness);
-//! Throws Error{InvalidArgument} for a march or thickness mode outside their enumerators;
-//! `owner` names the settings struct.
-void validateScreenModes(ScreenMarch march, ScreenThickness thickness, const std::string& owner);
 
 } // namespace obscura::detail

@@ -26,14 +26,7 @@ namespace {
 using namespace detail;
 
 void validateSettings(const ScreenTraceSettings& s) {
-    validateScreenModes(s.march, s.thicknessMode, "ScreenTraceSettings");
-    requireInRange(s.steps, 1, 4096, "ScreenTraceSettings::steps", "samples");
-    if (!(s.jitter >= 0.0f && s.jitter < 1.0f))
-        throw Error(ErrorCode::InvalidArgument,
-                    "ScreenTraceSettings::jitter must be in [0, 1) sample spacings, got " + std::to_string(s.jitter));
-    if (!(s.thickness > 0.0f) || std::isinf(s.thickness))
-        throw Error(ErrorCode::InvalidArgument,
-                    "ScreenTraceSettings::thickness must be in (0, inf) world units, got " + std::to_string(s.thickness));
+    obscura::validateSettings(ScreenTraceSettings::table(), s, "ScreenTraceSettings");
 }
 
 } // namespace

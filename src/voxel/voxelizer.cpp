@@ -29,7 +29,6 @@ bool sameSettings(const VoxelizerSettings& a, const VoxelizerSettings& b) {
            a.octree == b.octree && a.countOpenColumns == b.countOpenColumns;
 }
 
-bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 int log2i(int v) {
     int l = 0;
     while ((1 << (l + 1)) <= v) ++l;
@@ -37,15 +36,8 @@ int log2i(int v) {
 }
 
 void validateSettings(const VoxelizerSettings& s) {
-    if (!isPowerOfTwo(s.resolution) || s.resolution < 8 || s.resolution > 2048)
-        throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::resolution must be a power of two in [8, 2048], got " +
-                                                    std::to_string(s.resolution));
-    requireEnumerator(s.mode, {VoxelMode::Surface, VoxelMode::Solid}, "VoxelizerSettings::mode");
-    requireInRange(s.targets, 1, VOXEL_MAX_TARGETS, "VoxelizerSettings::targets", "render targets (128 slices each)");
-    requireInRange(s.margin, 0.0, 1.0, "VoxelizerSettings::margin", "of the largest extent");
+    obscura::validateSettings(VoxelizerSettings::table(), s, "VoxelizerSettings");
     if (!s.fitBox) {
-        requireFinite(s.boxMin, "VoxelizerSettings::boxMin");
-        requireFinite(s.boxMax, "VoxelizerSettings::boxMax");
         if (glm::any(glm::lessThanEqual(s.boxMax, s.boxMin)))
             throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::boxMax must exceed boxMin on every axis, got boxMin (" +
                                                     std::to_string(s.boxMin.x) + ", " + std::to_string(s.boxMin.y) + ", " +
@@ -362,8 +354,7 @@ std::vector<glm::uvec4> Voxelizer::Impl::runQueries(const std::vector<VoxelSegme
 std::vector<VoxelHit> Voxelizer::trace(const std::vector<VoxelSegment>& segments, const TraversalSettings& settings) {
     auto& d = *impl_;
     if (!d.built) throw Error(ErrorCode::InvalidState, "Voxelizer::trace: voxelize a scene first");
-    requireInRange(settings.marchSteps, 1, 4096, "TraversalSettings::marchSteps", "samples");
-    requireTraversal(settings.method, "TraversalSettings::method");
+    obscura::validateSettings(TraversalSettings::table(), settings, "TraversalSettings");
     if (settings.method == VoxelTraversal::Hierarchical && d.grid.levels == 0)
         throw Error(ErrorCode::InvalidState, "hierarchical traversal needs the octree: VoxelizerSettings::octree = true");
     std::vector<VoxelHit> hits(segments.size());

@@ -48,6 +48,7 @@ function(check_settings_keys header struct techniques skip)
   # Every line at the members' indent that is not a comment declares one: a field the regex
   # above did not read (a type it does not know, two names in one line) fails here.
   string(REGEX MATCHALL "\n    [^/ \n][^\n]*" declarations "${body}")
+  list(FILTER declarations EXCLUDE REGEX "^\n    static ") # the table's accessor
   list(LENGTH declarations declared)
   set(listed "")
   foreach(technique IN LISTS techniques)

@@ -17,83 +17,56 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = joinSettings({
-    {"radius", "world units", "(0, inf)", "reach of V_r (default: a tenth of the scene's bounding-box diagonal)"},
-    {"rays", "", "[1, 1024]", "directions (points) per pixel; horizon: 2 per slice"},
-    {"steps", "", "[1, 256]", "depth samples per ray (per side for horizon; voxel march samples)"},
-    {"cosine_weighted", "", "0|1", "cosine (AO_r) or uniform hemisphere weighting"},
-    {"falloff", "", "none|linear|quadratic|smooth", "obscurance distance weighting (none: AO)"},
-    {"thickness", "world units", "[0, inf)", "assumed thickness behind depth samples (0: the radius)"},
-    {"thickness_mode", "", "constant|depth_peeling|peeling_or_constant",
-     "raymarch, points: constant thickness, the second depth layer, or the deeper of both"},
-    {"march", "", "view|texture|hiz", "raymarch: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
-    {"resolution", "", "full|half|quarter", "AO resolution relative to the G-buffer"},
-    {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
-    {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
-    {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
-    {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
-    {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
-    {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
-    {"frame_index", "", "[0, 4294967295]", "sampling shift of the first rendered frame (0: none); temporal=1 counts it up each frame"},
-    {"temporal", "", "0|1", "accumulate the result over the rendered frames (--frames), reprojected; see TemporalSettings"},
-    {"bent_normals", "", "0|1", "also compute the bent normal (default 1; horizon: of the directions above its slices' horizons)"},
-}, voxelGridSettings("ao.voxel"));
+// The technique's defaults: bent normals are part of the output (and of the bench's error
+// report); the obscurance techniques start from the linear falloff.
+AmbientOcclusionSettings cliDefaults(ObscuranceFalloff falloff) {
+    AmbientOcclusionSettings s;
+    s.bentNormals = true;
+    s.falloff = falloff;
+    return s;
+}
+
+std::vector<SettingInfo> moduleSettings(ObscuranceFalloff falloff) {
+    return joinSettings(integratorSettings(tableSettings(cliDefaults(falloff), {"method"}), "reach of V_r"),
+                        voxelGridSettings("ao.voxel"));
+}
+
+const std::vector<SettingInfo> kSettings = moduleSettings(ObscuranceFalloff::None);
 
 // Each method's keys: the module's, less those it does not read, so that setting one is refused
 // instead of silently ignored (the module cannot tell a set field from its default).
-std::vector<SettingInfo> methodSettings(AoMethod method) {
+std::vector<SettingInfo> methodSettings(AoMethod method, ObscuranceFalloff falloff) {
+    const std::vector<SettingInfo> all = moduleSettings(falloff);
     const auto& voxel = voxelGridKeys();
     const auto withVoxel = [&](std::vector<std::string> keys) {
         keys.insert(keys.end(), voxel.begin(), voxel.end());
         return keys;
     };
     switch (method) {
-    case AoMethod::RayMarch: return withoutSettings(kSettings, voxel);
-    case AoMethod::Points: return withoutSettings(kSettings, withVoxel({"steps", "march"})); // points, not marches
+    case AoMethod::RayMarch: return withoutSettings(all, voxel);
+    case AoMethod::Points: return withoutSettings(all, withVoxel({"steps", "march"})); // points, not marches
     case AoMethod::Horizon: // cosine-weighted AO only (the module refuses the others); no thickness test
-        return withoutSettings(kSettings, withVoxel({"cosine_weighted", "falloff", "thickness", "thickness_mode", "march"}));
-    case AoMethod::Voxel: return withoutSettings(kSettings, {"thickness", "thickness_mode", "march"});
+        return withoutSettings(all, withVoxel({"cosine_weighted", "falloff", "thickness", "thickness_mode", "march"}));
+    case AoMethod::Voxel: return withoutSettings(all, {"thickness", "thickness_mode", "march"});
     }
-    return kSettings;
+    return all;
 }
 
 class AoRun final : public TechniqueRun {
 public:
-    AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff) : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx) {
+    AoRun(Context& ctx, AoMethod method, ObscuranceFalloff falloff)
+        : ctx_(ctx), gbuffer_(ctx), ao_(ctx), voxelizer_(ctx), settings_(cliDefaults(falloff)) {
         settings_.method = method;
-        settings_.falloff = falloff;
-        // Bent normals are part of the output (and of the bench's error report) by default.
-        settings_.bentNormals = true;
     }
 
     void set(const std::string& key, const std::string& value) override {
-        auto& s = settings_;
-        if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
-        else if (key == "rays") s.rays = parseInteger(key, value, 1, 1024, "");
-        else if (key == "steps") s.steps = parseInteger(key, value, 1, 256, "");
-        else if (key == "cosine_weighted") s.cosineWeighted = parseBool(key, value);
-        else if (key == "falloff")
-            s.falloff = parseChoice<ObscuranceFalloff>(key, value, {{"none", ObscuranceFalloff::None},
-                                                                  {"linear", ObscuranceFalloff::Linear},
-                                                                  {"quadratic", ObscuranceFalloff::Quadratic},
-                                                                  {"smooth", ObscuranceFalloff::Smooth}});
-        else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
-        else if (key == "thickness_mode") s.thicknessMode = parseScreenThickness(key, value);
-        else if (key == "march") s.march = parseScreenMarch(key, value);
-        else if (key == "resolution")
-            s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
-                                                                {"half", AoResolution::Half},
-                                                                {"quarter", AoResolution::Quarter}});
-        else if (key == "blur_radius") s.blurRadius = parseInteger(key, value, 0, 16, "taps");
-        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-30, 1, ""));
-        else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
-        else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
-        else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
-        else if (key == "geometry_tiles") s.geometryTiles = parseBool(key, value);
-        else if (key == "frame_index") firstFrame_ = parseUnsigned32(key, value);
-        else if (key == "temporal") s.temporal.enabled = parseBool(key, value);
-        else if (key == "bent_normals") s.bentNormals = parseBool(key, value);
-        else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal)) throw Error(ErrorCode::Parse, "ao has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        if (setFromTable(settings_, key, value)) {
+            // The scene decides the default radius, the frame count the frame index.
+            if (key == "radius") radius_ = settings_.radius;
+            if (key == "frame_index") firstFrame_ = settings_.frameIndex;
+        } else if (!setVoxelGridOption(key, value, voxelGrid_)) {
+            unknownSetting("ao", key, kSettings);
+        }
     }
 
     void run(const FrameSetup& frame) override {
@@ -189,7 +162,7 @@ private:
 TechniqueInfo aoTechnique(const std::string& name, const std::string& description, AoMethod method,
                           ObscuranceFalloff falloff = ObscuranceFalloff::None) {
     const std::vector<std::string> outputs = {"ao", "bent_normal"};
-    const std::vector<SettingInfo> settings = methodSettings(method);
+    const std::vector<SettingInfo> settings = methodSettings(method, falloff);
     return {name, description, outputs, settings, presetsFor(integratorPresets(method == AoMethod::Voxel), kSettings, settings),
             [method, falloff](Context& ctx) { return std::make_unique<AoRun>(ctx, method, falloff); }};
 }

@@ -13,47 +13,35 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = joinSettings({
-    {"formula", "", "standard|thesis|physical", "see CombineFormula"},
-    {"ambient", "W/(sr m^2)", "[0, 65504], or r:g:b", "ambient radiance L_amb, grey or a colour (physical formula: only with gi=0)"},
-    {"indirect_scale", "", "[0, 1e6]", "k, the weight of the indirect light"},
-    {"exposure", "", "(0, 1e6]", "radiance multiplier before tone mapping"},
-    {"tone_mapper", "", "none|drago|aces", "tone mapping operator"},
-    {"drago_max_luminance", "W/(sr m^2)", "[0, 1e30]", "Drago's largest scene luminance after exposure; 0 = the frame's own"},
-    {"drago_bias", "", "[0.5, 1]", "Drago's bias b"},
-    {"drago_display_max", "cd/m^2", "(0, 1e4]", "Drago's display maximum L_dmax"},
-    {"srgb", "", "0|1", "sRGB transfer function (else x^(1/gamma))"},
-    {"gamma", "", "[1, 4]", "display gamma when srgb=0"},
-    {"ao", "", "0|1", "ray-marched AO (medium quality; shades the ambient term, so read only with ambient > 0, or "
-                      "with formula=thesis; the physical formula only with gi=0)"},
-    {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)"},
-    {"radius", "world units", "(0, inf)", "AO and GI radius (default: a tenth of the scene's diagonal)"},
-}, LitGBuffer::settings());
+std::vector<SettingInfo> composeSettings() {
+    SettingInfo radius = renamedSetting(AmbientOcclusionSettings{}, "radius", "radius",
+                                        "AO and GI radius (default: a tenth of the scene's diagonal)");
+    radius.defaultValue.clear();
+    const std::vector<SettingInfo> passes = {
+        {"ao", "", "0|1",
+         "ray-marched AO (medium quality; shades the ambient term, so read only with ambient > 0, or with "
+         "formula=thesis; the physical formula only with gi=0)",
+         "1"},
+        {"gi", "", "0|1", "screen-space one-bounce GI (medium quality)", "1"},
+        radius};
+    return joinSettings(joinSettings(tableSettings(ComposeSettings{}), passes), LitGBuffer::settings());
+}
+
+const std::vector<SettingInfo> kSettings = composeSettings();
 
 class ComposeRun final : public TechniqueRun {
 public:
     explicit ComposeRun(Context& ctx) : ctx_(ctx), lit_(ctx), ao_(ctx), gi_(ctx), composer_(ctx) {}
 
     void set(const std::string& key, const std::string& value) override {
-        auto& s = settings_;
-        if (key == "formula") s.formula = parseChoice<CombineFormula>(key, value, {{"standard", CombineFormula::Standard},
-                                                                                   {"thesis", CombineFormula::Thesis},
-                                                                                   {"physical", CombineFormula::Physical}});
-        else if (key == "ambient") s.ambient = parseColor(key, value, 0, 65504, "W/(sr m^2)");
-        else if (key == "indirect_scale") s.indirectScale = static_cast<float>(parseNumber(key, value, 0, 1e6, ""));
-        else if (key == "exposure") s.exposure = static_cast<float>(parseNumber(key, value, 1e-30, 1e6, ""));
-        else if (key == "tone_mapper") s.toneMapper = parseChoice<ToneMapper>(key, value, {{"none", ToneMapper::None},
-                                                                                          {"drago", ToneMapper::Drago},
-                                                                                          {"aces", ToneMapper::Aces}});
-        else if (key == "drago_max_luminance") s.dragoMaxLuminance = static_cast<float>(parseNumber(key, value, 0, 1e30, "W/(sr m^2)"));
-        else if (key == "drago_bias") s.dragoBias = static_cast<float>(parseNumber(key, value, 0.5, 1, ""));
-        else if (key == "drago_display_max") s.dragoDisplayMax = static_cast<float>(parseNumber(key, value, 1e-30, 1e4, "cd/m^2"));
-        else if (key == "srgb") s.srgb = parseBool(key, value);
-        else if (key == "gamma") s.gamma = static_cast<float>(parseNumber(key, value, 1, 4, ""));
-        else if (key == "ao") withAo_ = parseBool(key, value);
+        if (setFromTable(settings_, key, value)) return;
+        if (key == "ao") withAo_ = parseBool(key, value);
         else if (key == "gi") withGi_ = parseBool(key, value);
-        else if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
-        else if (!lit_.set(key, value)) throw Error(ErrorCode::Parse, "compose has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else if (key == "radius") {
+            AmbientOcclusionSettings ao;
+            setRenamed(ao, "radius", key, value);
+            radius_ = ao.radius;
+        } else if (!lit_.set(key, value)) unknownSetting("compose", key, kSettings);
     }
 
     void run(const FrameSetup& frame) override {

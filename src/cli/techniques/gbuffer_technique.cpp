@@ -26,16 +26,16 @@ Image mapped(const Image& src, int channels, const std::function<float(const Ima
 
 Image rgb(const Image& src) { return mapped(src, 3, [](const Image& s, int x, int y, int c) { return s.at(x, y, c); }); }
 
+// The image size is --size's.
+const std::vector<SettingInfo> kSettings =
+    joinSettings(tableSettings(GBufferSettings{}, {"width", "height"}), LitGBuffer::settings());
+
 class GBufferRun final : public TechniqueRun {
 public:
     explicit GBufferRun(Context& ctx) : ctx_(ctx), lit_(ctx) {}
 
     void set(const std::string& key, const std::string& value) override {
-        if (key == "direct_lighting") settings_.directLighting = parseBool(key, value);
-        else if (key == "depth_layers") settings_.depthLayers = parseInteger(key, value, 1, 2, "layers");
-        else if (!lit_.set(key, value))
-            throw Error(ErrorCode::Parse, "gbuffer has no setting \"" + key + "\" (settings: direct_lighting, depth_layers, " +
-                                              settingKeys(LitGBuffer::settings()) + ")");
+        if (!setFromTable(settings_, key, value) && !lit_.set(key, value)) unknownSetting("gbuffer", key, kSettings);
     }
 
     void run(const FrameSetup& frame) override {
@@ -170,9 +170,7 @@ const TechniqueRegistrar registrar({
     "gbuffer",
     "G-buffer: hardware depth, view-space face normal, albedo, direct radiance (shadow-mapped)",
     {"direct", "albedo", "normal", "depth", "position", "distance", "layer_gap"},
-    joinSettings({{"direct_lighting", "", "0|1", "fill the direct radiance target (Lambert)"},
-                  {"depth_layers", "", "1|2", "2: also the second depth layer (depth peeling), for output layer_gap"}},
-                 LitGBuffer::settings()),
+    kSettings,
     {{"default", {}}},
     [](Context& ctx) { return std::make_unique<GBufferRun>(ctx); },
 });

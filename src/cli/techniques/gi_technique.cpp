@@ -13,24 +13,9 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = joinSettings({
-    {"radius", "world units", "(0, inf)", "hits farther away are not gathered (default: a tenth of the scene's diagonal)"},
-    {"rays", "", "[1, 1024]", "cosine-weighted directions per pixel"},
-    {"steps", "", "[1, 256]", "depth samples per ray (gi.hybrid: march samples with voxel_traversal=march)"},
-    {"thickness", "world units", "[0, inf)", "see IndirectLightSettings::thickness (0: the default)"},
-    {"thickness_mode", "", "constant|depth_peeling|peeling_or_constant",
-     "gi.screen: constant thickness, the second depth layer, or the deeper of both"},
-    {"march", "", "view|texture|hiz", "gi.screen: 3D samples, 2D samples, or 2D samples skipped through a Hi-Z pyramid"},
-    {"resolution", "", "full|half|quarter", "GI resolution relative to the G-buffer"},
-    {"blur_radius", "taps", "[0, 16]", "geometry-aware separable blur (0: off)"},
-    {"blur_depth_sigma", "", "(0, 1]", "relative depth difference weighted e^-1/2"},
-    {"blur_normal_power", "", "[0, 256]", "normal weight exponent"},
-    {"refine_threshold", "", "[0, 1]", "upsampling: pixels with less similar-neighbour weight are computed at full resolution (0: none)"},
-    {"ray_lanes", "", "1|2|4|8|16", "invocations that share each pixel's rays (the same result up to summation order)"},
-    {"geometry_tiles", "", "0|1", "half, quarter: run only over the tiles with geometry (the same result; 0: every tile)"},
-    {"frame_index", "", "[0, 4294967295]", "sampling shift of the first rendered frame (0: none); temporal=1 counts it up each frame"},
-    {"temporal", "", "0|1", "accumulate the result over the rendered frames (--frames), reprojected; see TemporalSettings"},
-}, joinSettings(voxelGridSettings("gi.hybrid"), LitGBuffer::settings()));
+const std::vector<SettingInfo> kSettings = joinSettings(
+    integratorSettings(tableSettings(IndirectLightSettings{}, {"method"}), "hits farther away are not gathered"),
+    joinSettings(voxelGridSettings("gi.hybrid"), LitGBuffer::settings()));
 
 // Each method's keys, less those it does not read (as ao_technique.cpp): the hybrid method's
 // rays test voxels, not depth samples.
@@ -44,25 +29,13 @@ public:
     GiRun(Context& ctx, GiMethod method) : ctx_(ctx), lit_(ctx), gi_(ctx), voxelizer_(ctx) { settings_.method = method; }
 
     void set(const std::string& key, const std::string& value) override {
-        auto& s = settings_;
-        if (key == "radius") radius_ = parseNumber(key, value, 1e-30, 1e30, "world units");
-        else if (key == "rays") s.rays = parseInteger(key, value, 1, 1024, "");
-        else if (key == "steps") s.steps = parseInteger(key, value, 1, 256, "");
-        else if (key == "thickness") s.thickness = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
-        else if (key == "thickness_mode") s.thicknessMode = parseScreenThickness(key, value);
-        else if (key == "march") s.march = parseScreenMarch(key, value);
-        else if (key == "resolution") s.resolution = parseChoice<AoResolution>(key, value, {{"full", AoResolution::Full},
-                                                                                          {"half", AoResolution::Half},
-                                                                                          {"quarter", AoResolution::Quarter}});
-        else if (key == "blur_radius") s.blurRadius = parseInteger(key, value, 0, 16, "taps");
-        else if (key == "blur_depth_sigma") s.blurDepthSigma = static_cast<float>(parseNumber(key, value, 1e-30, 1, ""));
-        else if (key == "blur_normal_power") s.blurNormalPower = static_cast<float>(parseNumber(key, value, 0, 256, ""));
-        else if (key == "refine_threshold") s.refineThreshold = static_cast<float>(parseNumber(key, value, 0, 1, ""));
-        else if (key == "ray_lanes") s.rayLanes = parseInteger(key, value, 1, 16, "");
-        else if (key == "geometry_tiles") s.geometryTiles = parseBool(key, value);
-        else if (key == "frame_index") firstFrame_ = parseUnsigned32(key, value);
-        else if (key == "temporal") s.temporal.enabled = parseBool(key, value);
-        else if (!setVoxelGridOption(key, value, voxelGrid_, s.voxelTraversal) && !lit_.set(key, value)) throw Error(ErrorCode::Parse, "gi has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        if (setFromTable(settings_, key, value)) {
+            // The scene decides the default radius, the frame count the frame index.
+            if (key == "radius") radius_ = settings_.radius;
+            if (key == "frame_index") firstFrame_ = settings_.frameIndex;
+        } else if (!setVoxelGridOption(key, value, voxelGrid_) && !lit_.set(key, value)) {
+            unknownSetting("gi", key, kSettings);
+        }
     }
 
     void run(const FrameSetup& frame) override {

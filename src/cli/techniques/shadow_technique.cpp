@@ -17,33 +17,17 @@
 namespace obscura::cli {
 namespace {
 
-const std::vector<SettingInfo> kSettings = {
-    {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)"},
-    {"filter", "", "hard|pcf|vsm|esm|evsm2|evsm4|msm|pcss", "shadow.cube, shadow.paraboloid: the lookup (default hard)"},
-    {"resolution", "texels", "[16, 8192]", "side of every map"},
-    {"cascades", "", "[1, 4]", "maps per directional light"},
-    {"split_lambda", "", "[0, 1]", "PSSM weight of the logarithmic split"},
-    {"reflective", "", "0|1", "also render reflective shadow maps of spot and directional lights (timed in shadow.maps)"},
-    {"depth_bounds", "", "0|1", "cascades split the G-buffer's depth range (default 1) or the scene bounds' (0)"},
-    {"pcf_radius", "texels", "[0, 8]", "shadow.pcf: comparisons each side of the centre"},
-    {"pcf_kernel", "", "grid|optimized|poisson",
-     "shadow.pcf: a grid, the grid's weights from (pcf_radius + 1)^2 taps, or 16 taps of a rotated Poisson disc"},
-    {"pcss_blocker_fraction", "", "(0, 1)", "shadow.pcss: nearest blockers searched, fraction of the receiver's distance"},
-    {"constant_bias", "world units", "[0, inf)", "receiver moved toward the light"},
-    {"slope_bias", "texels", "[0, 16]", "times tan(theta), toward the light"},
-    {"normal_offset", "texels", "[0, 16]", "receiver moved along its normal"},
-    {"cascade_blend", "", "[0, 0.5]", "fraction of each cascade blended into the next"},
-    {"receiver_plane", "", "0|1", "PCF: receiver-plane depth bias (default 1)"},
-    {"moment_blur", "texels", "[0, 8]", "moment filters: Gaussian prefilter radius"},
-    {"moment_precision", "bits", "32|16", "moment filters: RGBA32F, or 16F (MSM: 16-bit UNORM, optimized basis)"},
-    {"min_variance", "t^2", "[0, 1]", "VSM, EVSM: variance floor"},
-    {"light_bleed_reduction", "", "[0, 1)", "VSM, EVSM: Chebyshev bounds below it count as 0"},
-    {"exponent", "", "[0, 80]", "ESM: c; EVSM: c+ (clamped to 42)"},
-    {"negative_exponent", "", "[0, 42]", "EVSM4: c-"},
-    {"contact_length", "world units", "[0, inf)", "screen-space contact-shadow ray toward the light (0: off)"},
-    {"contact_steps", "", "[1, 256]", "samples of the contact ray"},
-    {"contact_thickness", "world units", "(0, inf)", "how far behind a depth sample the contact ray counts as inside"},
-};
+// A technique's rows with its filter as the default (shadow.cube and shadow.paraboloid: hard).
+std::vector<SettingInfo> shadowSettings(ShadowFilter filter) {
+    ShadowMaskSettings mask;
+    mask.filter = filter;
+    const std::vector<SettingInfo> own = {
+        {"light", "", "[0, lights)", "index in Scene::lights (default: the first shadow-casting light the technique maps)", ""},
+        {"depth_bounds", "", "0|1", "cascades split the G-buffer's depth range (1) or the scene bounds' (0)", "1"}};
+    return joinSettings(joinSettings(own, tableSettings(ShadowMapSettings{}, {"point_mapping"})), tableSettings(mask));
+}
+
+const std::vector<SettingInfo> kSettings = shadowSettings(ShadowFilter::Hard);
 
 // The directional lights' cascades' keys. A point technique takes neither these nor
 // `reflective` (spot and directional lights' reflective maps): its mask is of a light mapped
@@ -51,15 +35,8 @@ const std::vector<SettingInfo> kSettings = {
 // rendered with the defaults.
 const std::vector<std::string> kCascadeKeys = {"cascades", "split_lambda", "depth_bounds", "cascade_blend"};
 
-const std::map<std::string, ShadowFilter> kFilterNames = {
-    {"hard", ShadowFilter::Hard}, {"pcf", ShadowFilter::Pcf},     {"vsm", ShadowFilter::Vsm},
-    {"esm", ShadowFilter::Esm},   {"evsm2", ShadowFilter::Evsm2}, {"evsm4", ShadowFilter::Evsm4},
-    {"msm", ShadowFilter::Msm},   {"pcss", ShadowFilter::Pcss}};
-
 std::string filterName(ShadowFilter filter) {
-    for (const auto& [name, f] : kFilterNames)
-        if (f == filter) return name;
-    return "?";
+    return findSetting(ShadowMaskSettings::table(), "filter")->format({double(static_cast<int>(filter))});
 }
 
 bool isMomentFilter(ShadowFilter f) { return f != ShadowFilter::Hard && f != ShadowFilter::Pcf && f != ShadowFilter::Pcss; }
@@ -89,7 +66,7 @@ std::vector<SettingInfo> techniqueSettings(ShadowFilter filter, bool point, bool
         for (const SettingInfo& s : kSettings)
             if (!filterReads(filter, s.key)) unread.push_back(s.key);
     }
-    return withoutSettings(kSettings, unread);
+    return withoutSettings(shadowSettings(filter), unread);
 }
 
 // The lights a technique maps: those mapped from a centre (point and sphere lights: cube or
@@ -114,40 +91,10 @@ public:
     }
 
     void set(const std::string& key, const std::string& value) override {
+        if (setFromTable(maps_, key, value) || setFromTable(mask_, key, value)) return;
         if (key == "light") light_ = static_cast<std::size_t>(parseInteger(key, value, 0, 1000000, ""));
-        else if (key == "resolution") maps_.resolution = parseInteger(key, value, 16, 8192, "texels");
-        else if (key == "cascades") maps_.cascades = parseInteger(key, value, 1, kMaxShadowCascades, "");
-        else if (key == "split_lambda") maps_.splitLambda = static_cast<float>(parseNumber(key, value, 0, 1, ""));
         else if (key == "depth_bounds") depthBounds_ = parseBool(key, value);
-        else if (key == "reflective") maps_.reflective = parseBool(key, value);
-        else if (key == "filter")
-            mask_.filter = parseChoice<ShadowFilter>(key, value, kFilterNames);
-        else if (key == "pcf_radius") mask_.pcfRadius = parseInteger(key, value, 0, 8, "texels");
-        else if (key == "pcss_blocker_fraction")
-            mask_.pcssBlockerFraction = static_cast<float>(parseNumber(key, value, 1e-3, 0.999, ""));
-        else if (key == "pcf_kernel")
-            mask_.pcfKernel = parseChoice<PcfKernel>(key, value, {{"grid", PcfKernel::Grid},
-                                                                {"optimized", PcfKernel::OptimizedGrid},
-                                                                {"poisson", PcfKernel::PoissonDisc}});
-        else if (key == "constant_bias") mask_.constantBias = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
-        else if (key == "slope_bias") mask_.slopeBias = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
-        else if (key == "normal_offset") mask_.normalOffset = static_cast<float>(parseNumber(key, value, 0, 16, "texels"));
-        else if (key == "receiver_plane") mask_.receiverPlane = parseBool(key, value);
-        else if (key == "moment_precision")
-            mask_.momentPrecision = parseChoice<ShadowMomentPrecision>(
-                key, value, {{"32", ShadowMomentPrecision::Float32}, {"16", ShadowMomentPrecision::Bits16}});
-        else if (key == "moment_blur") mask_.momentBlur = parseInteger(key, value, 0, 8, "texels");
-        else if (key == "min_variance") mask_.minVariance = static_cast<float>(parseNumber(key, value, 0, 1, ""));
-        else if (key == "light_bleed_reduction")
-            mask_.lightBleedReduction = static_cast<float>(parseNumber(key, value, 0, 0.999, ""));
-        else if (key == "contact_length") mask_.contactLength = static_cast<float>(parseNumber(key, value, 0, 1e30, "world units"));
-        else if (key == "contact_steps") mask_.contactSteps = parseInteger(key, value, 1, 256, "");
-        else if (key == "contact_thickness")
-            mask_.contactThickness = static_cast<float>(parseNumber(key, value, 1e-30, 1e30, "world units"));
-        else if (key == "exponent") mask_.exponent = static_cast<float>(parseNumber(key, value, 0, 80, ""));
-        else if (key == "negative_exponent") mask_.negativeExponent = static_cast<float>(parseNumber(key, value, 0, 42, ""));
-        else if (key == "cascade_blend") mask_.cascadeBlend = static_cast<float>(parseNumber(key, value, 0, 0.5, ""));
-        else throw Error(ErrorCode::Parse, "shadow has no setting \"" + key + "\" (settings: " + settingKeys(kSettings) + ")");
+        else unknownSetting("shadow", key, kSettings);
     }
 
     std::string ignoredSetting(const std::string& key) const override {
