@@ -93,12 +93,12 @@ void aoAdd(inout Estimate e, vec3 w, vec3 normal, float hitDistance) {
 #if METHOD == AO_METHOD_RAYMARCH
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
-    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
-    const uint n = uint(ao.counts.x);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
+    const uint n = uint(ao.rayCount);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        aoAdd(e, w, normal, screenMarch(ScreenRayStart(p, normal, normalError), w, ao.shape.x, ao.counts.y, jitter, ao.shape.y));
+        aoAdd(e, w, normal, screenMarch(ScreenRayStart(p, normal, normalError), w, ao.radius, ao.stepCount, jitter, ao.thickness));
     }
     return e;
 }
@@ -109,14 +109,14 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
 // occluded at its distance.
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
-    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
-    const uint n = uint(ao.counts.x);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
+    const uint n = uint(ao.rayCount);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
         const float u = rotateSample(radicalInverse3(i), jitter);
-        const float d = ao.shape.x * pow(max(u, 1e-6), 1.0 / 3.0);
-        aoAdd(e, w, normal, screenHidden(p + w * d, ScreenRayStart(p, normal, normalError), ao.shape.y) ? d : -1.0);
+        const float d = ao.radius * pow(max(u, 1e-6), 1.0 / 3.0);
+        aoAdd(e, w, normal, screenHidden(p + w * d, ScreenRayStart(p, normal, normalError), ao.thickness) ? d : -1.0);
     }
     return e;
 }
@@ -158,10 +158,10 @@ vec2 aoBentArc(float h1, float h2, float g) {
 // nothing above it is exactly 1 for any number of slices. Slices are this batch's "rays".
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
-    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
     const vec3 v = viewDirectionTo(p);
-    const int slices = max(ao.counts.x / 2, 1);
+    const int slices = max(ao.rayCount / 2, 1);
     // Pixels per world unit at p (perspective: the projection's y scale over the distance).
     const float pixelsPerUnit = 0.5 * float(frameSize().y) * abs(frame.projection[1][1]) /
                                 (isPerspective() ? max(-p.z, 1e-30) : 1.0);
@@ -169,7 +169,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
     // mirrors (p00 or p11 < 0, e.g. a host's for glClipControl(GL_UPPER_LEFT), whose rows run
     // top down). Times exactly 1 otherwise.
     const vec2 screenToView = vec2(frame.projection[0][0] < 0.0 ? -1.0 : 1.0, frame.projection[1][1] < 0.0 ? -1.0 : 1.0);
-    const float reach = min(ao.shape.x * pixelsPerUnit, kFloatMax); // the radius in G-buffer pixels
+    const float reach = min(ao.radius * pixelsPerUnit, kFloatMax); // the radius in G-buffer pixels
     // Offsets are cut to twice the image's larger side, which any direction leaves the image
     // by: a float past the int range converts to an undefined int (GLSL 4.50, 5.4.1), and
     // radii far beyond the scene reach that (and Inf) in pixels.
@@ -191,8 +191,8 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
         for (int side = 0; side < 2; ++side) {
             const float sgn = side == 0 ? -1.0 : 1.0;
             float best = -1.0; // cosine of the horizon angle from v; -1: none found
-            for (int j = 0; j < ao.counts.y; ++j) {
-                const float offset = min(reach * (float(j) + jitter) / float(ao.counts.y), farthestOffset);
+            for (int j = 0; j < ao.stepCount; ++j) {
+                const float offset = min(reach * (float(j) + jitter) / float(ao.stepCount), farthestOffset);
                 const ivec2 q = fullPixel + ivec2(round(sgn * dir * max(offset, 1.0)));
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, frameSize()))) break; // border: open
                 const float depth = texelFetch(visDepth, q, 0).r;
@@ -202,7 +202,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
                 // Within the radius and above p's tangent plane (beyond float rounding, the
                 // depth buffer's precision and the stored normal's).
                 const float errors = depthReconstructionError(o, depth) + pError + len * normalError;
-                if (!(len > 0.0) || len > ao.shape.x || dot(d, normal) <= screenPlaneTolerance(length(p) * 4.0, errors)) continue;
+                if (!(len > 0.0) || len > ao.radius || dot(d, normal) <= screenPlaneTolerance(length(p) * 4.0, errors)) continue;
                 best = max(best, dot(d / len, v));
             }
             // Angle from v toward the side; limited by the hemisphere of the normal.
@@ -231,15 +231,15 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
 // only as far as it provably stays above them (surface_rays.glsl).
 Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 fullPixel) {
     Estimate e = Estimate(0.0, vec3(0.0), 0.0);
-    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
-    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
     const VoxelSurfaceStart from =
-        voxelSurfaceStart(p, texelFetch(visDepth, fullPixel, 0).r, normal, normalError, ao.shape.z);
+        voxelSurfaceStart(p, texelFetch(visDepth, fullPixel, 0).r, normal, normalError, ao.voxelStartOffset);
     const vec3 startVoxel = (ao.viewToVoxel * vec4(from.start, 1.0)).xyz;
-    const uint n = uint(ao.counts.x);
+    const uint n = uint(ao.rayCount);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = aoDirection(i, n, rotation, normal);
-        float reach = voxelClearLength(from, normal, w, ao.shape.x);
+        float reach = voxelClearLength(from, normal, w, ao.radius);
         if (!(reach > 0.0)) {
             aoAdd(e, w, normal, -1.0);
             continue;
@@ -247,7 +247,7 @@ Estimate aoEstimate(vec3 p, vec3 normal, float normalError, ivec2 pixel, ivec2 f
         const vec3 endVoxel = voxelTraceableEnd(ao.viewToVoxel, from.start, w, reach);
         // One traversal per permutation (TRAVERSAL = VOXEL_METHOD_*): the loop body stays small.
 #if TRAVERSAL == VOXEL_METHOD_MARCH
-        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, ao.counts.y, jitter);
+        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, ao.stepCount, jitter);
 #elif TRAVERSAL == VOXEL_METHOD_EXACT
         const VoxelHit hit = voxelTraceExact(startVoxel, endVoxel);
 #else

@@ -3,15 +3,11 @@
 #ifndef OBSCURA_AO_BINDINGS_H
 #define OBSCURA_AO_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
-#endif
+#include "../common/bindings_preamble.h"
 
 #include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
+
+OBSCURA_SHADER_BEGIN
 
 #define AO_PARAMS_UBO_BINDING 2
 #define AO_OUT_IMAGE 0       // r16f, at the AO resolution
@@ -35,17 +31,36 @@ using mat4 = glm::mat4;
 #define AO_WORKGROUP 8
 
 struct AoParams {
-    vec4 shape;       // x: radius, y: thickness (world = view units), z: voxel start offset (view units), w: unused
-    ivec4 counts;     // x: rays, y: steps, z: flags (AO_FLAG_*), w: falloff (AO_FALLOFF_*)
-    ivec4 sizes;      // x, y: AO resolution; z: scale (1, 2, 4); w: unused
-    vec4 unused;
+    float radius;           // world = view units
+    float thickness;        // world units
+    float voxelStartOffset; // Voxel: how far rays start off the surface, view units
+    float pad0;
+    int rayCount;
+    int stepCount;
+    int flags;   // AO_FLAG_*
+    int falloff; // AO_FALLOFF_*
+    ivec2 size;  // the AO resolution, pixels
+    int scale;   // G-buffer pixels per AO pixel: 1, 2 or 4
+    int pad1;
     mat4 viewToVoxel; // Voxel: view space to voxel coordinates
-    ivec4 voxel;      // x: traversal (VOXEL_METHOD_*), y, z, w: unused
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(AoParams) == 4 * 16 + 64 + 16, "AoParams must match std140");
-} // namespace obscura::shader
+static_assert(sizeof(AoParams) == 3 * 16 + 64, "AoParams must match std140");
+inline constexpr BlockField kAoParamsFields[] = {
+    {"radius", offsetof(AoParams, radius)},
+    {"thickness", offsetof(AoParams, thickness)},
+    {"voxelStartOffset", offsetof(AoParams, voxelStartOffset)},
+    {"rayCount", offsetof(AoParams, rayCount)},
+    {"stepCount", offsetof(AoParams, stepCount)},
+    {"flags", offsetof(AoParams, flags)},
+    {"falloff", offsetof(AoParams, falloff)},
+    {"size", offsetof(AoParams, size)},
+    {"scale", offsetof(AoParams, scale)},
+    {"viewToVoxel", offsetof(AoParams, viewToVoxel)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

@@ -1,15 +1,11 @@
-// Shared between C++ and GLSL: binding points and the per-frame uniform block layout.
-// Every member is a vec4/ivec4/mat4 so that std140 and the C++ layout agree.
+// Shared between C++ and GLSL: binding points and the per-frame uniform block layout
+// (written as bindings_preamble.h says, so that std140 and the C++ layout agree).
 #ifndef OBSCURA_COMMON_BINDINGS_H
 #define OBSCURA_COMMON_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
-#endif
+#include "../common/bindings_preamble.h"
+
+OBSCURA_SHADER_BEGIN
 
 #define OBSCURA_FRAME_UBO_BINDING 0
 
@@ -35,19 +31,48 @@ struct FrameData {
     mat4 view;        // world -> view
     mat4 projection;  // view -> clip
     mat4 viewInverse; // view -> world
-    vec4 depthXY;     // DepthReconstruction: xyScale.xy, xyOffset.xy
-    vec4 depthZ;      // DepthReconstruction: zScale, zBiasHi, zBiasLo, clearDepth
-    ivec4 viewport;   // width, height (pixels), projection kind, reversed-Z (0/1)
-    vec4 depthPrecision; // x: the depth buffer's step, 1 / (2^bits - 1) fixed point, 0 float;
-                         // y: GBufferView::normalError of the normals read;
-                         // z: DepthReconstruction::farthestDepth
-    vec4 sampleShift;    // xyz: the frame's shift of every pixel's sample rotation (xy) and
-                         // jitter (z) in [0, 1) (sampling.glsl); 0 for frame index 0
+    // DepthReconstruction (camera.hpp): view rays and window depth -> view z
+    vec2 rayScale;
+    vec2 rayOffset;
+    float depthScale;
+    float depthBiasHi;
+    float depthBiasLo;
+    float clearDepth;
+    ivec2 size;         // pixels
+    int projectionKind; // OBSCURA_PROJECTION_*
+    int reversedZ;      // 0 or 1
+    float depthStep;     // the depth buffer's step: 1 / (2^bits - 1) fixed point, 0 float
+    float normalError;   // GBufferView::normalError of the normals read
+    float farthestDepth; // DepthReconstruction::farthestDepth
+    float pad0;
+    // The frame's shift of every pixel's sample rotation (xy) and jitter (z) in [0, 1)
+    // (sampling.glsl); 0 for frame index 0.
+    vec3 sampleShift;
+    float pad1;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 3 * 64 + 5 * 16, "FrameData must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kFrameDataFields[] = {
+    {"view", offsetof(FrameData, view)},
+    {"projection", offsetof(FrameData, projection)},
+    {"viewInverse", offsetof(FrameData, viewInverse)},
+    {"rayScale", offsetof(FrameData, rayScale)},
+    {"rayOffset", offsetof(FrameData, rayOffset)},
+    {"depthScale", offsetof(FrameData, depthScale)},
+    {"depthBiasHi", offsetof(FrameData, depthBiasHi)},
+    {"depthBiasLo", offsetof(FrameData, depthBiasLo)},
+    {"clearDepth", offsetof(FrameData, clearDepth)},
+    {"size", offsetof(FrameData, size)},
+    {"projectionKind", offsetof(FrameData, projectionKind)},
+    {"reversedZ", offsetof(FrameData, reversedZ)},
+    {"depthStep", offsetof(FrameData, depthStep)},
+    {"normalError", offsetof(FrameData, normalError)},
+    {"farthestDepth", offsetof(FrameData, farthestDepth)},
+    {"sampleShift", offsetof(FrameData, sampleShift)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

@@ -5,10 +5,10 @@ layout(std140, binding = OBSCURA_FRAME_UBO_BINDING) uniform FrameBlock {
     FrameData frame;
 };
 
-ivec2 frameSize() { return frame.viewport.xy; }
-bool isPerspective() { return frame.viewport.z == OBSCURA_PROJECTION_PERSPECTIVE; }
+ivec2 frameSize() { return frame.size; }
+bool isPerspective() { return frame.projectionKind == OBSCURA_PROJECTION_PERSPECTIVE; }
 // GBufferView::normalError: how far the stored normals may lie from the true ones.
-float storedNormalError() { return frame.depthPrecision.y; }
+float storedNormalError() { return frame.normalError; }
 // One pixel's bound: normalError times the normal texel's alpha (1 for our normals and a
 // host's face normals; shading, bent and reconstructed normals carry their own bound there,
 // normals.comp.glsl).

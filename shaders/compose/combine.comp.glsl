@@ -21,18 +21,18 @@ layout(std430, binding = COMPOSE_LUMINANCE_SSBO) buffer Luminance {
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, compose.size.xy))) return;
+    if (any(greaterThanEqual(pixel, compose.size))) return;
     const vec3 direct = clampRadiance(texelFetch(directRadiance, pixel, 0).rgb);
-    const bool surface = !isBackgroundDepth(texelFetch(depth, pixel, 0).r, compose.display.y, compose.display.z);
+    const bool surface = !isBackgroundDepth(texelFetch(depth, pixel, 0).r, compose.clearDepth, compose.farthestDepth);
     const vec3 rho = surface ? clampAlbedo(texelFetch(albedo, pixel, 0).rgb) : vec3(0.0);
-    const float ao = surface && (compose.flags.w & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
-    const bool hasIndirect = surface && (compose.flags.w & COMPOSE_HAS_INDIRECT) != 0;
+    const float ao = surface && (compose.inputs & COMPOSE_HAS_AO) != 0 ? clamp(texelFetch(aoTexture, pixel, 0).r, 0.0, 1.0) : 1.0;
+    const bool hasIndirect = surface && (compose.inputs & COMPOSE_HAS_INDIRECT) != 0;
     const vec3 l1 = hasIndirect ? clampRadiance(texelFetch(indirect, pixel, 0).rgb) : vec3(0.0);
-    const vec3 ambient = rho * ao * compose.ambient.rgb;
+    const vec3 ambient = rho * ao * compose.ambient;
     vec3 l;
-    if (compose.flags.x == COMPOSE_FORMULA_THESIS) l = ambient + compose.ambient.w * l1 + ao * direct;
-    else if (compose.flags.x == COMPOSE_FORMULA_STANDARD) l = direct + ambient + compose.ambient.w * l1;
-    else l = direct + (hasIndirect ? compose.ambient.w * l1 : ambient); // indirect light replaces ambient
+    if (compose.formula == COMPOSE_FORMULA_THESIS) l = ambient + compose.indirectScale * l1 + ao * direct;
+    else if (compose.formula == COMPOSE_FORMULA_STANDARD) l = direct + ambient + compose.indirectScale * l1;
+    else l = direct + (hasIndirect ? compose.indirectScale * l1 : ambient); // indirect light replaces ambient
     const vec3 combined = clampRadiance(l);
     imageStore(radianceOut, pixel, vec4(combined, 1.0));
     // Without its sign bit: max(-0.0, 0.0) may be -0.0, whose bits would beat every positive float.

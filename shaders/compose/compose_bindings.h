@@ -3,12 +3,9 @@
 #ifndef OBSCURA_COMPOSE_BINDINGS_H
 #define OBSCURA_COMPOSE_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-#endif
+#include "../common/bindings_preamble.h"
+
+OBSCURA_SHADER_BEGIN
 
 #define COMPOSE_PARAMS_UBO_BINDING 5
 #define COMPOSE_DIRECT_UNIT 0
@@ -36,16 +33,45 @@ using ivec4 = glm::ivec4;
 #define COMPOSE_WORKGROUP 8
 
 struct ComposeParams {
-    vec4 ambient;  // rgb: L_amb; w: indirect scale k
-    vec4 tone;     // x: exposure, y: Drago L_wmax (0: measured), z: Drago bias, w: Drago L_dmax
-    vec4 display;  // x: gamma (when not sRGB), y: the clear depth, z: DepthReconstruction::farthestDepth, w: unused
-    ivec4 flags;   // x: formula, y: tone mapper, z: sRGB (0/1), w: COMPOSE_HAS_*
-    ivec4 size;    // x, y: pixels; z, w: unused
+    vec3 ambient;        // L_amb, W/(sr m^2)
+    float indirectScale; // k
+    float exposure;
+    float dragoMaxLuminance; // L_wmax; 0: measured
+    float dragoBias;
+    float dragoDisplayMax;   // L_dmax, cd/m^2
+    float gamma;             // when not sRGB
+    float clearDepth;        // DepthReconstruction::clearDepth
+    float farthestDepth;     // DepthReconstruction::farthestDepth
+    float pad0;
+    int formula;    // COMPOSE_FORMULA_*
+    int toneMapper; // COMPOSE_TONE_*
+    int srgb;       // 0 or 1
+    int inputs;     // COMPOSE_HAS_*
+    ivec2 size;     // pixels
+    int pad1;
+    int pad2;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(ComposeParams) == 80, "ComposeParams must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kComposeParamsFields[] = {
+    {"ambient", offsetof(ComposeParams, ambient)},
+    {"indirectScale", offsetof(ComposeParams, indirectScale)},
+    {"exposure", offsetof(ComposeParams, exposure)},
+    {"dragoMaxLuminance", offsetof(ComposeParams, dragoMaxLuminance)},
+    {"dragoBias", offsetof(ComposeParams, dragoBias)},
+    {"dragoDisplayMax", offsetof(ComposeParams, dragoDisplayMax)},
+    {"gamma", offsetof(ComposeParams, gamma)},
+    {"clearDepth", offsetof(ComposeParams, clearDepth)},
+    {"farthestDepth", offsetof(ComposeParams, farthestDepth)},
+    {"formula", offsetof(ComposeParams, formula)},
+    {"toneMapper", offsetof(ComposeParams, toneMapper)},
+    {"srgb", offsetof(ComposeParams, srgb)},
+    {"inputs", offsetof(ComposeParams, inputs)},
+    {"size", offsetof(ComposeParams, size)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

@@ -25,7 +25,7 @@ float lnOnePlusOverX(float x) {
 vec3 drago(vec3 c) {
     const float lw = luminanceOf(c);
     if (!(lw > 0.0)) return vec3(0.0);
-    const float lmeasured = compose.tone.x * uintBitsToFloat(maxLuminanceBits);
+    const float lmeasured = compose.exposure * uintBitsToFloat(maxLuminanceBits);
     // A floor far below a frame's maximum, so that a dim frame is still mapped to its own; it
     // also bounds the first factor, (L_dmax / 100) ln 10 / ln(1 + L_wmax), by 230 / 1e-30,
     // and with L <= 1e6 (exposure) * 65504 (clampRadiance) ln(1 + L) <= 25, so L_d is
@@ -33,10 +33,10 @@ vec3 drago(vec3 c) {
     // take it past float's range or to 0, and at bias 1 (exponent 0) pow(inf, 0) and pow(0, 0)
     // are NaN or undefined. The clamp changes only ln(2 + 8 r^e), for pixels 1e30 times
     // brighter or darker than the maximum: with the frame's own maximum those display as 0.
-    const float lmax = max(compose.tone.y > 0.0 ? compose.tone.y : lmeasured, 1e-30);
-    const float exponent = log(compose.tone.z) / log(0.5);
+    const float lmax = max(compose.dragoMaxLuminance > 0.0 ? compose.dragoMaxLuminance : lmeasured, 1e-30);
+    const float exponent = log(compose.dragoBias) / log(0.5);
     const float ratio = clamp(lw / lmax, 1e-30, 1e30);
-    const float firstFactor = compose.tone.w * 0.01 * log(10.0) / (lmax * lnOnePlusOverX(lmax));
+    const float firstFactor = compose.dragoDisplayMax * 0.01 * log(10.0) / (lmax * lnOnePlusOverX(lmax));
     return c * (firstFactor * lnOnePlusOverX(lw) / log(2.0 + 8.0 * pow(ratio, exponent))); // c L_d / L
 }
 
@@ -47,12 +47,12 @@ float srgbEncode(float x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1
 
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, compose.size.xy))) return;
-    vec3 c = compose.tone.x * texelFetch(radiance, pixel, 0).rgb; // the exposure
-    if (compose.flags.y == COMPOSE_TONE_DRAGO) c = drago(c);
-    else if (compose.flags.y == COMPOSE_TONE_ACES) c = aces(c);
+    if (any(greaterThanEqual(pixel, compose.size))) return;
+    vec3 c = compose.exposure * texelFetch(radiance, pixel, 0).rgb; // the exposure
+    if (compose.toneMapper == COMPOSE_TONE_DRAGO) c = drago(c);
+    else if (compose.toneMapper == COMPOSE_TONE_ACES) c = aces(c);
     c = clamp(c, 0.0, 1.0);
-    if (compose.flags.z != 0) c = vec3(srgbEncode(c.r), srgbEncode(c.g), srgbEncode(c.b));
-    else c = pow(c, vec3(1.0 / compose.display.x));
+    if (compose.srgb != 0) c = vec3(srgbEncode(c.r), srgbEncode(c.g), srgbEncode(c.b));
+    else c = pow(c, vec3(1.0 / compose.gamma));
     imageStore(displayOut, pixel, vec4(c, 1.0));
 }

@@ -5,13 +5,9 @@
 #ifndef OBSCURA_FILTER_BINDINGS_H
 #define OBSCURA_FILTER_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
-#endif
+#include "../common/bindings_preamble.h"
+
+OBSCURA_SHADER_BEGIN
 
 // The low-resolution images are read with imageLoad, not texelFetch: the same texels, and on
 // llvmpipe (Mesa 22.3) a small fraction of the cost. Measured there at 512x512, 21 loads of
@@ -52,24 +48,60 @@ using mat4 = glm::mat4;
 #define FILTER_TILES_HEADER_UINTS 8
 
 struct FilterParams {
-    ivec4 sizes;   // x, y: low resolution; z: scale to the full resolution; w: blur taps each side
-    vec4 weights;  // x: depth sigma (relative view depth), y: normal power, z: background value,
-                   // w: refinement threshold (share of the bilinear weight; REFINE)
-    ivec4 flags;   // x: FILTER_FLAG_*, y, z, w: unused
+    ivec2 lowSize; // the low resolution, pixels
+    int scale;     // to the full resolution: 1, 2 or 4
+    int blurTaps;  // each side
+    float depthSigma;      // relative view depth weighted e^-1/2
+    float normalPower;
+    float background;      // the value of background pixels
+    float refineThreshold; // REFINE: the share of the bilinear weight
+    int flags;             // FILTER_FLAG_*
+    int pad0;
+    int pad1;
+    int pad2;
 };
 
 struct TemporalParams {
     mat4 previousView;           // world -> the last frame's view
     mat4 previousViewProjection; // world -> the last frame's clip space
-    vec4 previousRays;           // the last frame's DepthReconstruction: xyScale.xy, xyOffset.xy
-    vec4 weights;                // x: depth tolerance (relative), y: normal threshold (cosine), z: most frames, w: unused
-    ivec4 flags;                 // x: 1 if there is a history, y: 1 if the last frame's camera is perspective
+    vec2 previousRayScale;       // the last frame's DepthReconstruction
+    vec2 previousRayOffset;
+    float depthTolerance;  // relative
+    float normalThreshold; // cosine
+    float maxFrames;
+    float pad0;
+    int hasHistory;          // 0 or 1
+    int previousPerspective; // 0 or 1: the last frame's camera
+    int pad1;
+    int pad2;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(TemporalParams) == 2 * 64 + 3 * 16, "TemporalParams must match std140");
 static_assert(sizeof(FilterParams) == 48, "FilterParams must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kFilterParamsFields[] = {
+    {"lowSize", offsetof(FilterParams, lowSize)},
+    {"scale", offsetof(FilterParams, scale)},
+    {"blurTaps", offsetof(FilterParams, blurTaps)},
+    {"depthSigma", offsetof(FilterParams, depthSigma)},
+    {"normalPower", offsetof(FilterParams, normalPower)},
+    {"background", offsetof(FilterParams, background)},
+    {"refineThreshold", offsetof(FilterParams, refineThreshold)},
+    {"flags", offsetof(FilterParams, flags)},
+};
+inline constexpr BlockField kTemporalParamsFields[] = {
+    {"previousView", offsetof(TemporalParams, previousView)},
+    {"previousViewProjection", offsetof(TemporalParams, previousViewProjection)},
+    {"previousRayScale", offsetof(TemporalParams, previousRayScale)},
+    {"previousRayOffset", offsetof(TemporalParams, previousRayOffset)},
+    {"depthTolerance", offsetof(TemporalParams, depthTolerance)},
+    {"normalThreshold", offsetof(TemporalParams, normalThreshold)},
+    {"maxFrames", offsetof(TemporalParams, maxFrames)},
+    {"hasHistory", offsetof(TemporalParams, hasHistory)},
+    {"previousPerspective", offsetof(TemporalParams, previousPerspective)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

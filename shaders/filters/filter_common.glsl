@@ -28,8 +28,8 @@ layout(binding = FILTER_DIRECTION_IN_IMAGE, rgba16f) readonly uniform image2D di
 layout(binding = FILTER_DIRECTION_IMAGE, rgba16f) writeonly uniform image2D directionOut;
 #endif
 
-ivec2 filterLowSize() { return filterParams.sizes.xy; }
-int filterScale() { return filterParams.sizes.z; }
+ivec2 filterLowSize() { return filterParams.lowSize; }
+int filterScale() { return filterParams.scale; }
 
 bool insideLow(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, filterLowSize())); }
 
@@ -73,7 +73,7 @@ FILTER_VALUE weightedMean(FILTER_VALUE anchor, FILTER_VALUE offsets, float total
 // on a host's radiance poisoned with such values), rounded to the nearest half float (see
 // roundedToHalf).
 FILTER_VALUE filterFinish(FILTER_VALUE v) {
-    const float hi = (filterParams.flags.x & FILTER_FLAG_UNIT_RANGE) != 0 ? 1.0 : kHalfMax;
+    const float hi = (filterParams.flags & FILTER_FLAG_UNIT_RANGE) != 0 ? 1.0 : kHalfMax;
     return roundedToHalf(clamp(v, FILTER_VALUE(0.0), FILTER_VALUE(hi)));
 }
 
@@ -87,8 +87,8 @@ FILTER_VALUE filterFinish(FILTER_VALUE v) {
 // 0/0; any other difference over 0 is infinite and weighs 0.
 float guideLog2Weight(vec3 n1, float z1, vec3 n2, float z2) {
     const float difference = z2 - z1;
-    const float dz = difference == 0.0 ? 0.0 : difference / (filterParams.weights.x * abs(z1));
-    const float p = filterParams.weights.y, c = dot(n1, n2);
+    const float dz = difference == 0.0 ? 0.0 : difference / (filterParams.depthSigma * abs(z1));
+    const float p = filterParams.normalPower, c = dot(n1, n2);
     const float normalTerm = p > 0.0 ? (c > 0.0 ? p * log2(c) : -200.0) : 0.0;
     return -0.5 * kLog2E * dz * dz + normalTerm;
 }

@@ -29,7 +29,7 @@ void main() {
     if (any(greaterThanEqual(pixel, filterLowSize()))) return;
     const vec4 c = imageLoad(guideIn, pixel);
     if (c.w == 0.0) return;
-    const int taps = filterParams.sizes.w;
+    const int taps = filterParams.blurTaps;
     const float sigma = max(0.5 * float(taps), 0.5);
     const FILTER_VALUE centre = loadValue(pixel);
     FILTER_VALUE offsets = FILTER_VALUE(0.0); // sum of w (value - centre), see weightedMean

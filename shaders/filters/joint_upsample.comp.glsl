@@ -59,7 +59,7 @@ Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
     return Target(normalTexel.xyz, background ? 1.0 : viewZFromDepth(depth), f, background);
 }
 
-Blend startBlend() { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.weights.z), vec3(0.0), vec3(0.0), 0.0, 1e30); }
+Blend startBlend() { return Blend(FILTER_VALUE(0.0), FILTER_VALUE(filterParams.background), vec3(0.0), vec3(0.0), 0.0, 1e30); }
 
 // One low-resolution neighbour: its guide (w = 0: background), value and direction offset.
 struct Neighbour {
@@ -120,7 +120,7 @@ void accumulate(inout Blend b, Target t, ivec2 corner, Neighbour q, FILTER_VALUE
 // Whether the pixel is in the image (odd sizes: the quad's far half is outside) and, with
 // REFINE, has too little similar-neighbour weight, so that the integrator computes it.
 bool inImage(ivec2 pixel) { return all(lessThan(pixel, frameSize())); }
-bool wantsRefinement(ivec2 pixel, Target t, Blend b) { return inImage(pixel) && !t.background && b.total < filterParams.weights.w; }
+bool wantsRefinement(ivec2 pixel, Target t, Blend b) { return inImage(pixel) && !t.background && b.total < filterParams.refineThreshold; }
 
 // Single exit: Mesa 22.3 llvmpipe miscompiles early returns in inlined code (see
 // voxel_traversal.glsl).
@@ -128,7 +128,7 @@ void writePixel(ivec2 pixel, Target t, Blend b, FILTER_VALUE anchor) {
     const bool weighted = b.total > 1e-6;
     const FILTER_VALUE blended = filterFinish(modulated(pixel, weighted ? weightedMean(anchor, b.offsets, b.total) : b.nearest));
     const bool inside = inImage(pixel);
-    if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.weights.z) : blended));
+    if (inside) imageStore(valueOut, pixel, vec4(t.background ? FILTER_VALUE(filterParams.background) : blended));
 #ifdef DIRECTION
     if (inside) {
         const vec3 direction = directionFromOffset(t.n, weighted ? b.direction / b.total : b.nearestDirection);

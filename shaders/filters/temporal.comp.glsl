@@ -46,8 +46,8 @@ vec3 fromOctahedral(vec2 e) {
 // A texel's point in the last frame's view space, from its stored view depth (-z).
 vec3 previousViewPoint(ivec2 texel, float depth) {
     const vec2 ndc = (vec2(texel) + 0.5) / vec2(frameSize()) * 2.0 - 1.0;
-    const vec2 xy = ndc * temporal.previousRays.xy + temporal.previousRays.zw;
-    return vec3(temporal.flags.y != 0 ? xy * depth : xy, -depth);
+    const vec2 xy = ndc * temporal.previousRayScale + temporal.previousRayOffset;
+    return vec3(temporal.previousPerspective != 0 ? xy * depth : xy, -depth);
 }
 
 void main() {
@@ -70,7 +70,7 @@ void main() {
     const vec4 clip = temporal.previousViewProjection * vec4(world, 1.0);
     const vec3 previous = (temporal.previousView * vec4(world, 1.0)).xyz; // this point in the last frame's view
     const vec3 previousNormal = mat3(temporal.previousView) * worldNormal;
-    if (temporal.flags.x != 0 && clip.w > 0.0 && previous.z < 0.0) {
+    if (temporal.hasHistory != 0 && clip.w > 0.0 && previous.z < 0.0) {
         const vec2 texel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(frameSize()) - 0.5;
         const ivec2 base = ivec2(floor(texel));
         const vec2 f = texel - vec2(base);
@@ -82,8 +82,8 @@ void main() {
             const float storedDepth = uintBitsToFloat(geometry.x);
             if (!(storedDepth > 0.0)) continue;
             const float offPlane = dot(previousViewPoint(q, storedDepth) - previous, previousNormal);
-            if (!(abs(offPlane) <= temporal.weights.x * storedDepth)) continue;
-            if (dot(fromOctahedral(unpackSnorm2x16(geometry.y)), worldNormal) < temporal.weights.y) continue;
+            if (!(abs(offPlane) <= temporal.depthTolerance * storedDepth)) continue;
+            if (dot(fromOctahedral(unpackSnorm2x16(geometry.y)), worldNormal) < temporal.normalThreshold) continue;
             const float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
             sum += w * imageLoad(history, q);
             weight += w;
@@ -93,7 +93,7 @@ void main() {
     // point's: kept only above a quarter of the full weight.
     const bool kept = weight > 0.25;
     const vec4 old = kept ? sum / weight : vec4(0.0);
-    const float frames = min((kept ? old.a : 0.0) + 1.0, temporal.weights.z);
+    const float frames = min((kept ? old.a : 0.0) + 1.0, temporal.maxFrames);
     const vec3 accumulated = kept ? old.rgb + (current.rgb - old.rgb) / frames : current.rgb;
     imageStore(value, pixel, vec4(accumulated, current.a));
     imageStore(historyOut, pixel, vec4(accumulated, frames));

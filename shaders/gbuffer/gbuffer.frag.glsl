@@ -74,10 +74,10 @@ void rectClippedEdge(vec3 a, vec3 b, vec3 n, inout float sum, inout vec3 leaves,
 // for polygons, after clipping the rectangle to the hemisphere above p. Exact; per unit
 // radiance it is the irradiance.
 float rectProjectedSolidAngle(vec3 p, vec3 n, LightData light) {
-    const vec3 centre = light.positionType.xyz - p;
-    if (dot(-centre, light.directionRadius.xyz) <= 0.0) return 0.0; // p is behind the emitting side
-    const vec3 u = light.extent.xyz;
-    const vec3 v = normalize(cross(light.directionRadius.xyz, u)) * light.extent.w;
+    const vec3 centre = light.position - p;
+    if (dot(-centre, light.direction) <= 0.0) return 0.0; // p is behind the emitting side
+    const vec3 u = light.halfWidthAxis;
+    const vec3 v = normalize(cross(light.direction, u)) * light.halfHeight;
     const vec3 c0 = centre - u - v, c1 = centre + u - v, c2 = centre + u + v, c3 = centre - u + v;
     float sum = 0.0;
     vec3 leaves = vec3(0.0), returns = vec3(0.0);
@@ -93,37 +93,37 @@ float rectProjectedSolidAngle(vec3 p, vec3 n, LightData light) {
 // Irradiance from one light at view-space point p with shading normal ns; lights behind
 // the geometric surface (ng) contribute nothing.
 vec3 irradiance(LightData light, vec3 p, vec3 ns, vec3 ng) {
-    int type = int(light.positionType.w);
+    int type = int(light.type);
 #ifdef RECT_LIGHTS
-    if (type == GBUFFER_LIGHT_RECT) return light.radiance.rgb * rectProjectedSolidAngle(p, ns, light);
+    if (type == GBUFFER_LIGHT_RECT) return light.radiance * rectProjectedSolidAngle(p, ns, light);
 #endif
     vec3 l;
     float falloff = 1.0;
     if (type == GBUFFER_LIGHT_DIRECTIONAL) {
-        l = -light.directionRadius.xyz;
+        l = -light.direction;
     } else {
-        vec3 toLight = light.positionType.xyz - p;
+        vec3 toLight = light.position - p;
         float d2 = dot(toLight, toLight);
         if (!(d2 > 0.0)) return vec3(0.0); // at the light itself the direction is undefined
         l = toLight * inversesqrt(d2);
-        float r = light.directionRadius.w;
+        float r = light.radius;
         // Bounded by the largest float so that falloff * cos is never Inf * 0 = NaN.
         falloff = min(1.0 / max(d2, r * r), kFloatMax);
-        if (type == GBUFFER_LIGHT_SPOT) falloff *= spotCone(dot(-l, light.directionRadius.xyz), light.cone.x, light.cone.y);
+        if (type == GBUFFER_LIGHT_SPOT) falloff *= spotCone(dot(-l, light.direction), light.cosInner, light.cosOuter);
         // A Lambertian sphere of radiance L has intensity pi r^2 L in every direction: exact
         // while it is entirely above the horizon, an approximation (cosine at its centre) near it.
         if (type == GBUFFER_LIGHT_SPHERE) falloff *= OBSCURA_PI * r * r;
     }
     if (dot(ng, l) <= 0.0) return vec3(0.0);
-    return light.radiance.rgb * (falloff * max(dot(ns, l), 0.0));
+    return light.radiance * (falloff * max(dot(ns, l), 0.0));
 }
 
 void main() {
 #ifdef PEEL
     // Same vertices, same invariant positions: the first layer's own fragments reproduce its
-    // depth exactly and are dropped; viewport.w = 1 marks reversed-Z (farther = smaller).
+    // depth exactly and are dropped; frame.reversedZ = 1 marks reversed-Z (farther = smaller).
     const float front = texelFetch(firstLayer, ivec2(gl_FragCoord.xy), 0).r;
-    const bool behind = frame.viewport.w == 1 ? gl_FragCoord.z < front : gl_FragCoord.z > front;
+    const bool behind = frame.reversedZ == 1 ? gl_FragCoord.z < front : gl_FragCoord.z > front;
     if (!behind) discard;
 #endif
     vec3 ng = fin.faceNormal;
@@ -145,7 +145,7 @@ void main() {
         float visible = 1.0;
 #ifdef SHADOWS
         // cone.z: the light's shadow record, or -1 (see GBufferSettings::shadows).
-        const int record = int(lights[i].cone.z);
+        const int record = int(lights[i].shadowRecord);
         if (record >= 0) visible = shadowVisibility(record, fin.viewPosition, ng);
 #endif
         e += irradiance(lights[i], fin.viewPosition, ns, ng) * visible;

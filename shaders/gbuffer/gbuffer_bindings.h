@@ -3,13 +3,10 @@
 #ifndef OBSCURA_GBUFFER_BINDINGS_H
 #define OBSCURA_GBUFFER_BINDINGS_H
 
+#include "../common/bindings_preamble.h"
 #include "../common/common_bindings.h"
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-#endif
+OBSCURA_SHADER_BEGIN
 
 // Vertex attributes: the mesh cache's (common_bindings.h).
 #define GBUFFER_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
@@ -41,16 +38,36 @@ using vec4 = glm::vec4;
 
 // One light in view space (std430).
 struct LightData {
-    vec4 positionType;     // xyz: position (view space, world units), w: type
-    vec4 directionRadius;  // xyz: unit direction the light travels / rect normal (view space), w: radius
-    vec4 radiance;         // rgb: colour * intensity (W/sr; W/m^2 directional; W/(sr m^2) rect, sphere)
-    vec4 cone;             // x: cos(inner angle), y: cos(outer angle), z: shadow record or -1
-    vec4 extent;           // rect: xyz = width axis * half width (view space), w = half height
+    vec3 position; // view space, world units
+    float type;    // GBUFFER_LIGHT_*
+    vec3 direction; // unit direction the light travels / rect normal (view space)
+    float radius;   // world units
+    vec3 radiance;  // colour * intensity (W/sr; W/m^2 directional; W/(sr m^2) rect, sphere)
+    float pad0;
+    float cosInner;
+    float cosOuter;
+    float shadowRecord; // index of the light's ShadowParams record, or -1
+    float pad1;
+    vec3 halfWidthAxis; // rect: the width axis times half the width (view space)
+    float halfHeight;   // rect
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 80, "LightData must match std430");
-} // namespace obscura::shader
+inline constexpr BlockField kLightDataFields[] = {
+    {"position", offsetof(LightData, position)},
+    {"type", offsetof(LightData, type)},
+    {"direction", offsetof(LightData, direction)},
+    {"radius", offsetof(LightData, radius)},
+    {"radiance", offsetof(LightData, radiance)},
+    {"cosInner", offsetof(LightData, cosInner)},
+    {"cosOuter", offsetof(LightData, cosOuter)},
+    {"shadowRecord", offsetof(LightData, shadowRecord)},
+    {"halfWidthAxis", offsetof(LightData, halfWidthAxis)},
+    {"halfHeight", offsetof(LightData, halfHeight)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

@@ -115,7 +115,7 @@ void main() {
         return;
     }
 #ifdef COUNT_NEAR_PLANE
-    if (depth == (frame.viewport.w != 0 ? 1.0 : 0.0)) atomicAdd(nearPlanePixels, 1u);
+    if (depth == (frame.reversedZ != 0 ? 1.0 : 0.0)) atomicAdd(nearPlanePixels, 1u);
 #endif
     vec3 p = viewPositionFromDepth(pixelCenterUv(pixel), depth);
     vec3 toCamera = viewDirectionTo(p);

@@ -84,24 +84,24 @@ vec3 giScreenRadiance(vec3 p, vec3 w, float t, float entryFrom, float tolerance)
 
 // The sum of the radiance read over this batch's rays (ray_batch.glsl).
 vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pixel) {
-    const vec2 rotation = pixelRotation(pixel, frame.sampleShift.xyz);
-    const float jitter = pixelJitter(pixel, frame.sampleShift.xyz);
-    const uint n = uint(gi.counts.x);
-    const float radius = gi.shape.x;
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
+    const uint n = uint(gi.rayCount);
+    const float radius = gi.radius;
     vec3 sum = vec3(0.0);
 #if METHOD == GI_METHOD_HYBRID
-    const VoxelSurfaceStart from = voxelSurfaceStart(p, depth, normal, normalError, gi.shape.z);
+    const VoxelSurfaceStart from = voxelSurfaceStart(p, depth, normal, normalError, gi.voxelStartOffset);
     const vec3 startVoxel = (gi.viewToVoxel * vec4(from.start, 1.0)).xyz;
 #endif
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
 #if METHOD == GI_METHOD_SCREEN
-        const float t = screenMarch(ScreenRayStart(p, normal, normalError), w, radius, gi.counts.y, jitter, gi.shape.y); // distance
+        const float t = screenMarch(ScreenRayStart(p, normal, normalError), w, radius, gi.stepCount, jitter, gi.thickness); // distance
         // The hidden sample lies behind the surface it projects to: read that surface, if the
         // ray crossed it after the previous sample (a step of r / steps before, with half a
         // step of slack).
-        const float entryFrom = t - 1.5 * radius / float(gi.counts.y);
-        if (t >= 0.0) sum += giScreenRadiance(p, w, t, entryFrom, gi.shape.y + radius);
+        const float entryFrom = t - 1.5 * radius / float(gi.stepCount);
+        if (t >= 0.0) sum += giScreenRadiance(p, w, t, entryFrom, gi.thickness + radius);
 #else
         // Only as far as the ray provably stays above the surface's own voxels
         // (surface_rays.glsl); a ray traced no farther reads nothing.
@@ -109,7 +109,7 @@ vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pi
         if (!(reach > 0.0)) continue;
         const vec3 endVoxel = voxelTraceableEnd(gi.viewToVoxel, from.start, w, reach);
 #if TRAVERSAL == VOXEL_METHOD_MARCH
-        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, gi.counts.y, jitter);
+        const VoxelHit hit = voxelTraceMarch(startVoxel, endVoxel, gi.stepCount, jitter);
 #elif TRAVERSAL == VOXEL_METHOD_EXACT
         const VoxelHit hit = voxelTraceExact(startVoxel, endVoxel);
 #else
@@ -121,8 +121,8 @@ vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pi
         // diagonal (the slack of the tangent plane) before the hit means the ray went under
         // the visible surface and entered something the camera does not see.
         const float t = hit.t * reach;
-        const float slack = gi.shape.z + (TRAVERSAL == VOXEL_METHOD_MARCH ? reach / float(gi.counts.y) : 0.0);
-        if (hit.hit) sum += giScreenRadiance(from.start, w, t, t - slack, gi.shape.y);
+        const float slack = gi.voxelStartOffset + (TRAVERSAL == VOXEL_METHOD_MARCH ? reach / float(gi.stepCount) : 0.0);
+        if (hit.hit) sum += giScreenRadiance(from.start, w, t, t - slack, gi.thickness);
 #endif
     }
     return sum;
@@ -131,11 +131,11 @@ vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pi
 // No return before rayLanesSum, which every invocation of the group must reach.
 void main() {
     ivec2 pixel, full;
-    const bool mine = integratorPixel(gi.sizes.xy, gi.sizes.z, pixel, full);
+    const bool mine = integratorPixel(gi.size, gi.scale, pixel, full);
 #ifdef REFINE
     const bool guide = false; // the listed pixels are written at full resolution, unfiltered
 #else
-    const bool guide = gi.counts.z != 0;
+    const bool guide = gi.writeGuide != 0;
 #endif
     const float depth = texelFetch(visDepth, full, 0).r;
     const vec4 normalTexel = texelFetch(visNormal, full, 0);
@@ -153,7 +153,7 @@ void main() {
         if (guide) imageStore(guideOut, pixel, vec4(0.0));
         return;
     }
-    const uint slot = rayBatchSlot(pixel, gi.sizes.xy);
+    const uint slot = rayBatchSlot(pixel, gi.size);
     const RayBatchPartial sums = rayBatchMerged(slot, lanes);
     if (!rayBatchLast()) {
         rayBatchKeep(slot, sums);
@@ -164,7 +164,7 @@ void main() {
     // resolution, taken from the block's top-left pixel for the whole block. They multiply
     // each G-buffer pixel's own albedo in after the last step (FilterImages::modulate).
     const vec3 albedo = guide ? vec3(1.0) : clampAlbedo(texelFetch(albedoTexture, full, 0).rgb);
-    const vec3 meanRadiance = sums.a.rgb / float(gi.counts.x); // E / pi: the directions are cosine-weighted
+    const vec3 meanRadiance = sums.a.rgb / float(gi.rayCount); // E / pi: the directions are cosine-weighted
     imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * meanRadiance), 1.0)));
     if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
 }

@@ -3,15 +3,11 @@
 #ifndef OBSCURA_GI_BINDINGS_H
 #define OBSCURA_GI_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
-#endif
+#include "../common/bindings_preamble.h"
 
 #include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
+
+OBSCURA_SHADER_BEGIN
 
 #define GI_PARAMS_UBO_BINDING 4
 #define GI_RADIANCE_UNIT 10 // the G-buffer's direct radiance
@@ -25,15 +21,35 @@ using mat4 = glm::mat4;
 #define GI_WORKGROUP 8
 
 struct GiParams {
-    vec4 shape;       // x: radius, y: thickness, z: voxel start offset (view units), w: unused
-    ivec4 counts;     // x: rays, y: steps, z: 1 = write the guide (the result is filtered), w: unused
-    ivec4 sizes;      // x, y: GI resolution; z: scale (1, 2, 4); w: unused
+    float radius;           // world = view units
+    float thickness;        // world units
+    float voxelStartOffset; // Hybrid: how far rays start off the surface, view units
+    float pad0;
+    int rayCount;
+    int stepCount;
+    int writeGuide; // 1: the result is filtered, so the guide is written
+    int pad1;
+    ivec2 size; // the GI resolution, pixels
+    int scale;  // G-buffer pixels per GI pixel: 1, 2 or 4
+    int pad2;
     mat4 viewToVoxel; // Hybrid: view space to voxel coordinates
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(GiParams) == 3 * 16 + 64, "GiParams must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kGiParamsFields[] = {
+    {"radius", offsetof(GiParams, radius)},
+    {"thickness", offsetof(GiParams, thickness)},
+    {"voxelStartOffset", offsetof(GiParams, voxelStartOffset)},
+    {"rayCount", offsetof(GiParams, rayCount)},
+    {"stepCount", offsetof(GiParams, stepCount)},
+    {"writeGuide", offsetof(GiParams, writeGuide)},
+    {"size", offsetof(GiParams, size)},
+    {"scale", offsetof(GiParams, scale)},
+    {"viewToVoxel", offsetof(GiParams, viewToVoxel)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

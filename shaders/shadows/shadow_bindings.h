@@ -3,16 +3,12 @@
 #ifndef OBSCURA_SHADOW_BINDINGS_H
 #define OBSCURA_SHADOW_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
-#endif
+#include "../common/bindings_preamble.h"
 
 #include "../common/common_bindings.h"
 #include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
+
+OBSCURA_SHADER_BEGIN
 
 #define SHADOW_ATTRIB_POSITION OBSCURA_ATTRIB_POSITION
 #define SHADOW_LOC_MODEL_LIGHT_CLIP 0 // depth pass: model -> light clip (paraboloid: -> the map's frame)
@@ -59,27 +55,44 @@ using mat4 = glm::mat4;
 #define SHADOW_FILTER_MOMENTS(f) ((f) >= SHADOW_FILTER_VSM && (f) <= SHADOW_FILTER_MSM)
 
 struct ShadowCascade {
-    mat4 viewToLight; // G-buffer view space -> the map's clip space
-    vec4 info;        // x: far end of the slice (view distance, world units), y: texel side at the
-                      // map (orthographic: world units; perspective: per unit distance;
-                      // paraboloid: 2 / resolution), z: layer, w: 0 orthographic, 1 perspective,
-                      // 2 paraboloid (viewToLight: view space -> the map's frame)
-    vec4 depth;       // ShadowMapInfo::depthMapping: a, b, near, far
+    mat4 viewToLight; // G-buffer view space -> the map's clip space (paraboloid: the map's frame)
+    float sliceEnd;   // far end of the slice (view distance, world units)
+    // Texel side at the map: orthographic, world units; perspective, per unit distance;
+    // paraboloid, 2 / resolution.
+    float texelSize;
+    float layer;
+    float projection;  // 0 orthographic, 1 perspective, 2 paraboloid
+    vec4 depthMapping; // ShadowMapInfo::depthMapping: a, b, near, far
 };
 // (A cube's faces are "cascades" too: +x, -x, +y, -y, +z, -z of world space.)
 
 // One mapped light, as shadow_sample.glsl reads it (std430 and std140 agree: vec4 and mat4 only).
 struct ShadowParams {
     ShadowCascade cascades[SHADOW_MAX_MAPS];
-    vec4 light; // xyz: view-space position (spot) or unit direction toward the light; w: type
-    vec4 spot;  // xyz: view-space unit axis the spot (rect: its normal) points along; w: cos(outer angle) (rect: 0)
-    vec4 bias;  // x: constant (world units), y: slope (texels), z: normal offset (texels), w: blend fraction
-    vec4 moments; // x: minimum variance, y: light-bleeding reduction, z: exponent c+, w: exponent c-
-    vec4 contact; // x: contact-shadow ray length (world units, 0: off), y: its samples, z: thickness,
-                  // w: directional: where the first cascade's slice begins (view distance)
-    ivec4 counts; // x: maps (cascades or 6 faces), y: receiver-plane bias (0/1), z: PCF radius, w: map resolution
-    vec4 pcf;     // x: SHADOW_PCF_*; y: the light's radius (world units);
-                  // z: PCSS blocker search radius in light radii at the receiver, (1 - f) / f
+    vec3 light;      // view-space position, or (directional) unit direction toward the light
+    float lightType; // SHADOW_LIGHT_*
+    vec3 spotAxis;      // view-space unit axis the spot (rect: its normal) points along
+    float spotCosOuter; // cos(outer angle) (rect: 0)
+    float constantBias; // world units
+    float slopeBias;    // texels
+    float normalOffset; // texels
+    float cascadeBlend; // fraction of the slice
+    float minVariance;
+    float lightBleedReduction;
+    float exponent;         // c+
+    float negativeExponent; // c-
+    float contactLength;    // world units; 0: off
+    float contactSteps;
+    float contactThickness; // world units
+    float firstSliceStart;  // directional: where the first cascade's slice begins (view distance)
+    int mapCount;      // cascades or 6 faces
+    int receiverPlane; // 0 or 1
+    int pcfRadius;
+    int resolution;    // texels per side
+    float pcfKernel;       // SHADOW_PCF_*
+    float lightRadius;     // world units
+    float pcssSearchScale; // blocker search radius in light radii at the receiver, (1 - f) / f
+    float pad0;
     vec4 poisson[SHADOW_POISSON_TAPS / 2]; // the Poisson disc's points in the unit disc, two per vec4
 };
 
@@ -104,7 +117,43 @@ struct ShadowParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 7 * 16 + SHADOW_POISSON_TAPS * 8, "ShadowParams must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kShadowCascadeFields[] = {
+    {"viewToLight", offsetof(ShadowCascade, viewToLight)},
+    {"sliceEnd", offsetof(ShadowCascade, sliceEnd)},
+    {"texelSize", offsetof(ShadowCascade, texelSize)},
+    {"layer", offsetof(ShadowCascade, layer)},
+    {"projection", offsetof(ShadowCascade, projection)},
+    {"depthMapping", offsetof(ShadowCascade, depthMapping)},
+};
+inline constexpr BlockField kShadowParamsFields[] = {
+    {"cascades", offsetof(ShadowParams, cascades)},
+    {"light", offsetof(ShadowParams, light)},
+    {"lightType", offsetof(ShadowParams, lightType)},
+    {"spotAxis", offsetof(ShadowParams, spotAxis)},
+    {"spotCosOuter", offsetof(ShadowParams, spotCosOuter)},
+    {"constantBias", offsetof(ShadowParams, constantBias)},
+    {"slopeBias", offsetof(ShadowParams, slopeBias)},
+    {"normalOffset", offsetof(ShadowParams, normalOffset)},
+    {"cascadeBlend", offsetof(ShadowParams, cascadeBlend)},
+    {"minVariance", offsetof(ShadowParams, minVariance)},
+    {"lightBleedReduction", offsetof(ShadowParams, lightBleedReduction)},
+    {"exponent", offsetof(ShadowParams, exponent)},
+    {"negativeExponent", offsetof(ShadowParams, negativeExponent)},
+    {"contactLength", offsetof(ShadowParams, contactLength)},
+    {"contactSteps", offsetof(ShadowParams, contactSteps)},
+    {"contactThickness", offsetof(ShadowParams, contactThickness)},
+    {"firstSliceStart", offsetof(ShadowParams, firstSliceStart)},
+    {"mapCount", offsetof(ShadowParams, mapCount)},
+    {"receiverPlane", offsetof(ShadowParams, receiverPlane)},
+    {"pcfRadius", offsetof(ShadowParams, pcfRadius)},
+    {"resolution", offsetof(ShadowParams, resolution)},
+    {"pcfKernel", offsetof(ShadowParams, pcfKernel)},
+    {"lightRadius", offsetof(ShadowParams, lightRadius)},
+    {"pcssSearchScale", offsetof(ShadowParams, pcssSearchScale)},
+    {"poisson", offsetof(ShadowParams, poisson)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

@@ -29,12 +29,13 @@ void main() {
         v = shadowVisibility(0, p, n);
         // Contact shadows: a short screen-space ray toward the light from the receiver lifted
         // off its surface by a texel (so that its own plane does not hide it).
-        const vec4 contact = shadowLights[0].contact;
-        if (contact.x > 0.0 && v > 0.0) {
+        const float contactLength = shadowLights[0].contactLength;
+        if (contactLength > 0.0 && v > 0.0) {
             const vec3 start = p + n * shadowTexel(0, p, 0);
             const bool directional = shadowLightType(0) == SHADOW_LIGHT_DIRECTIONAL;
-            const float reach = directional ? contact.x : min(contact.x, length(shadowLights[0].light.xyz - start));
-            const float hit = screenMarch(ScreenRayStart(start, n, storedNormalError(normalTexel)), shadowToLight(0, p), reach, int(contact.y), 0.5, contact.z);
+            const float reach = directional ? contactLength : min(contactLength, length(shadowLights[0].light - start));
+            const float hit = screenMarch(ScreenRayStart(start, n, storedNormalError(normalTexel)), shadowToLight(0, p), reach, int(shadowLights[0].contactSteps), 0.5,
+                                         shadowLights[0].contactThickness);
             v = hit >= 0.0 ? 0.0 : v;
         }
     }

@@ -20,7 +20,7 @@ layout(location = SHADOW_LOC_LAYER_RANGE) uniform ivec2 layers; // first layer o
 
 void main() {
     const ivec3 texel = ivec3(gl_GlobalInvocationID.xy, int(gl_GlobalInvocationID.z));
-    if (any(greaterThanEqual(texel.xy, ivec2(shadowLights[0].counts.w))) || texel.z >= layers.y) return;
+    if (any(greaterThanEqual(texel.xy, ivec2(shadowLights[0].resolution))) || texel.z >= layers.y) return;
     const float d = texelFetch(depthMaps, ivec3(texel.xy, layers.x + texel.z), 0).r;
     imageStore(momentsOut, ivec3(texel.xy, layers.x + texel.z), shadowMomentsOf(shadowLinear(0, texel.z, d), 0));
 }

@@ -22,8 +22,8 @@ layout(binding = SHADOW_DEPTH_READ_UNIT) uniform sampler2DArray shadowDepths;
 // Distance from the light (along the map's axis for cube faces and spots) of window depth d
 // in map c (ShadowMapInfo::depthMapping).
 float shadowDistance(int k, int c, float d) {
-    const vec4 m = shadowLights[k].cascades[c].depth; // a, b, near, far
-    return shadowLights[k].cascades[c].info.w > 0.5 ? m.y / max(d + m.x, 1e-30) : (m.y - d) / m.x;
+    const vec4 m = shadowLights[k].cascades[c].depthMapping; // a, b, near, far
+    return shadowLights[k].cascades[c].projection > 0.5 ? m.y / max(d + m.x, 1e-30) : (m.y - d) / m.x;
 }
 
 #if SHADOW_FILTER_MOMENTS(FILTER)
@@ -31,13 +31,13 @@ layout(binding = SHADOW_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
 
 // Window depth d of map c of light k as the distance t in [0, 1] from its near to its far plane.
 float shadowLinear(int k, int c, float d) {
-    const vec4 m = shadowLights[k].cascades[c].depth;
+    const vec4 m = shadowLights[k].cascades[c].depthMapping;
     return clamp((shadowDistance(k, c, d) - m.z) / (m.w - m.z), 0.0, 1.0);
 }
 
 // The exponential warps of EVSM: t' = 2 t - 1 in [-1, 1], exponents clamped for the storage.
 vec2 shadowWarp(int k, float t) {
-    const vec2 c = clamp(shadowLights[k].moments.zw, vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT));
+    const vec2 c = clamp(vec2(shadowLights[k].exponent, shadowLights[k].negativeExponent), vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT));
     const float w = 2.0 * t - 1.0;
     return vec2(exp(c.x * w), -exp(-c.y * w));
 }
@@ -60,7 +60,7 @@ const float shadowMsmOffset = 0.035955884801;
 // What the moment filters store for distance t (before prefiltering).
 vec4 shadowMomentsOf(float t, int k) {
 #if FILTER == SHADOW_FILTER_ESM
-    return vec4(clamp(shadowLights[k].moments.z, 0.0, 80.0) * t, 0.0, 0.0, 0.0); // c t: its log
+    return vec4(clamp(shadowLights[k].exponent, 0.0, 80.0) * t, 0.0, 0.0, 0.0); // c t: its log
 #elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
     const vec2 w = shadowWarp(k, t);
     return vec4(w.x, w.x * w.x, w.y, w.y * w.y);
@@ -115,25 +115,25 @@ float shadowHamburger(vec4 b, float t) {
 }
 #endif
 
-int shadowLightType(int k) { return int(shadowLights[k].light.w); }
+int shadowLightType(int k) { return int(shadowLights[k].lightType); }
 bool shadowIsSpot(int k) { return shadowLightType(k) == SHADOW_LIGHT_SPOT; }
 // Mapped from a centre, by a cube or paraboloids: point, sphere and rect lights.
 bool shadowIsPoint(int k) { return shadowLightType(k) == SHADOW_LIGHT_POINT || shadowLightType(k) == SHADOW_LIGHT_RECT; }
 // Lit only within a cone about spot.xyz: spot lights, and rect lights' front half-space.
 bool shadowHasCone(int k) { return shadowIsSpot(k) || shadowLightType(k) == SHADOW_LIGHT_RECT; }
-bool shadowIsParaboloid(int k, int c) { return shadowLights[k].cascades[c].info.w > 1.5; }
+bool shadowIsParaboloid(int k, int c) { return shadowLights[k].cascades[c].projection > 1.5; }
 
 // View point p in paraboloid map c's frame (the light at the origin, the map's axis +z).
 vec3 shadowInParaboloid(int k, vec3 p, int c) { return (shadowLights[k].cascades[c].viewToLight * vec4(p, 1.0)).xyz; }
 
 // Unit direction from view point p toward the light.
 vec3 shadowToLight(int k, vec3 p) {
-    const vec4 light = shadowLights[k].light;
-    return int(light.w) == SHADOW_LIGHT_DIRECTIONAL ? light.xyz : safeNormalize(light.xyz - p, -shadowLights[k].spot.xyz);
+    const vec3 light = shadowLights[k].light;
+    return shadowLightType(k) == SHADOW_LIGHT_DIRECTIONAL ? light : safeNormalize(light - p, -shadowLights[k].spotAxis);
 }
 
 // From the light to view point p, in world space (the cube's faces are world-aligned).
-vec3 shadowFromLightWorld(int k, vec3 p) { return mat3(frame.viewInverse) * (p - shadowLights[k].light.xyz); }
+vec3 shadowFromLightWorld(int k, vec3 p) { return mat3(frame.viewInverse) * (p - shadowLights[k].light); }
 
 // The cube face whose axis is the major one of world direction d: +x, -x, +y, -y, +z, -z.
 int shadowCubeFace(vec3 d) {
@@ -145,10 +145,10 @@ int shadowCubeFace(vec3 d) {
 // distance along their axis (a cube face's axis is the major one); a paraboloid texel is
 // 2 / resolution times |v| + v.z at v in its frame (the projection's derivative).
 float shadowTexel(int k, vec3 p, int c) {
-    const float t = shadowLights[k].cascades[c].info.y;
+    const float t = shadowLights[k].cascades[c].texelSize;
     const vec3 a = abs(shadowFromLightWorld(k, p));
     const vec3 v = shadowInParaboloid(k, p, c);
-    const float along = shadowIsSpot(k)                ? max(dot(p - shadowLights[k].light.xyz, shadowLights[k].spot.xyz), 0.0)
+    const float along = shadowIsSpot(k)                ? max(dot(p - shadowLights[k].light, shadowLights[k].spotAxis), 0.0)
                         : shadowIsParaboloid(k, c) ? length(v) + max(v.z, 0.0)
                                                    : max(a.x, max(a.y, a.z));
     return shadowLightType(k) == SHADOW_LIGHT_DIRECTIONAL ? t : t * along;
@@ -159,7 +159,7 @@ float shadowTexel(int k, vec3 p, int c) {
 vec4 shadowMapCoord(int k, vec3 q, int c) {
     const vec4 clip = shadowLights[k].cascades[c].viewToLight * vec4(q, 1.0);
     const float distance = length(clip.xyz), w = distance + clip.z;
-    const vec4 m = shadowLights[k].cascades[c].depth;
+    const vec4 m = shadowLights[k].cascades[c].depthMapping;
     const vec4 paraboloid = vec4(clip.xy / max(w, 1e-30) * 0.5 + 0.5, m.y / max(distance, 1e-30) - m.x, w);
     return shadowIsParaboloid(k, c) ? paraboloid : vec4(clip.xy / clip.w * 0.5 + 0.5, clip.z / clip.w, clip.w);
 }
@@ -167,7 +167,7 @@ vec4 shadowMapCoord(int k, vec3 q, int c) {
 // A point light's map for view point p: the cube face of the major axis of its direction
 // from the light, or the paraboloid whose hemisphere holds it (a rect light has one).
 int shadowPointMap(int k, vec3 p) {
-    const bool second = shadowLights[k].counts.x > 1 && shadowInParaboloid(k, p, 0).z < 0.0;
+    const bool second = shadowLights[k].mapCount > 1 && shadowInParaboloid(k, p, 0).z < 0.0;
     return shadowIsParaboloid(k, 0) ? (second ? 1 : 0) : shadowCubeFace(shadowFromLightWorld(k, p));
 }
 
@@ -193,7 +193,7 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
     const vec3 b = shadowMapCoord(k, q + t2 * e, c).xyz - centre.xyz;
     const float det = a.x * b.y - a.y * b.x;
     const vec2 g = vec2(a.z * b.y - b.z * a.y, a.x * b.z - b.x * a.z) / det;
-    const float limit = float(shadowLights[k].counts.w);
+    const float limit = float(shadowLights[k].resolution);
     const bool edgeOn = abs(dot(n, shadowToLight(k, q))) < kShadowEdgeOnCosine || !(abs(det) > 1e-3 * length(a.xy) * length(b.xy));
     return !edgeOn && allFinite(vec3(g, 0.0)) ? clamp(g, vec2(-limit), vec2(limit)) : vec2(0.0);
 }
@@ -204,9 +204,9 @@ vec2 shadowDepthGradient(int k, vec3 q, vec3 n, int c, vec4 centre) {
 // camera moves, and a static receiver must keep its rotation (else the mask shimmers).
 // Spot and point maps do not move with the camera.
 mat2 shadowPoissonFrame(int k, int c, vec4 centre, float radius) {
-    const bool cascade = shadowLights[k].cascades[c].info.w < 0.5;
+    const bool cascade = shadowLights[k].cascades[c].projection < 0.5;
     const vec2 origin = cascade ? shadowMapCoord(k, frame.view[3].xyz, c).xy : vec2(0.0);
-    const vec2 at = (centre.xy - origin) * float(shadowLights[k].counts.w);
+    const vec2 at = (centre.xy - origin) * float(shadowLights[k].resolution);
     const float angle = 6.2831853 * fract(52.9829189 * fract(dot(at, vec2(0.06711056, 0.00583715))));
     return radius * mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
 }
@@ -236,7 +236,7 @@ vec2 shadowTexelPair(int i, int r, float f) {
 // the same weight on every texel (see PcfKernel::OptimizedGrid), each against the
 // receiver's plane at its own position.
 float shadowOptimizedPcf(int k, vec4 centre, float layer, vec2 gradient, int r) {
-    const float size = float(shadowLights[k].counts.w);
+    const float size = float(shadowLights[k].resolution);
     const vec2 texels = centre.xy * size - 0.5; // texel centres at whole numbers
     const vec2 below = floor(texels), f = texels - below;
     float lit = 0.0;
@@ -258,9 +258,9 @@ float shadowOptimizedPcf(int k, vec4 centre, float layer, vec2 gradient, int r) 
 // penumbra's half-width R (z_r - z_b) / z_b for a light of radius R, in texels at the
 // receiver (one texel spans `receiverTexel` world units there). No blocker: lit.
 float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, float receiverTexel) {
-    const float texel = 1.0 / float(shadowLights[k].counts.w);
-    const float lightTexels = shadowLights[k].pcf.y / max(receiverTexel, 1e-30); // R in texels at the receiver
-    const float searchTexels = clamp(shadowLights[k].pcf.z * lightTexels, 1.0, float(SHADOW_PCSS_MAX_RADIUS));
+    const float texel = 1.0 / float(shadowLights[k].resolution);
+    const float lightTexels = shadowLights[k].lightRadius / max(receiverTexel, 1e-30); // R in texels at the receiver
+    const float searchTexels = clamp(shadowLights[k].pcssSearchScale * lightTexels, 1.0, float(SHADOW_PCSS_MAX_RADIUS));
     const mat2 search = shadowPoissonFrame(k, c, centre, searchTexels * texel);
     float depthSum = 0.0, blockers = 0.0;
     for (int i = 0; i < SHADOW_POISSON_TAPS / 2; ++i) {
@@ -274,7 +274,7 @@ float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, 
         blockers += float(blockA) + float(blockB);
     }
     const float zb = shadowDistance(k, c, depthSum / max(blockers, 1.0)), zr = shadowDistance(k, c, centre.z);
-    const float halfWidth = shadowLights[k].pcf.y * max(zr - zb, 0.0) / max(zb, 1e-30); // world units
+    const float halfWidth = shadowLights[k].lightRadius * max(zr - zb, 0.0) / max(zb, 1e-30); // world units
     const float radius = clamp(halfWidth / max(receiverTexel, 1e-30), 0.5, float(SHADOW_PCSS_MAX_RADIUS));
     const float lit = shadowPoissonPcf(k, centre, layer, gradient, shadowPoissonFrame(k, c, centre, radius * texel));
     return blockers > 0.0 ? lit : 1.0;
@@ -286,32 +286,32 @@ float shadowPcss(int k, vec3 q, int c, vec4 centre, float layer, vec2 gradient, 
 // tap when receiver-plane bias is on. Points behind the map's eye: unlit.
 float shadowLookup(int k, vec3 q, vec3 n, int c) {
     const vec4 centre = shadowMapCoord(k, q, c);
-    const float layer = shadowLights[k].cascades[c].info.z;
+    const float layer = shadowLights[k].cascades[c].layer;
 #if SHADOW_FILTER_MOMENTS(FILTER)
     const vec4 m = texture(shadowMoments, vec3(centre.xy, layer));
     const float t = shadowLinear(k, c, centre.z);
-    const vec4 settings = shadowLights[k].moments;
+    const float minVariance = shadowLights[k].minVariance, bleed = shadowLights[k].lightBleedReduction;
 #if FILTER == SHADOW_FILTER_ESM
-    const float lit = clamp(exp(m.x - clamp(settings.z, 0.0, 80.0) * t), 0.0, 1.0);
+    const float lit = clamp(exp(m.x - clamp(shadowLights[k].exponent, 0.0, 80.0) * t), 0.0, 1.0);
 #elif FILTER == SHADOW_FILTER_EVSM2 || FILTER == SHADOW_FILTER_EVSM4
     // The variance floor in warped units: scaled by the warp's slope at t.
-    const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(settings.zw, vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT)) * w;
+    const vec2 w = shadowWarp(k, t), c2 = 2.0 * clamp(vec2(shadowLights[k].exponent, shadowLights[k].negativeExponent), vec2(0.0), vec2(SHADOW_EVSM_MAX_EXPONENT)) * w;
     // (bounded: c+ = 42 at t = 1 with a floor near 1 would overflow)
-    float lit = shadowChebyshev(m.xy, w.x, min(settings.x * c2.x * c2.x, 1e30), settings.y);
+    float lit = shadowChebyshev(m.xy, w.x, min(minVariance * c2.x * c2.x, 1e30), bleed);
 #if FILTER == SHADOW_FILTER_EVSM4
-    lit = min(lit, shadowChebyshev(m.zw, w.y, min(settings.x * c2.y * c2.y, 1e30), settings.y));
+    lit = min(lit, shadowChebyshev(m.zw, w.y, min(minVariance * c2.y * c2.y, 1e30), bleed));
 #endif
 #elif FILTER == SHADOW_FILTER_MSM
     const float lit = shadowHamburger(m, t);
 #else
-    const float lit = shadowChebyshev(m.xy, t, settings.x, settings.y);
+    const float lit = shadowChebyshev(m.xy, t, minVariance, bleed);
 #endif
     return centre.w > 0.0 ? lit : 0.0;
 #else
-    const float texel = 1.0 / float(shadowLights[k].counts.w);
+    const float texel = 1.0 / float(shadowLights[k].resolution);
 #if FILTER == SHADOW_FILTER_PCF || FILTER == SHADOW_FILTER_PCSS
-    const int r = shadowLights[k].counts.z;
-    const vec2 gradient = shadowLights[k].counts.y != 0 ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
+    const int r = shadowLights[k].pcfRadius;
+    const vec2 gradient = shadowLights[k].receiverPlane != 0 ? shadowDepthGradient(k, q, n, c, centre) : vec2(0.0);
 #else
     const int r = 0;
     const vec2 gradient = vec2(0.0);
@@ -323,8 +323,8 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
     lit = shadowPcss(k, q, c, centre, layer, gradient, shadowTexel(k, q, c));
 #else
 #if FILTER == SHADOW_FILTER_PCF
-    const bool poisson = shadowLights[k].pcf.x == float(SHADOW_PCF_POISSON);
-    const bool optimized = shadowLights[k].pcf.x == float(SHADOW_PCF_OPTIMIZED);
+    const bool poisson = shadowLights[k].pcfKernel == float(SHADOW_PCF_POISSON);
+    const bool optimized = shadowLights[k].pcfKernel == float(SHADOW_PCF_OPTIMIZED);
 #else
     const bool poisson = false, optimized = false;
 #endif
@@ -351,8 +351,8 @@ float shadowLookup(int k, vec3 q, vec3 n, int c) {
 vec3 shadowReceiver(int k, vec3 p, vec3 n, vec3 l, float c, int m) {
     const float texel = shadowTexel(k, p, m);
     const float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / max(c, 1e-6), kShadowMaxSlope);
-    const vec4 bias = shadowLights[k].bias;
-    return p + n * (bias.z * texel) + l * (bias.x + bias.y * texel * tanTheta);
+    return p + n * (shadowLights[k].normalOffset * texel) +
+           l * (shadowLights[k].constantBias + shadowLights[k].slopeBias * texel * tanTheta);
 }
 
 // Lit fraction of mapped light k at view point p with geometric normal n: 0 where the light
@@ -360,12 +360,12 @@ vec3 shadowReceiver(int k, vec3 p, vec3 n, vec3 l, float c, int m) {
 float shadowVisibility(int k, vec3 p, vec3 n) {
     const vec3 l = shadowToLight(k, p);
     const float c = dot(n, l);
-    const bool inCone = !shadowHasCone(k) || dot(-l, shadowLights[k].spot.xyz) >= shadowLights[k].spot.w;
+    const bool inCone = !shadowHasCone(k) || dot(-l, shadowLights[k].spotAxis) >= shadowLights[k].spotCosOuter;
     // The cascade whose slice holds p's view distance (the last one beyond them all), or
     // the cube face p lies in.
     const float distance = -p.z;
     int m = 0;
-    for (int i = 0; i + 1 < shadowLights[k].counts.x; ++i) m += distance > shadowLights[k].cascades[i].info.x ? 1 : 0;
+    for (int i = 0; i + 1 < shadowLights[k].mapCount; ++i) m += distance > shadowLights[k].cascades[i].sliceEnd ? 1 : 0;
     // A point light's map comes from the biased receiver, which may lie past a face edge or
     // the paraboloids' rim (every cube face has the same texel, so the receiver does not
     // depend on the face; a paraboloid's does a little: the map p lies in sets it).
@@ -380,11 +380,11 @@ float shadowVisibility(int k, vec3 p, vec3 n) {
     if (!facesAway && inCone) {
         v = shadowLookup(k, shadowReceiver(k, p, n, l, c, m), n, m);
         // Blend into the next cascade over the end of this slice (cascades only).
-        const float end = shadowLights[k].cascades[m].info.x;
-        const float start = m > 0 ? shadowLights[k].cascades[max(m - 1, 0)].info.x : shadowLights[k].contact.w;
-        const float band = shadowLights[k].bias.w * (end - start);
+        const float end = shadowLights[k].cascades[m].sliceEnd;
+        const float start = m > 0 ? shadowLights[k].cascades[max(m - 1, 0)].sliceEnd : shadowLights[k].firstSliceStart;
+        const float band = shadowLights[k].cascadeBlend * (end - start);
         const float t = band > 0.0 ? clamp((distance - (end - band)) / band, 0.0, 1.0) : 0.0;
-        if (!shadowIsPoint(k) && m + 1 < shadowLights[k].counts.x && t > 0.0)
+        if (!shadowIsPoint(k) && m + 1 < shadowLights[k].mapCount && t > 0.0)
             v = mix(v, shadowLookup(k, shadowReceiver(k, p, n, l, c, m + 1), n, m + 1), t);
     }
     return v;

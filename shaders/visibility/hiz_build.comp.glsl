@@ -25,7 +25,7 @@ const float kBoundSlack = 1e-4;
 // View z where the view ray through texture coordinate uv meets the plane through o with
 // normal n, when the ray reaches the plane from its front side; kHuge otherwise (no bound).
 float planeZAlongRay(vec2 uv, vec3 o, vec3 n) {
-    const vec2 xy = (uv * 2.0 - 1.0) * frame.depthXY.xy + frame.depthXY.zw;
+    const vec2 xy = (uv * 2.0 - 1.0) * frame.rayScale + frame.rayOffset;
     if (isPerspective()) {
         const vec3 d = vec3(xy, -1.0); // the ray's point at view z = -1
         const float dn = dot(d, n);

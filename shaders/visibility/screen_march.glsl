@@ -153,7 +153,7 @@ ScreenRay screenRayOf(vec3 p, vec3 d) {
 
 // The view point with texture coordinate uv at view z (the inverse of the projection).
 vec3 viewPositionFromUvZ(vec2 uv, float z) {
-    const vec2 xy = (uv * 2.0 - 1.0) * frame.depthXY.xy + frame.depthXY.zw;
+    const vec2 xy = (uv * 2.0 - 1.0) * frame.rayScale + frame.rayOffset;
     return isPerspective() ? vec3(-z * xy, z) : vec3(xy, z);
 }
 

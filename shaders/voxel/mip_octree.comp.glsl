@@ -30,7 +30,7 @@ void main() {
     // Words holding the finer column: ceil(ceil(D / 2^(L-1)) / 32).
     const int finerSlices = (voxel.dims.z + (1 << (level - 1)) - 1) >> (level - 1);
     const int finerWords = (finerSlices + 31) / 32;
-    for (int t = 0; t < voxel.counts.x; ++t) {
+    for (int t = 0; t < voxel.targets; ++t) {
         uvec4 texel = uvec4(0u);
         for (int c = 0; c < 4; ++c) {
             const int w = 4 * t + c, lo = 2 * w, hi = 2 * w + 1;

@@ -10,7 +10,7 @@ layout(location = VOXEL_LOC_LEVEL) uniform int level;
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, voxel.dims.xy >> level))) return;
-    for (int t = 0; t < voxel.counts.x; ++t) {
+    for (int t = 0; t < voxel.targets; ++t) {
         uvec4 bits = uvec4(0u);
         for (int i = 0; i < 4; ++i) bits |= imageLoad(finer, ivec3(2 * p + ivec2(i & 1, i >> 1), t));
         imageStore(coarser, ivec3(p, t), bits);

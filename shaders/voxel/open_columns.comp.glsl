@@ -16,5 +16,5 @@ void main() {
     if (any(greaterThanEqual(p, voxel.dims.xy))) return;
     if ((imageLoad(parity, ivec3(p, 0)).r & 1u) == 0u) return;
     atomicAdd(openColumns, 1u);
-    for (int t = 0; t < voxel.counts.x; ++t) imageStore(grid, ivec3(p, t), uvec4(0u));
+    for (int t = 0; t < voxel.targets; ++t) imageStore(grid, ivec3(p, t), uvec4(0u));
 }

@@ -8,7 +8,7 @@ layout(binding = VOXEL_OUT_IMAGE, rgba32ui) writeonly uniform uimage2DArray grid
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, voxel.dims.xy))) return;
-    for (int t = 0; t < voxel.counts.x; ++t) {
+    for (int t = 0; t < voxel.targets; ++t) {
         uvec4 texel;
         for (int c = 0; c < 4; ++c) texel[c] = imageLoad(words, ivec3(p, 4 * t + c)).r;
         imageStore(grid, ivec3(p, t), texel);

@@ -3,11 +3,9 @@
 #ifndef OBSCURA_VOXEL_BINDINGS_H
 #define OBSCURA_VOXEL_BINDINGS_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
-namespace obscura::shader {
-using ivec4 = glm::ivec4;
-#endif
+#include "../common/bindings_preamble.h"
+
+OBSCURA_SHADER_BEGIN
 
 #define VOXEL_SLICES_PER_TARGET 128
 #define VOXEL_MAX_TARGETS 8
@@ -41,13 +39,24 @@ using ivec4 = glm::ivec4;
 #define VOXEL_WORKGROUP_1D 64
 
 struct VoxelParams {
-    ivec4 dims;   // x: R, y: R, z: D slices, w: octree levels above 0 (0 = none)
-    ivec4 counts; // x: targets k, y: 32-bit words per column, z: surface viewport size, w: unused
+    ivec3 dims;       // R, R, D slices
+    int octreeLevels; // above level 0 (0: none)
+    int targets;      // render targets k
+    int surfaceViewport; // the surface pass's viewport side, pixels
+    int pad0;
+    int pad1;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(VoxelParams) == 32, "VoxelParams must match std140");
-} // namespace obscura::shader
+inline constexpr BlockField kVoxelParamsFields[] = {
+    {"dims", offsetof(VoxelParams, dims)},
+    {"octreeLevels", offsetof(VoxelParams, octreeLevels)},
+    {"targets", offsetof(VoxelParams, targets)},
+    {"surfaceViewport", offsetof(VoxelParams, surfaceViewport)},
+};
 #endif
+
+OBSCURA_SHADER_END
 
 #endif

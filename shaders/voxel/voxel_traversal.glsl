@@ -87,11 +87,11 @@ vec2 voxelSlab(float from, float d, float size) {
 VoxelSegment voxelSegment(vec3 from, vec3 to) {
     VoxelSegment s = VoxelSegment(false, ivec3(0), ivec3(0), 0.0, 1.0);
     if (!voxelAcceptedPoint(from) || !voxelAcceptedPoint(to)) return s;
-    const vec3 dims = vec3(voxel.dims.xyz), d = to - from;
+    const vec3 dims = vec3(voxel.dims), d = to - from;
     const vec2 x = voxelSlab(from.x, d.x, dims.x), y = voxelSlab(from.y, d.y, dims.y), z = voxelSlab(from.z, d.z, dims.z);
     const float ta = max(max(0.0, x.x), max(y.x, z.x)), tb = min(min(1.0, x.y), min(y.y, z.y));
     if (ta > tb) return s;
-    const ivec3 limit = voxel.dims.xyz * kVoxelFixedOne;
+    const ivec3 limit = voxel.dims * kVoxelFixedOne;
     s.p0 = clamp(ivec3(round((from + ta * d) * float(kVoxelFixedOne))), ivec3(0), limit);
     s.delta = clamp(ivec3(round((from + tb * d) * float(kVoxelFixedOne))), ivec3(0), limit) - s.p0;
     s.t0 = ta;
@@ -222,7 +222,7 @@ VoxelHit voxelTraceHierarchical(vec3 from, vec3 to) {
     const VoxelSegment s = voxelSegment(from, to);
     ivec3 c = voxelStartCells(s);
     int tn = 0, td = 1;
-    const int top = voxel.dims.w;
+    const int top = voxel.octreeLevels;
     int level = top;
     const ivec3 dims = voxelDims(0);
     const int maxSteps = s.valid ? 2 * (top + 2) * (dims.x + dims.y + dims.z + 3) : 0;
@@ -262,7 +262,7 @@ VoxelHit voxelTraceMarch(vec3 from, vec3 to, int steps, float jitter) {
         const float t = (float(i) + jitter) / float(steps);
         const vec3 p = mix(from, to, t);
         // Clamped before the conversion: a float far outside int range has no defined int.
-        const ivec3 c = ivec3(floor(clamp(p, vec3(-1.0), vec3(voxel.dims.xyz) + 1.0)));
+        const ivec3 c = ivec3(floor(clamp(p, vec3(-1.0), vec3(voxel.dims) + 1.0)));
         if (!voxelInside(c, 0)) continue;
         ++r.fetches;
         if (voxelOccupied(c)) {

@@ -44,7 +44,7 @@ ivec3 permute(ivec3 p, int axis) { return axis == 0 ? p.yzx : (axis == 1 ? p.zxy
 
 void main() {
     const ivec2 uv = ivec2(gl_FragCoord.xy);
-    const ivec3 size = permute(voxel.dims.xyz, gAxis);
+    const ivec3 size = permute(voxel.dims, gAxis);
     if (uv.x >= size.x || uv.y >= size.y) return;
     const vec2 local = vec2(uv - gOrigin.xy); // this column's corner, triangle-relative
     // The plane's depth over this pixel's square (slopes from the geometry shader, at most 1

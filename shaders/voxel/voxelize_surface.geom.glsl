@@ -38,7 +38,7 @@ void emitTriangle(dvec3 pa, dvec3 pb, dvec3 pc, int axis, vec3 plane) {
     const float grow = 1e-5 + 8.0 * max(extent.x, max(extent.y, extent.z)) / 16777216.0;
     const vec2 lo = vec2(origin.xy) + floor(min(a.xy, min(b.xy, c.xy))) - 1.0;
     const vec2 hi = vec2(origin.xy) + ceil(max(a.xy, max(b.xy, c.xy))) + 1.0;
-    const float size = float(voxel.counts.z);
+    const float size = float(voxel.surfaceViewport);
     const vec2 corners[4] = vec2[4](vec2(lo.x, lo.y), vec2(hi.x, lo.y), vec2(lo.x, hi.y), vec2(hi.x, hi.y));
     for (int i = 0; i < 4; ++i) {
         // Every output again before each vertex: EmitVertex leaves them undefined (GLSL 4.50
@@ -73,7 +73,7 @@ void main() {
         const dvec3 pn = permute(n, axis);
         plane = vec3(vec2(-pn.xy / pn.z), 1.0);
     }
-    const dvec3 lo = dvec3(-1.0), hi = dvec3(voxel.dims.xyz) + 1.0;
+    const dvec3 lo = dvec3(-1.0), hi = dvec3(voxel.dims) + 1.0;
     const dvec3 boxMin = min(a, min(b, c)), boxMax = max(a, max(b, c));
     if (any(greaterThan(boxMin, hi)) || any(lessThan(boxMax, lo))) return; // touches no voxel
     if (all(greaterThanEqual(boxMin, lo)) && all(lessThanEqual(boxMax, hi))) {

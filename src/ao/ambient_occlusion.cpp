@@ -134,17 +134,18 @@ struct AmbientOcclusion::Impl {
 
     shader::AoParams makeParams(const GBufferView& g, const AmbientOcclusionSettings& s, glm::ivec2 size, int scale) const {
         shader::AoParams p{};
-        p.shape = glm::vec4(s.radius, s.thickness > 0.0f ? s.thickness : s.radius, 0.0f, 0.0f);
-        p.counts = glm::ivec4(s.rays, s.steps,
-                              (s.cosineWeighted ? AO_FLAG_COSINE : 0) | (s.bentNormals ? AO_FLAG_BENT : 0) |
-                                  (filtered(s) ? AO_FLAG_GUIDE : 0),
-                              falloffCode(s.falloff));
-        p.sizes = glm::ivec4(size, scale, 0);
+        p.radius = s.radius;
+        p.thickness = s.thickness > 0.0f ? s.thickness : s.radius;
+        p.rayCount = s.rays;
+        p.stepCount = s.steps;
+        p.flags = (s.cosineWeighted ? AO_FLAG_COSINE : 0) | (s.bentNormals ? AO_FLAG_BENT : 0) | (filtered(s) ? AO_FLAG_GUIDE : 0);
+        p.falloff = falloffCode(s.falloff);
+        p.size = size;
+        p.scale = scale;
         p.viewToVoxel = glm::mat4(1.0f);
         if (s.method == AoMethod::Voxel) {
             p.viewToVoxel = viewToVoxel(*s.voxels, g.camera);
-            p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));
-            p.voxel = glm::ivec4(voxelTraversalCode(s.voxelTraversal), 0, 0, 0);
+            p.voxelStartOffset = static_cast<float>(voxelDiagonal(*s.voxels));
         }
         return p;
     }

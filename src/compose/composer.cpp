@@ -149,19 +149,25 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
 
     StateScope scope(ctx);
     shader::ComposeParams p{};
-    p.ambient = glm::vec4(s.ambient, s.indirectScale);
+    p.ambient = s.ambient;
+    p.indirectScale = s.indirectScale;
+    p.exposure = s.exposure;
     // A given maximum at its floor here: a GPU may flush a subnormal one to 0, "measured".
-    const float dragoMax = s.dragoMaxLuminance > 0.0f ? std::max(s.dragoMaxLuminance, 1e-30f) : 0.0f;
-    p.tone = glm::vec4(s.exposure, dragoMax, s.dragoBias, s.dragoDisplayMax);
-    p.display = glm::vec4(s.gamma, reconstruction.clearDepth, reconstruction.farthestDepth, 0.0f);
-    p.flags = glm::ivec4(s.formula == CombineFormula::Thesis     ? COMPOSE_FORMULA_THESIS
-                         : s.formula == CombineFormula::Physical ? COMPOSE_FORMULA_PHYSICAL
-                                                                 : COMPOSE_FORMULA_STANDARD,
-                         s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
-                         : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES
-                                                            : COMPOSE_TONE_NONE,
-                         s.srgb ? 1 : 0, (hasAo ? COMPOSE_HAS_AO : 0) | (hasIndirect ? COMPOSE_HAS_INDIRECT : 0));
-    p.size = glm::ivec4(w, h, 0, 0);
+    p.dragoMaxLuminance = s.dragoMaxLuminance > 0.0f ? std::max(s.dragoMaxLuminance, 1e-30f) : 0.0f;
+    p.dragoBias = s.dragoBias;
+    p.dragoDisplayMax = s.dragoDisplayMax;
+    p.gamma = s.gamma;
+    p.clearDepth = reconstruction.clearDepth;
+    p.farthestDepth = reconstruction.farthestDepth;
+    p.formula = s.formula == CombineFormula::Thesis     ? COMPOSE_FORMULA_THESIS
+                : s.formula == CombineFormula::Physical ? COMPOSE_FORMULA_PHYSICAL
+                                                        : COMPOSE_FORMULA_STANDARD;
+    p.toneMapper = s.toneMapper == ToneMapper::Drago ? COMPOSE_TONE_DRAGO
+                   : s.toneMapper == ToneMapper::Aces ? COMPOSE_TONE_ACES
+                                                      : COMPOSE_TONE_NONE;
+    p.srgb = s.srgb ? 1 : 0;
+    p.inputs = (hasAo ? COMPOSE_HAS_AO : 0) | (hasIndirect ? COMPOSE_HAS_INDIRECT : 0);
+    p.size = glm::ivec2(w, h);
     if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "compose.params");
     ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, COMPOSE_PARAMS_UBO_BINDING, d.params.get());

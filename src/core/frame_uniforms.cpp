@@ -23,18 +23,24 @@ void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int 
                          std::uint32_t frameIndex) {
     const DepthReconstruction r = depthReconstruction(camera);
     const ProjectionInfo info = analyzeProjection(camera);
-    shader::FrameData data;
+    shader::FrameData data{};
     data.view = camera.view;
     data.projection = camera.projection;
     data.viewInverse = glm::mat4(glm::inverse(glm::dmat4(camera.view)));
-    data.depthXY = glm::vec4(r.xyScale, r.xyOffset);
-    data.depthZ = glm::vec4(r.zScale, r.zBiasHi, r.zBiasLo, r.clearDepth);
-    data.viewport = glm::ivec4(width, height,
-                               r.kind == ProjectionKind::Perspective ? OBSCURA_PROJECTION_PERSPECTIVE
-                                                                     : OBSCURA_PROJECTION_ORTHOGRAPHIC,
-                               info.reversedZ ? 1 : 0);
-    data.depthPrecision = glm::vec4(static_cast<float>(depthStep), normalError, r.farthestDepth, 0.0f);
-    data.sampleShift = glm::vec4(frameSampleShift(frameIndex), 0.0f);
+    data.rayScale = r.xyScale;
+    data.rayOffset = r.xyOffset;
+    data.depthScale = r.zScale;
+    data.depthBiasHi = r.zBiasHi;
+    data.depthBiasLo = r.zBiasLo;
+    data.clearDepth = r.clearDepth;
+    data.size = glm::ivec2(width, height);
+    data.projectionKind =
+        r.kind == ProjectionKind::Perspective ? OBSCURA_PROJECTION_PERSPECTIVE : OBSCURA_PROJECTION_ORTHOGRAPHIC;
+    data.reversedZ = info.reversedZ ? 1 : 0;
+    data.depthStep = static_cast<float>(depthStep);
+    data.normalError = normalError;
+    data.farthestDepth = r.farthestDepth;
+    data.sampleShift = frameSampleShift(frameIndex);
     if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
     ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
     ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());

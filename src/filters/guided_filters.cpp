@@ -86,9 +86,14 @@ void bindImages(ContextImpl& ctx, const FilterImages& images, GLuint valueIn, GL
 
 void GuidedFilters::upload(ContextImpl& ctx, const FilterImages& images, const GuidedFilterSettings& s) {
     shader::FilterParams p{};
-    p.sizes = glm::ivec4(images.size, images.scale, s.taps);
-    p.weights = glm::vec4(s.depthSigma, s.normalPower, s.background, s.refineThreshold);
-    p.flags = glm::ivec4(s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0, 0, 0, 0);
+    p.lowSize = images.size;
+    p.scale = images.scale;
+    p.blurTaps = s.taps;
+    p.depthSigma = s.depthSigma;
+    p.normalPower = s.normalPower;
+    p.background = s.background;
+    p.refineThreshold = s.refineThreshold;
+    p.flags = s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0;
     if (!params_) params_ = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.params");
     ctx.gl.NamedBufferSubData(params_.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, FILTER_PARAMS_UBO_BINDING, params_.get());

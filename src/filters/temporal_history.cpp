@@ -29,9 +29,13 @@ void TemporalHistory::accumulate(ContextImpl& ctx, const GBufferView& view, GLui
     shader::TemporalParams p{};
     p.previousView = glm::mat4(previousView_);
     p.previousViewProjection = glm::mat4(previousProjection_ * previousView_); // composed in double
-    p.weights = glm::vec4(s.depthTolerance, s.normalThreshold, float(s.maxFrames), 0.0f);
-    p.previousRays = glm::vec4(previousRays_.xyScale, previousRays_.xyOffset);
-    p.flags = glm::ivec4(latest_ >= 0 ? 1 : 0, previousRays_.kind == ProjectionKind::Perspective ? 1 : 0, 0, 0);
+    p.depthTolerance = s.depthTolerance;
+    p.normalThreshold = s.normalThreshold;
+    p.maxFrames = float(s.maxFrames);
+    p.previousRayScale = previousRays_.xyScale;
+    p.previousRayOffset = previousRays_.xyOffset;
+    p.hasHistory = latest_ >= 0 ? 1 : 0;
+    p.previousPerspective = previousRays_.kind == ProjectionKind::Perspective ? 1 : 0;
     if (!params_) params_ = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.temporal_params");
     ctx.gl.NamedBufferSubData(params_.get(), 0, sizeof p, &p);
     ctx.state.bindUniformBuffer(ctx, TEMPORAL_PARAMS_UBO_BINDING, params_.get());

@@ -40,17 +40,20 @@ shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
     case LightType::Rect: type = GBUFFER_LIGHT_RECT; break;
     case LightType::Sphere: type = GBUFFER_LIGHT_SPHERE; break;
     }
-    d.positionType = glm::vec4(glm::vec3(p), static_cast<float>(type));
-    d.directionRadius = glm::vec4(l.type == LightType::Point || l.type == LightType::Sphere ? glm::vec3(0.0f) : glm::vec3(dir),
-                                  l.radius);
-    d.radiance = glm::vec4(l.color * l.intensity, 0.0f);
-    d.cone = glm::vec4(std::cos(l.innerAngle), std::cos(l.outerAngle), 0.0f, 0.0f);
+    d.position = glm::vec3(p);
+    d.type = static_cast<float>(type);
+    d.direction = l.type == LightType::Point || l.type == LightType::Sphere ? glm::vec3(0.0f) : glm::vec3(dir);
+    d.radius = l.radius;
+    d.radiance = l.color * l.intensity;
+    d.cosInner = std::cos(l.innerAngle);
+    d.cosOuter = std::cos(l.outerAngle);
     if (l.type == LightType::Rect) {
         // Width axis made orthogonal to the normal, in view space.
         const glm::dvec3 t = glm::dvec3(l.tangent) - glm::dot(glm::dvec3(l.tangent), glm::normalize(glm::dvec3(l.direction))) *
                                                          glm::normalize(glm::dvec3(l.direction));
         const glm::dvec3 u = glm::normalize(glm::dmat3(view) * t);
-        d.extent = glm::vec4(glm::vec3(u * (0.5 * l.size.x)), 0.5f * l.size.y);
+        d.halfWidthAxis = glm::vec3(u * (0.5 * l.size.x));
+        d.halfHeight = 0.5f * l.size.y;
     }
     return d;
 }
@@ -210,7 +213,7 @@ struct GBuffer::Impl {
         data.reserve(scene.lights.size());
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             data.push_back(toViewSpace(scene.lights[i], view));
-            data.back().cone.z = static_cast<float>(shadowRecordOf[i]);
+            data.back().shadowRecord = static_cast<float>(shadowRecordOf[i]);
         }
         const std::size_t needed = std::max<std::size_t>(1, data.size());
         if (!lights || lightCapacity < needed) {

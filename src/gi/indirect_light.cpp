@@ -88,9 +88,13 @@ struct IndirectLight::Impl {
 
     void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
         shader::GiParams p{};
-        p.shape = glm::vec4(s.radius, s.thickness > 0.0f ? s.thickness : s.radius, 0.0f, 0.0f);
-        p.counts = glm::ivec4(s.rays, s.steps, filtered(s) ? 1 : 0, 0);
-        p.sizes = glm::ivec4(size, scale, 0);
+        p.radius = s.radius;
+        p.thickness = s.thickness > 0.0f ? s.thickness : s.radius;
+        p.rayCount = s.rays;
+        p.stepCount = s.steps;
+        p.writeGuide = filtered(s) ? 1 : 0;
+        p.size = size;
+        p.scale = scale;
         p.viewToVoxel = glm::mat4(1.0f);
         if (s.method == GiMethod::Hybrid) {
             p.viewToVoxel = viewToVoxel(*s.voxels, g.camera);
@@ -98,8 +102,8 @@ struct IndirectLight::Impl {
             // error and the normal bound, surface_rays.glsl); a voxel hit lies
             // within a voxel diagonal of the surface it stands for, so two diagonals is the
             // default tolerance for finding that surface on screen.
-            p.shape.z = static_cast<float>(voxelDiagonal(*s.voxels));
-            if (s.thickness <= 0.0f) p.shape.y = 2.0f * p.shape.z;
+            p.voxelStartOffset = static_cast<float>(voxelDiagonal(*s.voxels));
+            if (s.thickness <= 0.0f) p.thickness = 2.0f * p.voxelStartOffset;
         }
         if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "gi.params");
         ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);

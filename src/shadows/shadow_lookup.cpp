@@ -75,30 +75,48 @@ shader::ShadowParams shadowRecord(const ShadowMapInfo& info, const Camera& camer
         const auto k = static_cast<std::size_t>(c);
         p.cascades[k].viewToLight = glm::mat4(glm::dmat4(info.worldToClip[k]) * viewToWorld);
         const float projection = info.paraboloid ? 2.0f : info.type == LightType::Directional ? 0.0f : 1.0f;
-        p.cascades[k].info = glm::vec4(info.sliceEnd[k], info.texelSize[k], static_cast<float>(info.firstLayer + c), projection);
-        p.cascades[k].depth = info.depthMapping[k];
+        p.cascades[k].sliceEnd = info.sliceEnd[k];
+        p.cascades[k].texelSize = info.texelSize[k];
+        p.cascades[k].layer = static_cast<float>(info.firstLayer + c);
+        p.cascades[k].projection = projection;
+        p.cascades[k].depthMapping = info.depthMapping[k];
     }
     const Light& light = info.source;
     const glm::vec3 position(view * glm::dvec4(glm::dvec3(light.position), 1.0));
     const glm::vec3 direction = glm::normalize(glm::vec3(view * glm::dvec4(glm::dvec3(light.direction), 0.0)));
+    p.light = position;
     if (light.type == LightType::Point || light.type == LightType::Sphere) {
-        p.light = glm::vec4(position, SHADOW_LIGHT_POINT);
+        p.lightType = SHADOW_LIGHT_POINT;
     } else if (light.type == LightType::Rect) {
-        p.light = glm::vec4(position, SHADOW_LIGHT_RECT);
-        p.spot = glm::vec4(direction, 0.0f); // its front half-space, as a cone of 90 degrees
+        p.lightType = SHADOW_LIGHT_RECT;
+        p.spotAxis = direction; // its front half-space, as a cone of 90 degrees
     } else if (light.type == LightType::Spot) {
-        p.light = glm::vec4(position, SHADOW_LIGHT_SPOT);
-        p.spot = glm::vec4(direction, std::cos(light.outerAngle));
+        p.lightType = SHADOW_LIGHT_SPOT;
+        p.spotAxis = direction;
+        p.spotCosOuter = std::cos(light.outerAngle);
     } else {
-        p.light = glm::vec4(-direction, SHADOW_LIGHT_DIRECTIONAL);
+        p.light = -direction;
+        p.lightType = SHADOW_LIGHT_DIRECTIONAL;
     }
-    p.bias = glm::vec4(s.constantBias, s.slopeBias, s.normalOffset, s.cascadeBlend);
-    p.moments = glm::vec4(s.minVariance, s.lightBleedReduction, s.exponent, s.negativeExponent);
-    p.contact = glm::vec4(s.contactLength, static_cast<float>(s.contactSteps), s.contactThickness, info.sliceStart);
-    p.counts = glm::ivec4(info.layers, s.receiverPlane ? 1 : 0, s.pcfRadius, resolution);
-    const float lightRadius = pcssLightRadius(light);
-    p.pcf = glm::vec4(pcfKernelCode(s.pcfKernel), lightRadius,
-                      (1.0f - s.pcssBlockerFraction) / s.pcssBlockerFraction, 0.0f);
+    p.constantBias = s.constantBias;
+    p.slopeBias = s.slopeBias;
+    p.normalOffset = s.normalOffset;
+    p.cascadeBlend = s.cascadeBlend;
+    p.minVariance = s.minVariance;
+    p.lightBleedReduction = s.lightBleedReduction;
+    p.exponent = s.exponent;
+    p.negativeExponent = s.negativeExponent;
+    p.contactLength = s.contactLength;
+    p.contactSteps = static_cast<float>(s.contactSteps);
+    p.contactThickness = s.contactThickness;
+    p.firstSliceStart = info.sliceStart;
+    p.mapCount = info.layers;
+    p.receiverPlane = s.receiverPlane ? 1 : 0;
+    p.pcfRadius = s.pcfRadius;
+    p.resolution = resolution;
+    p.pcfKernel = pcfKernelCode(s.pcfKernel);
+    p.lightRadius = pcssLightRadius(light);
+    p.pcssSearchScale = (1.0f - s.pcssBlockerFraction) / s.pcssBlockerFraction;
     const std::array<glm::vec2, SHADOW_POISSON_TAPS>& disc = poissonDisc();
     for (std::size_t i = 0; i < disc.size(); i += 2) p.poisson[i / 2] = glm::vec4(disc[i], disc[i + 1]);
     return p;

@@ -148,9 +148,11 @@ struct Voxelizer::Impl {
     }
 
     void uploadParams(int viewport) {
-        shader::VoxelParams p;
-        p.dims = glm::ivec4(grid.dims, grid.levels);
-        p.counts = glm::ivec4(grid.targets, (grid.dims.z + 31) / 32, viewport, 0);
+        shader::VoxelParams p{};
+        p.dims = grid.dims;
+        p.octreeLevels = grid.levels;
+        p.targets = grid.targets;
+        p.surfaceViewport = viewport;
         if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "voxel.params");
         ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
         ctx.state.bindUniformBuffer(ctx, VOXEL_PARAMS_UBO_BINDING, params.get());
