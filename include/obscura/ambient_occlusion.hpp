@@ -158,7 +158,7 @@ struct AmbientOcclusionSettings {
     bool geometryTiles = true;
     bool bentNormals = false;
     std::uint32_t frameIndex = 0;
-    TemporalSettings temporal;
+    TemporalSettings temporal{};
     //! Voxel: the voxelized scene (Voxelizer::voxelize with the same scene; octree needed for
     //! Hierarchical). Ignored by the other methods.
     const VoxelGrid* voxels = nullptr;
@@ -221,8 +221,6 @@ class OBSCURA_API AmbientOcclusion {
 public:
     explicit AmbientOcclusion(Context& context);
     ~AmbientOcclusion();
-    AmbientOcclusion(const AmbientOcclusion&) = delete;
-    AmbientOcclusion& operator=(const AmbientOcclusion&) = delete;
 
     //! Passes "ao.hiz" (RayMarch with HiZ), "ao.<method>", then "ao.blur", "ao.upsample",
     //! "ao.refine" and "ao.temporal" when used. Throws Error{InvalidArgument} for settings out of range

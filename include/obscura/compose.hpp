@@ -134,8 +134,6 @@ class OBSCURA_API Composer {
 public:
     explicit Composer(Context& context);
     ~Composer();
-    Composer(const Composer&) = delete;
-    Composer& operator=(const Composer&) = delete;
 
     //! Combines and tone maps into a GL_RGBA8 texture of display values (sRGB-encoded when
     //! settings.srgb; alpha 1), the G-buffer's size. Passes "compose.combine" (which also

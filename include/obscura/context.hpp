@@ -205,8 +205,6 @@ public:
     explicit Context(const ContextDesc& desc);
     //! Deletes every GL object Obscura still owns. The GL context must be current.
     ~Context();
-    Context(const Context&) = delete;
-    Context& operator=(const Context&) = delete;
 
     const ContextInfo& info() const noexcept;
     StatePolicy statePolicy() const noexcept;

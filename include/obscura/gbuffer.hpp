@@ -232,8 +232,6 @@ class OBSCURA_API GBuffer {
 public:
     explicit GBuffer(Context& context);
     ~GBuffer();
-    GBuffer(const GBuffer&) = delete;
-    GBuffer& operator=(const GBuffer&) = delete;
 
     //! Rasterizes every mesh and mesh reference of the scene. Pass "gbuffer.render".
     //! Throws Error{InvalidArgument} for a bad size, a non-finite camera or light, a material

@@ -29,8 +29,6 @@ public:
     //! {UnsupportedFeature} naming the EGL step that failed.
     explicit HeadlessContext(const HeadlessDesc& desc = {});
     ~HeadlessContext();
-    HeadlessContext(const HeadlessContext&) = delete;
-    HeadlessContext& operator=(const HeadlessContext&) = delete;
 
     void makeCurrent();
     //! "surfaceless", "device" or "default".

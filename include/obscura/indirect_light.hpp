@@ -64,7 +64,7 @@ struct IndirectLightSettings {
     int rayLanes = 1;
     bool geometryTiles = true;
     std::uint32_t frameIndex = 0;
-    TemporalSettings temporal; //!< of the radiance
+    TemporalSettings temporal{}; //!< of the radiance
     const VoxelGrid* voxels = nullptr; //!< Hybrid: the voxelized scene (as AmbientOcclusionSettings::voxels)
     VoxelTraversal voxelTraversal = VoxelTraversal::Hierarchical;
 
@@ -101,8 +101,6 @@ class OBSCURA_API IndirectLight {
 public:
     explicit IndirectLight(Context& context);
     ~IndirectLight();
-    IndirectLight(const IndirectLight&) = delete;
-    IndirectLight& operator=(const IndirectLight&) = delete;
 
     //! Passes "gi.hiz" (Screen with HiZ), "gi.screen" or "gi.hybrid", then "gi.blur",
     //! "gi.upsample", "gi.refine" and "gi.temporal" when used. Throws Error{InvalidArgument} for settings

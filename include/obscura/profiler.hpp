@@ -51,8 +51,6 @@ class OBSCURA_API Profiler {
 public:
     explicit Profiler(detail::ContextImpl& ctx);
     ~Profiler();
-    Profiler(const Profiler&) = delete;
-    Profiler& operator=(const Profiler&) = delete;
 
     ClockSource clock() const noexcept;
     //! Overrides the automatic choice (e.g. to compare both clocks). Discards pending results.

@@ -37,8 +37,6 @@ public:
     //! MeshRefs (their triangles live in GPU buffers), Error{Io} for an unreadable environment.
     explicit RayScene(const Scene& scene);
     ~RayScene();
-    RayScene(const RayScene&) = delete;
-    RayScene& operator=(const RayScene&) = delete;
 
     const Scene& scene() const noexcept;
     Bounds bounds() const noexcept;

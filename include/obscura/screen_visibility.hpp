@@ -116,8 +116,6 @@ class OBSCURA_API ScreenVisibility {
 public:
     explicit ScreenVisibility(Context& context);
     ~ScreenVisibility();
-    ScreenVisibility(const ScreenVisibility&) = delete;
-    ScreenVisibility& operator=(const ScreenVisibility&) = delete;
 
     //! Traces view-space segments against the G-buffer's depth (passes "visibility.hiz" for
     //! the pyramid and "visibility.trace"). Throws Error{InvalidArgument} for settings out of

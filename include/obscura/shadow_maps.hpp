@@ -288,8 +288,6 @@ class OBSCURA_API ShadowMaps {
 public:
     explicit ShadowMaps(Context& context);
     ~ShadowMaps();
-    ShadowMaps(const ShadowMaps&) = delete;
-    ShadowMaps& operator=(const ShadowMaps&) = delete;
 
     //! Renders the maps of every shadow-casting light (pass
     //! "shadow.maps"); allocates nothing when there is none. Throws Error{InvalidArgument}

@@ -184,8 +184,6 @@ class OBSCURA_API Voxelizer {
 public:
     explicit Voxelizer(Context& context);
     ~Voxelizer();
-    Voxelizer(const Voxelizer&) = delete;
-    Voxelizer& operator=(const Voxelizer&) = delete;
 
     //! Voxelizes the scene's meshes and mesh references (passes "voxel.surface" or
     //! "voxel.solid", "voxel.mips"). Throws Error{InvalidArgument} for settings outside their

@@ -47,18 +47,6 @@ struct AoParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(AoParams) == 3 * 16 + 64, "AoParams must match std140");
-inline constexpr BlockField kAoParamsFields[] = {
-    {"radius", offsetof(AoParams, radius)},
-    {"thickness", offsetof(AoParams, thickness)},
-    {"voxelStartOffset", offsetof(AoParams, voxelStartOffset)},
-    {"rayCount", offsetof(AoParams, rayCount)},
-    {"stepCount", offsetof(AoParams, stepCount)},
-    {"flags", offsetof(AoParams, flags)},
-    {"falloff", offsetof(AoParams, falloff)},
-    {"size", offsetof(AoParams, size)},
-    {"scale", offsetof(AoParams, scale)},
-    {"viewToVoxel", offsetof(AoParams, viewToVoxel)},
-};
 #endif
 
 OBSCURA_SHADER_END

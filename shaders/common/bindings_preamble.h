@@ -1,8 +1,9 @@
 // Included first by every *_bindings.h that declares a parameter block (the headers C++ and
 // GLSL share): in C++ the GLSL
 // types the parameter blocks use (glm's, whose sizes and alignments within a block written
-// as below match std140 and std430), the namespace the blocks live in, and the record of each
-// block's field offsets that tests compare with the GL's (tests/gl/test_param_blocks.cpp).
+// as below match std140 and std430) and the namespace the blocks live in. The tests read
+// every block's fields from these headers and compare each field's offsetof with the offset
+// the driver gives it (tests/gl/test_param_blocks.cpp).
 //
 // Blocks are written so that C++ and std140 agree without compiler-specific packing: every
 // vec4 and mat4 at a multiple of 16 bytes, a vec2 or ivec2 at a multiple of 8, a vec3 or
@@ -14,8 +15,6 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 
-#include <cstddef>
-
 namespace obscura::shader {
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
@@ -25,11 +24,6 @@ using ivec3 = glm::ivec3;
 using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
 
-//! A field of a parameter block and its byte offset in the C++ struct.
-struct BlockField {
-    const char* name;
-    std::size_t offset;
-};
 } // namespace obscura::shader
 
 #define OBSCURA_SHADER_BEGIN namespace obscura::shader {

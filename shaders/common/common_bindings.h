@@ -53,24 +53,6 @@ struct FrameData {
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 3 * 64 + 5 * 16, "FrameData must match std140");
-inline constexpr BlockField kFrameDataFields[] = {
-    {"view", offsetof(FrameData, view)},
-    {"projection", offsetof(FrameData, projection)},
-    {"viewInverse", offsetof(FrameData, viewInverse)},
-    {"rayScale", offsetof(FrameData, rayScale)},
-    {"rayOffset", offsetof(FrameData, rayOffset)},
-    {"depthScale", offsetof(FrameData, depthScale)},
-    {"depthBiasHi", offsetof(FrameData, depthBiasHi)},
-    {"depthBiasLo", offsetof(FrameData, depthBiasLo)},
-    {"clearDepth", offsetof(FrameData, clearDepth)},
-    {"size", offsetof(FrameData, size)},
-    {"projectionKind", offsetof(FrameData, projectionKind)},
-    {"reversedZ", offsetof(FrameData, reversedZ)},
-    {"depthStep", offsetof(FrameData, depthStep)},
-    {"normalError", offsetof(FrameData, normalError)},
-    {"farthestDepth", offsetof(FrameData, farthestDepth)},
-    {"sampleShift", offsetof(FrameData, sampleShift)},
-};
 #endif
 
 OBSCURA_SHADER_END

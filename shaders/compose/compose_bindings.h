@@ -54,22 +54,6 @@ struct ComposeParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(ComposeParams) == 80, "ComposeParams must match std140");
-inline constexpr BlockField kComposeParamsFields[] = {
-    {"ambient", offsetof(ComposeParams, ambient)},
-    {"indirectScale", offsetof(ComposeParams, indirectScale)},
-    {"exposure", offsetof(ComposeParams, exposure)},
-    {"dragoMaxLuminance", offsetof(ComposeParams, dragoMaxLuminance)},
-    {"dragoBias", offsetof(ComposeParams, dragoBias)},
-    {"dragoDisplayMax", offsetof(ComposeParams, dragoDisplayMax)},
-    {"gamma", offsetof(ComposeParams, gamma)},
-    {"clearDepth", offsetof(ComposeParams, clearDepth)},
-    {"farthestDepth", offsetof(ComposeParams, farthestDepth)},
-    {"formula", offsetof(ComposeParams, formula)},
-    {"toneMapper", offsetof(ComposeParams, toneMapper)},
-    {"srgb", offsetof(ComposeParams, srgb)},
-    {"inputs", offsetof(ComposeParams, inputs)},
-    {"size", offsetof(ComposeParams, size)},
-};
 #endif
 
 OBSCURA_SHADER_END

@@ -79,27 +79,6 @@ struct TemporalParams {
 #ifdef __cplusplus
 static_assert(sizeof(TemporalParams) == 2 * 64 + 3 * 16, "TemporalParams must match std140");
 static_assert(sizeof(FilterParams) == 48, "FilterParams must match std140");
-inline constexpr BlockField kFilterParamsFields[] = {
-    {"lowSize", offsetof(FilterParams, lowSize)},
-    {"scale", offsetof(FilterParams, scale)},
-    {"blurTaps", offsetof(FilterParams, blurTaps)},
-    {"depthSigma", offsetof(FilterParams, depthSigma)},
-    {"normalPower", offsetof(FilterParams, normalPower)},
-    {"background", offsetof(FilterParams, background)},
-    {"refineThreshold", offsetof(FilterParams, refineThreshold)},
-    {"flags", offsetof(FilterParams, flags)},
-};
-inline constexpr BlockField kTemporalParamsFields[] = {
-    {"previousView", offsetof(TemporalParams, previousView)},
-    {"previousViewProjection", offsetof(TemporalParams, previousViewProjection)},
-    {"previousRayScale", offsetof(TemporalParams, previousRayScale)},
-    {"previousRayOffset", offsetof(TemporalParams, previousRayOffset)},
-    {"depthTolerance", offsetof(TemporalParams, depthTolerance)},
-    {"normalThreshold", offsetof(TemporalParams, normalThreshold)},
-    {"maxFrames", offsetof(TemporalParams, maxFrames)},
-    {"hasHistory", offsetof(TemporalParams, hasHistory)},
-    {"previousPerspective", offsetof(TemporalParams, previousPerspective)},
-};
 #endif
 
 OBSCURA_SHADER_END

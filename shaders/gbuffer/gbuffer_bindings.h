@@ -54,18 +54,6 @@ struct LightData {
 
 #ifdef __cplusplus
 static_assert(sizeof(LightData) == 80, "LightData must match std430");
-inline constexpr BlockField kLightDataFields[] = {
-    {"position", offsetof(LightData, position)},
-    {"type", offsetof(LightData, type)},
-    {"direction", offsetof(LightData, direction)},
-    {"radius", offsetof(LightData, radius)},
-    {"radiance", offsetof(LightData, radiance)},
-    {"cosInner", offsetof(LightData, cosInner)},
-    {"cosOuter", offsetof(LightData, cosOuter)},
-    {"shadowRecord", offsetof(LightData, shadowRecord)},
-    {"halfWidthAxis", offsetof(LightData, halfWidthAxis)},
-    {"halfHeight", offsetof(LightData, halfHeight)},
-};
 #endif
 
 OBSCURA_SHADER_END

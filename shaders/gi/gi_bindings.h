@@ -37,17 +37,6 @@ struct GiParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(GiParams) == 3 * 16 + 64, "GiParams must match std140");
-inline constexpr BlockField kGiParamsFields[] = {
-    {"radius", offsetof(GiParams, radius)},
-    {"thickness", offsetof(GiParams, thickness)},
-    {"voxelStartOffset", offsetof(GiParams, voxelStartOffset)},
-    {"rayCount", offsetof(GiParams, rayCount)},
-    {"stepCount", offsetof(GiParams, stepCount)},
-    {"writeGuide", offsetof(GiParams, writeGuide)},
-    {"size", offsetof(GiParams, size)},
-    {"scale", offsetof(GiParams, scale)},
-    {"viewToVoxel", offsetof(GiParams, viewToVoxel)},
-};
 #endif
 
 OBSCURA_SHADER_END

@@ -117,41 +117,6 @@ struct ShadowParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(ShadowParams) == SHADOW_MAX_MAPS * 96 + 7 * 16 + SHADOW_POISSON_TAPS * 8, "ShadowParams must match std140");
-inline constexpr BlockField kShadowCascadeFields[] = {
-    {"viewToLight", offsetof(ShadowCascade, viewToLight)},
-    {"sliceEnd", offsetof(ShadowCascade, sliceEnd)},
-    {"texelSize", offsetof(ShadowCascade, texelSize)},
-    {"layer", offsetof(ShadowCascade, layer)},
-    {"projection", offsetof(ShadowCascade, projection)},
-    {"depthMapping", offsetof(ShadowCascade, depthMapping)},
-};
-inline constexpr BlockField kShadowParamsFields[] = {
-    {"cascades", offsetof(ShadowParams, cascades)},
-    {"light", offsetof(ShadowParams, light)},
-    {"lightType", offsetof(ShadowParams, lightType)},
-    {"spotAxis", offsetof(ShadowParams, spotAxis)},
-    {"spotCosOuter", offsetof(ShadowParams, spotCosOuter)},
-    {"constantBias", offsetof(ShadowParams, constantBias)},
-    {"slopeBias", offsetof(ShadowParams, slopeBias)},
-    {"normalOffset", offsetof(ShadowParams, normalOffset)},
-    {"cascadeBlend", offsetof(ShadowParams, cascadeBlend)},
-    {"minVariance", offsetof(ShadowParams, minVariance)},
-    {"lightBleedReduction", offsetof(ShadowParams, lightBleedReduction)},
-    {"exponent", offsetof(ShadowParams, exponent)},
-    {"negativeExponent", offsetof(ShadowParams, negativeExponent)},
-    {"contactLength", offsetof(ShadowParams, contactLength)},
-    {"contactSteps", offsetof(ShadowParams, contactSteps)},
-    {"contactThickness", offsetof(ShadowParams, contactThickness)},
-    {"firstSliceStart", offsetof(ShadowParams, firstSliceStart)},
-    {"mapCount", offsetof(ShadowParams, mapCount)},
-    {"receiverPlane", offsetof(ShadowParams, receiverPlane)},
-    {"pcfRadius", offsetof(ShadowParams, pcfRadius)},
-    {"resolution", offsetof(ShadowParams, resolution)},
-    {"pcfKernel", offsetof(ShadowParams, pcfKernel)},
-    {"lightRadius", offsetof(ShadowParams, lightRadius)},
-    {"pcssSearchScale", offsetof(ShadowParams, pcssSearchScale)},
-    {"poisson", offsetof(ShadowParams, poisson)},
-};
 #endif
 
 OBSCURA_SHADER_END

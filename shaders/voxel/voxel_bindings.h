@@ -49,12 +49,6 @@ struct VoxelParams {
 
 #ifdef __cplusplus
 static_assert(sizeof(VoxelParams) == 32, "VoxelParams must match std140");
-inline constexpr BlockField kVoxelParamsFields[] = {
-    {"dims", offsetof(VoxelParams, dims)},
-    {"octreeLevels", offsetof(VoxelParams, octreeLevels)},
-    {"targets", offsetof(VoxelParams, targets)},
-    {"surfaceViewport", offsetof(VoxelParams, surfaceViewport)},
-};
 #endif
 
 OBSCURA_SHADER_END

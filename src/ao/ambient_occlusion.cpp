@@ -105,21 +105,13 @@ GLuint integratorProgram(ContextImpl& ctx, const AmbientOcclusionSettings& s, co
 
 // The run the settings ask for, on a view of `fullSize` (only the ray batches read it).
 IntegratorShape shapeOf(const AmbientOcclusionSettings& s, glm::ivec2 fullSize) {
-    IntegratorShape shape;
-    shape.module = "ao";
-    shape.pass = passName(s.method);
-    shape.workgroup = AO_WORKGROUP;
-    shape.scale = static_cast<int>(s.resolution);
-    shape.direction = s.bentNormals;
     // AO lies in [0, 1], background pixels 1.
-    shape.filter = {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, true, 1.0f, s.refineThreshold, s.geometryTiles};
-    shape.rayLanes = s.rayLanes;
+    IntegratorShape shape = integratorShape(s, "ao", passName(s.method), AO_WORKGROUP, true, 1.0f);
+    shape.direction = s.bentNormals;
     shape.batchItems = batchItems(s);
     shape.iterationsPerItem = iterationsPerItem(s, fullSize);
     shape.hiz = marchOf(s) == ScreenMarch::HiZ;
-    shape.hizThickness = s.thickness > 0.0f ? s.thickness : s.radius;
     shape.hizMode = thicknessOf(s);
-    shape.temporal = s.temporal;
     return shape;
 }
 
@@ -170,9 +162,7 @@ AmbientOcclusionView AmbientOcclusion::run(const GBufferView& g, const AmbientOc
 
     StateScope scope(ctx);
     const shader::AoParams p = d.makeParams(view, s, ScreenIntegrator::reducedSize(view, shape.scale), shape.scale);
-    if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "ao.params");
-    ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
-    ctx.state.bindUniformBuffer(ctx, AO_PARAMS_UBO_BINDING, d.params.get());
+    uploadUniformBlock(ctx, d.params, p, AO_PARAMS_UBO_BINDING, "ao.params");
     d.screen.begin(ctx, view, peeled, s.frameIndex, shape);
     const IntegratorResult result = d.screen.run(
         ctx, view, shape, {AO_OUT_IMAGE, AO_BENT_OUT_IMAGE, AO_GUIDE_OUT_IMAGE},
@@ -187,11 +177,7 @@ void AmbientOcclusion::prepare(const AmbientOcclusionSettings& s) {
     validateSettings(s);
     auto& ctx = impl_->ctx;
     StateScope scope(ctx);
-    const IntegratorShape shape = shapeOf(s, {0, 0});
-    const bool tiled = shape.scale > 1 && s.geometryTiles;
-    integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-    if (shape.scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
-    ScreenIntegrator::prepare(ctx, shape);
+    ScreenIntegrator::prepare(ctx, shapeOf(s, {0, 0}), [&](const char* variant) { return integratorProgram(ctx, s, variant); });
 }
 
 void AmbientOcclusion::resetHistory() { impl_->screen.resetHistory(); }

@@ -295,6 +295,15 @@ double defaultRadius(const Scene& scene) {
     return 0.1 * glm::length(glm::dvec3(b.max - b.min));
 }
 
+TechniqueOutput plainOutput(const std::string& name, Image image, assets::PngEncoding encoding) {
+    TechniqueOutput o;
+    o.name = name;
+    o.display = image;
+    o.image = std::move(image);
+    o.encoding = encoding;
+    return o;
+}
+
 Image rgbOf(const Image& src) {
     Image out{src.width, src.height, 3, {}};
     out.pixels.reserve(static_cast<std::size_t>(src.width) * static_cast<std::size_t>(src.height) * 3);

@@ -258,6 +258,9 @@ std::string settingKeys(const std::vector<SettingInfo>& settings);
 //! The radius techniques use when none is set: a tenth of the scene's bounding-box
 //! diagonal (world units), so presets fit scenes of any scale.
 double defaultRadius(const Scene& scene);
+//! Output `name` of `image`, displayed as it is (values in [0, 1] as they come), and written
+//! to PNG with `encoding`.
+TechniqueOutput plainOutput(const std::string& name, Image image, assets::PngEncoding encoding);
 //! The first three channels of an image.
 Image rgbOf(const Image& image);
 

@@ -168,9 +168,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     p.srgb = s.srgb ? 1 : 0;
     p.inputs = (hasAo ? COMPOSE_HAS_AO : 0) | (hasIndirect ? COMPOSE_HAS_INDIRECT : 0);
     p.size = glm::ivec2(w, h);
-    if (!d.params) d.params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "compose.params");
-    ctx.gl.NamedBufferSubData(d.params.get(), 0, sizeof p, &p);
-    ctx.state.bindUniformBuffer(ctx, COMPOSE_PARAMS_UBO_BINDING, d.params.get());
+    uploadUniformBlock(ctx, d.params, p, COMPOSE_PARAMS_UBO_BINDING, "compose.params");
     if (!d.luminance) d.luminance = createBuffer(ctx, 4, nullptr, GL_DYNAMIC_STORAGE_BIT, "compose.luminance");
     const std::uint32_t zero = 0;
     ctx.gl.NamedBufferSubData(d.luminance.get(), 0, 4, &zero);

@@ -41,9 +41,7 @@ void FrameUniforms::bind(ContextImpl& ctx, const Camera& camera, int width, int 
     data.normalError = normalError;
     data.farthestDepth = r.farthestDepth;
     data.sampleShift = frameSampleShift(frameIndex);
-    if (!buffer_) buffer_ = createBuffer(ctx, sizeof data, nullptr, GL_DYNAMIC_STORAGE_BIT, "obscura.frame_uniforms");
-    ctx.gl.NamedBufferSubData(buffer_.get(), 0, sizeof data, &data);
-    ctx.state.bindUniformBuffer(ctx, OBSCURA_FRAME_UBO_BINDING, buffer_.get());
+    uploadUniformBlock(ctx, buffer_, data, OBSCURA_FRAME_UBO_BINDING, "obscura.frame_uniforms");
 }
 
 std::size_t FrameUniforms::memoryBytes() const { return buffer_ ? sizeof(shader::FrameData) : 0; }

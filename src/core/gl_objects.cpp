@@ -109,6 +109,13 @@ Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitf
     return buf;
 }
 
+void uploadUniformBlock(ContextImpl& ctx, Buffer& buffer, const void* data, std::size_t bytes, GLuint binding,
+                        std::string_view label) {
+    if (!buffer) buffer = createBuffer(ctx, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT, label);
+    ctx.gl.NamedBufferSubData(buffer.get(), 0, GLsizeiptr(bytes), data);
+    ctx.state.bindUniformBuffer(ctx, binding, buffer.get());
+}
+
 Framebuffer createFramebuffer(ContextImpl& ctx, std::string_view name) {
     GLuint f = 0;
     ctx.gl.CreateFramebuffers(1, &f);

@@ -60,6 +60,15 @@ Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int 
 Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
                              std::string_view label);
 Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view label);
+
+//! Writes a parameter block into `buffer` (created on first use, `label`d) and binds it at
+//! uniform-buffer `binding`.
+void uploadUniformBlock(ContextImpl& ctx, Buffer& buffer, const void* data, std::size_t bytes, GLuint binding,
+                        std::string_view label);
+template <typename Block>
+void uploadUniformBlock(ContextImpl& ctx, Buffer& buffer, const Block& block, GLuint binding, std::string_view label) {
+    uploadUniformBlock(ctx, buffer, &block, sizeof block, binding, label);
+}
 Framebuffer createFramebuffer(ContextImpl& ctx, std::string_view label);
 VertexArray createVertexArray(ContextImpl& ctx, std::string_view label);
 //! `filter` is the minification filter; magnification uses its non-mipmap part.

@@ -101,7 +101,10 @@ IntegratorResult ScreenIntegrator::run(ContextImpl& ctx, const GBufferView& view
     return out;
 }
 
-void ScreenIntegrator::prepare(ContextImpl& ctx, const IntegratorShape& shape) {
+void ScreenIntegrator::prepare(ContextImpl& ctx, const IntegratorShape& shape,
+                               const std::function<GLuint(const char*)>& program) {
+    program(shape.scale > 1 && shape.filter.geometryTiles ? "TILES" : nullptr);
+    if (shape.scale > 1 && shape.filter.refineThreshold > 0.0f) program("REFINE");
     if (shape.hiz) HiZPyramid::prepare(ctx, shape.hizMode);
     // Only which images a run gives the filters matters here, not their names.
     GuidedFilterSettings filter = shape.filter;

@@ -47,6 +47,25 @@ struct IntegratorShape {
     TemporalSettings temporal;
 };
 
+//! The shape's fields every integrator's settings give alike (AmbientOcclusionSettings and
+//! IndirectLightSettings share these fields' names and meanings); the module sets the rest.
+//! `unitRange`, `background`: GuidedFilterSettings' (values in [0, 1], the background value).
+template <class Settings>
+IntegratorShape integratorShape(const Settings& s, const char* module, const char* pass, int workgroup, bool unitRange,
+                                float background) {
+    IntegratorShape shape;
+    shape.module = module;
+    shape.pass = pass;
+    shape.workgroup = workgroup;
+    shape.scale = static_cast<int>(s.resolution);
+    shape.filter = {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, unitRange, background, s.refineThreshold,
+                    s.geometryTiles};
+    shape.rayLanes = s.rayLanes;
+    shape.hizThickness = s.thickness > 0.0f ? s.thickness : s.radius;
+    shape.temporal = s.temporal;
+    return shape;
+}
+
 //! The image units a module's integrator writes its value, direction and guide at.
 struct IntegratorImages {
     int value = 0, direction = 1, guide = 2;
@@ -79,8 +98,9 @@ public:
                          const IntegratorImages& images, const std::function<GLuint(const char*)>& program,
                          const std::function<void()>& bindInputs);
 
-    //! Compiles what run() takes for `shape` besides the integrator's programs (the module's).
-    static void prepare(ContextImpl& ctx, const IntegratorShape& shape);
+    //! Compiles what run() takes for `shape`: the integrator's variants (`program`, as run()
+    //! calls it) and the passes around it.
+    static void prepare(ContextImpl& ctx, const IntegratorShape& shape, const std::function<GLuint(const char*)>& program);
 
     //! The last run's refinement (zeros without one); reads a count back from the GPU.
     RefinementCount lastRefinement(ContextImpl& ctx) const;

@@ -36,9 +36,7 @@ void TemporalHistory::accumulate(ContextImpl& ctx, const GBufferView& view, GLui
     p.previousRayOffset = previousRays_.xyOffset;
     p.hasHistory = latest_ >= 0 ? 1 : 0;
     p.previousPerspective = previousRays_.kind == ProjectionKind::Perspective ? 1 : 0;
-    if (!params_) params_ = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "filters.temporal_params");
-    ctx.gl.NamedBufferSubData(params_.get(), 0, sizeof p, &p);
-    ctx.state.bindUniformBuffer(ctx, TEMPORAL_PARAMS_UBO_BINDING, params_.get());
+    uploadUniformBlock(ctx, params_, p, TEMPORAL_PARAMS_UBO_BINDING, "filters.temporal_params");
     // Without a history the shader reads none: the other pair (allocated, undefined) only
     // gives the read units valid images.
     const int read = latest_ >= 0 ? latest_ : 1 - next;

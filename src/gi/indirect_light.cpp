@@ -53,22 +53,14 @@ GLuint integratorProgram(ContextImpl& ctx, const IndirectLightSettings& s, const
 
 // The run the settings ask for, on a view of `fullSize` (only the ray batches read it).
 IntegratorShape shapeOf(const IndirectLightSettings& s, glm::ivec2 fullSize) {
-    IntegratorShape shape;
-    shape.module = "gi";
-    shape.pass = hybrid(s) ? "gi.hybrid" : "gi.screen";
-    shape.workgroup = GI_WORKGROUP;
-    shape.scale = static_cast<int>(s.resolution);
-    shape.rgb = true;
     // Radiance, unbounded; background pixels 0.
-    shape.filter = {s.blurRadius, s.blurDepthSigma, s.blurNormalPower, false, 0.0f, s.refineThreshold, s.geometryTiles};
-    shape.rayLanes = s.rayLanes;
+    IntegratorShape shape = integratorShape(s, "gi", hybrid(s) ? "gi.hybrid" : "gi.screen", GI_WORKGROUP, false, 0.0f);
+    shape.rgb = true;
     shape.batchItems = s.rays;
     shape.iterationsPerItem = hybrid(s) ? voxelRayIterations(*s.voxels, s.voxelTraversal, s.radius, s.steps) + 1
                                         : screenRayIterations(s.march, s.steps, fullSize);
     shape.hiz = !hybrid(s) && s.march == ScreenMarch::HiZ;
-    shape.hizThickness = s.thickness > 0.0f ? s.thickness : s.radius;
     shape.hizMode = thicknessOf(s);
-    shape.temporal = s.temporal;
     return shape;
 }
 
@@ -105,9 +97,7 @@ struct IndirectLight::Impl {
             p.voxelStartOffset = static_cast<float>(voxelDiagonal(*s.voxels));
             if (s.thickness <= 0.0f) p.thickness = 2.0f * p.voxelStartOffset;
         }
-        if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "gi.params");
-        ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
-        ctx.state.bindUniformBuffer(ctx, GI_PARAMS_UBO_BINDING, params.get());
+        uploadUniformBlock(ctx, params, p, GI_PARAMS_UBO_BINDING, "gi.params");
     }
 
 };
@@ -157,10 +147,7 @@ void IndirectLight::prepare(const IndirectLightSettings& s) {
     StateScope scope(ctx);
     IntegratorShape shape = shapeOf(s, {0, 0});
     shape.modulate = 1; // the albedo: only that there is one matters here
-    const bool tiled = shape.scale > 1 && s.geometryTiles;
-    integratorProgram(ctx, s, tiled ? "TILES" : nullptr);
-    if (shape.scale > 1 && s.refineThreshold > 0.0f) integratorProgram(ctx, s, "REFINE");
-    ScreenIntegrator::prepare(ctx, shape);
+    ScreenIntegrator::prepare(ctx, shape, [&](const char* variant) { return integratorProgram(ctx, s, variant); });
 }
 
 void IndirectLight::resetHistory() { impl_->screen.resetHistory(); }

@@ -153,9 +153,7 @@ struct Voxelizer::Impl {
         p.octreeLevels = grid.levels;
         p.targets = grid.targets;
         p.surfaceViewport = viewport;
-        if (!params) params = createBuffer(ctx, sizeof p, nullptr, GL_DYNAMIC_STORAGE_BIT, "voxel.params");
-        ctx.gl.NamedBufferSubData(params.get(), 0, sizeof p, &p);
-        ctx.state.bindUniformBuffer(ctx, VOXEL_PARAMS_UBO_BINDING, params.get());
+        uploadUniformBlock(ctx, params, p, VOXEL_PARAMS_UBO_BINDING, "voxel.params");
     }
 
     // Draws every mesh with `program`, its model-to-voxel transform in double precision.

@@ -55,6 +55,11 @@ struct Sampling {
     double radius = 1.0; // world units
     int slices = 128, steps = 128;
     double lambda = 0.72; // sqrt(1/2) and float rounding
+
+    //! The horizon AO settings that sample so.
+    AmbientOcclusionSettings settings() const {
+        return {.method = AoMethod::Horizon, .radius = float(radius), .rays = 2 * slices, .steps = steps};
+    }
 };
 
 //! An affine function of the screen offsets (a, c).

@@ -3,6 +3,7 @@
 // thickness mode gives the G-buffer path's AO bit for bit; a host that renders with
 // GL_UPPER_LEFT gets every method's AO in its own rows.
 #include "ao_fixture.hpp"
+#include "scene_builders.hpp"
 #include "mirrored_view.hpp"
 
 #include "obscura/assets.hpp"
@@ -109,8 +110,7 @@ TEST_CASE("Post-process mode: on a host's 32-bit float depth layers and normals 
     AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     f.render(cornell.scene, camera, W, H, 2);
     const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);
     const GLuint back = test::copyDepthAsHost(f.view.backDepth.name, W, H, GL_DEPTH_COMPONENT32F);
@@ -191,8 +191,7 @@ TEST_CASE("Post-process mode: a host that renders with GL_UPPER_LEFT and passes 
     AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     const Camera mirrored = test::mirrored(camera, 1);
     f.render(cornell.scene, camera, W, H);
     GBuffer shiftedGBuffer(f.ctx);

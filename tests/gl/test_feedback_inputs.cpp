@@ -4,6 +4,7 @@
 // any GL work and names the input; a second object of the module, which writes elsewhere,
 // takes it (drawToHost: another framebuffer).
 #include "gl_fixture.hpp"
+#include "integrator_settings.hpp"
 #include "obscura/obscura.hpp"
 #include "scene_builders.hpp"
 
@@ -61,11 +62,8 @@ TEST_CASE("Indirect light refuses its own last radiance as direct radiance; a se
           "[gi][bad-input]") {
     LitCorner f;
     IndirectLight gi(f.ctx), other(f.ctx);
-    IndirectLightSettings s;
-    s.radius = 1.5f;
-    s.rays = 4;
-    s.steps = 4;
-    s.resolution = GENERATE(AoResolution::Full, AoResolution::Half); // the output is another texture at half
+    // At half resolution the output is another texture.
+    auto s = test::integratorSettings<IndirectLightSettings>(1.5f, 4, 4, GENERATE(AoResolution::Full, AoResolution::Half));
     CAPTURE(int(s.resolution));
     const IndirectLightView first = gi.run(f.view, s);
     const std::size_t memory = gi.memoryBytes();
@@ -85,12 +83,8 @@ TEST_CASE("Ambient occlusion refuses its own bent normals as the normal; a secon
           "[ao][bad-input]") {
     LitCorner f;
     AmbientOcclusion ao(f.ctx), other(f.ctx);
-    AmbientOcclusionSettings s;
-    s.radius = 1.0f;
-    s.rays = 4;
-    s.steps = 4;
+    auto s = test::integratorSettings<AmbientOcclusionSettings>(1.0f, 4, 4, GENERATE(AoResolution::Full, AoResolution::Half));
     s.bentNormals = true;
-    s.resolution = GENERATE(AoResolution::Full, AoResolution::Half);
     CAPTURE(int(s.resolution));
     const AmbientOcclusionView first = ao.run(f.view, s);
     REQUIRE(first.bentNormal);

@@ -7,6 +7,7 @@
 // computations either way; only the order of the refinement list differs, and each listed
 // pixel is computed on its own (below the list's capacity, which these images stay far from).
 #include "gl_fixture.hpp"
+#include "integrator_settings.hpp"
 
 #include "filters/guided_filters.hpp"
 #include "obscura/assets.hpp"
@@ -90,52 +91,44 @@ int differingPixels(const Image& a, const Image& b) {
 }
 
 AmbientOcclusionSettings aoSettings(AoMethod method, AoResolution resolution, int blurTaps = 2) {
-    AmbientOcclusionSettings s;
+    auto s = test::integratorSettings<AmbientOcclusionSettings>(150.0f, 8, 6, resolution, blurTaps);
     s.method = method;
-    s.radius = 150.0f;
-    s.rays = 8;
-    s.steps = 6;
-    s.resolution = resolution;
-    s.blurRadius = blurTaps;
     s.bentNormals = true;
     return s;
 }
 
 IndirectLightSettings giSettings(GiMethod method, AoResolution resolution, int blurTaps = 2) {
-    IndirectLightSettings s;
+    auto s = test::integratorSettings<IndirectLightSettings>(300.0f, 8, 6, resolution, blurTaps);
     s.method = method;
-    s.radius = 300.0f;
-    s.rays = 8;
-    s.steps = 6;
-    s.resolution = resolution;
-    s.blurRadius = blurTaps;
     return s;
 }
 
-// AO with geometry tiles against AO over every tile on `frame`, with fresh modules.
-void checkAo(TileFixture& f, const GBufferView& frame, AmbientOcclusionSettings s) {
-    AmbientOcclusion tiled(f.ctx), everyTile(f.ctx);
+// A module's run with geometry tiles against its run over every tile on `frame`, with fresh
+// modules: pass `tilesPass` runs only in the first, and each texture `outputs` picks from
+// the views is the same bit for bit.
+template <class Module, class Settings, class Outputs>
+void checkTiles(TileFixture& f, const GBufferView& frame, Settings s, const char* tilesPass, Outputs outputs) {
+    Module tiled(f.ctx), everyTile(f.ctx);
     f.ctx.profiler().reset();
     s.geometryTiles = false;
-    const AmbientOcclusionView b = everyTile.run(frame, s);
-    CHECK_FALSE(f.ran("ao.tiles"));
+    const auto b = everyTile.run(frame, s);
+    CHECK_FALSE(f.ran(tilesPass));
     s.geometryTiles = true;
-    const AmbientOcclusionView a = tiled.run(frame, s);
-    CHECK(f.ran("ao.tiles"));
-    CHECK(differingPixels(readTexture(f.ctx, a.ao), readTexture(f.ctx, b.ao)) == 0);
-    if (s.bentNormals) CHECK(differingPixels(readTexture(f.ctx, a.bentNormal), readTexture(f.ctx, b.bentNormal)) == 0);
+    const auto a = tiled.run(frame, s);
+    CHECK(f.ran(tilesPass));
+    const std::vector<TextureView> fromTiles = outputs(a), fromEvery = outputs(b);
+    for (std::size_t i = 0; i < fromTiles.size(); ++i)
+        CHECK(differingPixels(readTexture(f.ctx, fromTiles[i]), readTexture(f.ctx, fromEvery[i])) == 0);
 }
 
-void checkGi(TileFixture& f, const GBufferView& frame, IndirectLightSettings s) {
-    IndirectLight tiled(f.ctx), everyTile(f.ctx);
-    f.ctx.profiler().reset();
-    s.geometryTiles = false;
-    const IndirectLightView b = everyTile.run(frame, s);
-    CHECK_FALSE(f.ran("gi.tiles"));
-    s.geometryTiles = true;
-    const IndirectLightView a = tiled.run(frame, s);
-    CHECK(f.ran("gi.tiles"));
-    CHECK(differingPixels(readTexture(f.ctx, a.radiance), readTexture(f.ctx, b.radiance)) == 0);
+void checkAo(TileFixture& f, const GBufferView& frame, const AmbientOcclusionSettings& s) {
+    checkTiles<AmbientOcclusion>(f, frame, s, "ao.tiles", [&](const AmbientOcclusionView& v) {
+        return s.bentNormals ? std::vector{v.ao, v.bentNormal} : std::vector{v.ao};
+    });
+}
+
+void checkGi(TileFixture& f, const GBufferView& frame, const IndirectLightSettings& s) {
+    checkTiles<IndirectLight>(f, frame, s, "gi.tiles", [](const IndirectLightView& v) { return std::vector{v.radiance}; });
 }
 
 } // namespace

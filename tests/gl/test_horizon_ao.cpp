@@ -316,12 +316,7 @@ TEST_CASE("Horizon AO before a wall seen obliquely matches its slice integral wi
                  c.perspective ? Camera::perspective(look, fovy, 1.0f, 0.5f, c.depth == DepthMode::Reversed ? INFINITY : 30.0f, c.depth)
                                : Camera::orthographic(look, float(view.halfHeight), 1.0f, 0.5f, 30.0f, c.depth),
                  view.size, view.size);
-        AmbientOcclusionSettings s;
-        s.method = AoMethod::Horizon;
-        s.radius = float(sampling.radius);
-        s.rays = 2 * sampling.slices;
-        s.steps = sampling.steps;
-        const Image ao = f.run(scene, s);
+        const Image ao = f.run(scene, sampling.settings());
         const Image normals = readTexture(f.ctx, f.view.normal);
         const horizon::ScreenRays rays(f.view.camera, view.size, view.size);
         // The face z = 0 where it is above the floor, 1 mm well above the plane test's tolerance.

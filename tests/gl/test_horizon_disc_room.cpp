@@ -52,12 +52,7 @@ TEST_CASE("Horizon AO under a disc matches its slice integral and lies below the
         CAPTURE(perspective);
         test::AoFixture f;
         f.render(scene, camera, size, size);
-        AmbientOcclusionSettings s;
-        s.method = AoMethod::Horizon;
-        s.radius = float(sampling.radius);
-        s.rays = 2 * sampling.slices;
-        s.steps = sampling.steps;
-        const Image ao = f.run(scene, s);
+        const Image ao = f.run(scene, sampling.settings());
         for (int i = 0; i < 256; ++i) { // the 256-gon's corners, all in the image
             const double angle = 2.0 * glm::pi<double>() * i / 256;
             const glm::vec4 clip = camera.projection * camera.view *

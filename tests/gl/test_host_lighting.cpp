@@ -3,6 +3,7 @@
 // a lit open plane gives no indirect light through coarse host normals, and poisoned host
 // buffers (NaN, Inf, zero, out of range) give finite outputs in range.
 #include "ao_fixture.hpp"
+#include "scene_builders.hpp"
 
 #include "obscura/assets.hpp"
 
@@ -54,8 +55,7 @@ TEST_CASE("Post-process mode: with the host's albedo and lit image, indirect lig
     test::AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     f.view = f.gbuffer.render(cornell.scene, camera, {W, H, true, {}}); // lit by the scene's lights
     IndirectLight gi(f.ctx);
     Composer composer(f.ctx);
@@ -242,8 +242,7 @@ TEST_CASE("Post-process mode: NaN, Inf, zero and out-of-range host normals, albe
     test::AoFixture f;
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     f.view = f.gbuffer.render(cornell.scene, camera, {W, H, true, {}});
     f.positions = readTexture(f.ctx, f.gbuffer.positions(f.view));
     const GLuint depth = test::copyDepthAsHost(f.view.depth.name, W, H, GL_DEPTH_COMPONENT32F);

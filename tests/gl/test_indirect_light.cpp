@@ -4,6 +4,7 @@
 // test_indirect_light_gather.cpp).
 #include "ao_fixture.hpp"
 #include "gl_fixture.hpp"
+#include "integrator_settings.hpp"
 #include "mirrored_view.hpp"
 #include "scene_builders.hpp"
 
@@ -426,13 +427,9 @@ TEST_CASE("Indirect light stays finite for odd sizes and reversed-Z and orthogra
               std::tuple{GiMethod::Screen, AoResolution::Full, ScreenThickness::DepthPeeling},
               std::tuple{GiMethod::Screen, AoResolution::Half, ScreenThickness::PeelingOrConstant}}) {
             CAPTURE(method == GiMethod::Hybrid, static_cast<int>(resolution), static_cast<int>(thickness));
-            IndirectLightSettings s;
+            auto s = test::integratorSettings<IndirectLightSettings>(150.0f, 8, IndirectLightSettings{}.steps, resolution, 1);
             s.method = method;
             s.thicknessMode = thickness;
-            s.radius = 150.0f;
-            s.rays = 8;
-            s.resolution = resolution;
-            s.blurRadius = 1;
             if (method == GiMethod::Hybrid) s.voxels = &voxelizer.voxelize(cornell.scene, {});
             const Image radiance = readTexture(ctx, gi.run(view, s).radiance);
             REQUIRE(radiance.width == width);
@@ -466,8 +463,7 @@ TEST_CASE("Post-process mode: screen-space indirect light on a host's depth laye
     IndirectLight gi(ctx);
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 40, H = 32;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     GBufferSettings layers{W, H, true, {}};
     layers.depthLayers = 2;
     const GBufferView view = gbuffer.render(cornell.scene, camera, layers);
@@ -569,8 +565,7 @@ TEST_CASE("Indirect light with a projection mirrored in y, a GL_UPPER_LEFT host'
     Voxelizer voxelizer(ctx);
     const assets::LoadedScene cornell = assets::builtinScene("cornell");
     constexpr int W = 48, H = 40;
-    const Camera camera = Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
-                                              float(W) / float(H), 10.0f, 5000.0f);
+    const Camera camera = test::cornellCamera(W, H);
     const GBufferSettings lit{W, H, true, {}};
     const GBufferView view = gbuffer.render(cornell.scene, camera, lit);
     const GBufferView shifted = shiftedGBuffer.render(cornell.scene, test::shiftedOnePixel(camera, W), lit);

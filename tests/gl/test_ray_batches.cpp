@@ -3,6 +3,7 @@
 // (src/core/ray_batches.hpp). Their estimates must not depend on how many iterations the rays
 // take: many rays estimate what few rays do.
 #include "cornell_frame.hpp"
+#include "integrator_settings.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -62,12 +63,8 @@ TEST_CASE("Estimates do not depend on how many loop iterations their rays take",
     const VoxelGrid* grid = &f.voxelizer.voxelize(f.cornell.scene, fine);
     const auto ao = [&](AoMethod method, int steps, float reach) {
         return [&f, grid, method, steps, reach](int rays) {
-            AmbientOcclusionSettings s;
+            auto s = test::integratorSettings<AmbientOcclusionSettings>(reach, rays, steps);
             s.method = method;
-            s.rays = rays;
-            s.steps = steps;
-            s.radius = reach;
-            s.bentNormals = false;
             if (method == AoMethod::Voxel) s.voxels = grid;
             return readTexture(f.ctx, f.ao.run(f.view, s).ao);
         };

@@ -3,6 +3,7 @@
 // The rays are the same as with one lane, only the order of the additions differs, so the
 // results must agree to the rounding that order can change, derived below.
 #include "cornell_frame.hpp"
+#include "integrator_settings.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -56,14 +57,10 @@ TEST_CASE("Ray lanes give each pixel the same rays: AO's counts exactly, other s
     const VoxelGrid* grid = &f.voxelizer.voxelize(f.cornell.scene, {});
     const float radius = 96.07f; // a tenth of the box's diagonal
     const auto aoRun = [&](AoMethod method, ObscuranceFalloff falloff, AoResolution resolution, int lanes) {
-        AmbientOcclusionSettings s;
+        auto s = test::integratorSettings<AmbientOcclusionSettings>(radius, 64, 16, resolution,
+                                                                    resolution == AoResolution::Full ? 0 : 2);
         s.method = method;
         s.falloff = falloff;
-        s.rays = 64;
-        s.steps = 16;
-        s.radius = radius;
-        s.resolution = resolution;
-        s.blurRadius = resolution == AoResolution::Full ? 0 : 2;
         s.bentNormals = true;
         s.rayLanes = lanes;
         if (method == AoMethod::Voxel) s.voxels = grid;

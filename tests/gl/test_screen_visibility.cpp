@@ -2,6 +2,7 @@
 // the texture-space march, depth peeling (the G-buffer's second layer and the thickness it
 // gives), and bad input.
 #include "gl_fixture.hpp"
+#include "integrator_settings.hpp"
 #include "screen_mirror.hpp"
 
 #include "obscura/assets.hpp"
@@ -248,17 +249,11 @@ TEST_CASE("AO and GI march alike with view and texture samples and exactly alike
          {ScreenThickness::Constant, ScreenThickness::DepthPeeling, ScreenThickness::PeelingOrConstant}) {
         std::vector<Image> aoImages, giImages;
         for (const ScreenMarch march : {ScreenMarch::View, ScreenMarch::Texture, ScreenMarch::HiZ}) {
-            AmbientOcclusionSettings a;
-            a.radius = radius;
-            a.rays = rays;
-            a.steps = steps;
+            auto a = test::integratorSettings<AmbientOcclusionSettings>(radius, rays, steps);
             a.thicknessMode = mode;
             a.march = march;
             aoImages.push_back(readTexture(f.ctx, ao.run(f.view, a).ao));
-            IndirectLightSettings g;
-            g.radius = radius;
-            g.rays = rays;
-            g.steps = steps;
+            auto g = test::integratorSettings<IndirectLightSettings>(radius, rays, steps);
             g.thicknessMode = mode;
             g.march = march;
             giImages.push_back(readTexture(f.ctx, gi.run(f.view, g).radiance));

@@ -153,10 +153,18 @@ TEST_CASE("Contact shadows recover the shadow next to an occluder's base that a 
     CHECK(with.x + with.y < without.x + without.y);
 }
 
-TEST_CASE("A directional light's cascaded shadows of a plate match the reference away from the edge", "[shadows][reference]") {
+namespace {
+// The directional light the cascade tests cast the plate's shadow with.
+Light slantedSun() {
     Light sun;
     sun.type = LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    return sun;
+}
+} // namespace
+
+TEST_CASE("A directional light's cascaded shadows of a plate match the reference away from the edge", "[shadows][reference]") {
+    Light sun = slantedSun();
     sun.intensity = 3.0f;
     const Scene scene = plateScene(sun);
     constexpr int W = 96, H = 72;
@@ -197,9 +205,7 @@ TEST_CASE("A directional light's cascaded shadows of a plate match the reference
 }
 
 TEST_CASE("Cascades fitted to the depth buffer span the visible distances and match the reference", "[shadows][reference]") {
-    Light sun;
-    sun.type = LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    const Light sun = slantedSun();
     const Scene scene = plateScene(sun);
     constexpr int W = 96, H = 72;
     // Looking down at the plate: the visible floor ends a few metres away, while the scene's
@@ -356,9 +362,7 @@ TEST_CASE("Reflective shadow maps hold the reflected flux, normal and position o
 }
 
 TEST_CASE("Snapped cascades keep fixed receivers' shadows under sub-texel camera motion", "[shadows][stability]") {
-    Light sun;
-    sun.type = LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    const Light sun = slantedSun();
     const Scene scene = plateScene(sun);
     constexpr int W = 96, H = 72;
     ShadowFixture f(Camera::perspective({{0.5f, 2.5f, 5.0f}, {0, 0, -1}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);

@@ -242,33 +242,20 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     check("GBuffer::render (again, cached)", [&] { view = gbuffer->render(s.scene, s.camera, {40, 32, true, {}}); });
     TextureView positions;
     check("GBuffer::positions", [&] { positions = gbuffer->positions(view); });
-    check("GBuffer::adopt (depth only)", [&] {
+    // Adopts the view's depth with the buffers asked for (any RGBA16F texture of the right
+    // size stands in for normals) over `region` (empty: the whole texture).
+    const auto adopt = [&](bool normals, bool colours, HostRect region) {
         HostGBuffer host;
         host.depth = view.depth;
+        if (normals) host.normal = view.directRadiance;
+        if (colours) host.albedo = view.albedo, host.directRadiance = view.directRadiance;
+        host.region = region;
         gbuffer->adopt(host, s.camera);
-    });
-    check("GBuffer::adopt (with normals)", [&] {
-        HostGBuffer host;
-        host.depth = view.depth;
-        host.normal = view.directRadiance; // any RGBA16F texture of the right size
-        gbuffer->adopt(host, s.camera);
-    });
-    check("GBuffer::adopt (with albedo and lit image)", [&] {
-        HostGBuffer host;
-        host.depth = view.depth;
-        host.albedo = view.albedo;
-        host.directRadiance = view.directRadiance;
-        gbuffer->adopt(host, s.camera);
-    });
-    check("GBuffer::adopt (a region of every buffer)", [&] {
-        HostGBuffer host;
-        host.depth = view.depth;
-        host.normal = view.directRadiance;
-        host.albedo = view.albedo;
-        host.directRadiance = view.directRadiance;
-        host.region = {3, 2, 30, 25};
-        gbuffer->adopt(host, s.camera);
-    });
+    };
+    check("GBuffer::adopt (depth only)", [&] { adopt(false, false, {}); });
+    check("GBuffer::adopt (with normals)", [&] { adopt(true, false, {}); });
+    check("GBuffer::adopt (with albedo and lit image)", [&] { adopt(false, true, {}); });
+    check("GBuffer::adopt (a region of every buffer)", [&] { adopt(true, true, {3, 2, 30, 25}); });
     check("readTexture", [&] { readTexture(*ctx, positions); });
     check("Profiler::latest", [&] { ctx->profiler().latest(); });
     check("Profiler::statistics (GPU clock, waiting)", [&] {
@@ -299,19 +286,10 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     auto ao = std::make_unique<AmbientOcclusion>(*ctx);
     AmbientOcclusionView aoView;
     check("AmbientOcclusion::run (half resolution, blur)", [&] {
-        AmbientOcclusionSettings a;
-        a.rays = 4;
-        a.resolution = AoResolution::Half;
-        a.blurRadius = 1;
-        a.bentNormals = true;
-        aoView = ao->run(view, a);
+        aoView = ao->run(view, {.rays = 4, .resolution = AoResolution::Half, .blurRadius = 1, .bentNormals = true});
     });
     check("AmbientOcclusion::prepare", [&] {
-        AmbientOcclusionSettings a;
-        a.method = AoMethod::Horizon;
-        a.resolution = AoResolution::Quarter;
-        a.temporal.enabled = true;
-        ao->prepare(a);
+        ao->prepare({.method = AoMethod::Horizon, .resolution = AoResolution::Quarter, .temporal = {.enabled = true}});
     });
     check("AmbientOcclusion::run (temporal, twice: the history reprojected)", [&] {
         AmbientOcclusionSettings a;
@@ -323,20 +301,12 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         }
     });
     check("AmbientOcclusion::run (voxel)", [&] {
-        AmbientOcclusionSettings a;
-        a.rays = 4;
-        a.method = AoMethod::Voxel;
-        a.voxels = &voxelizer->grid();
-        ao->run(view, a);
+        ao->run(view, {.method = AoMethod::Voxel, .rays = 4, .voxels = &voxelizer->grid()});
     });
     auto gi = std::make_unique<IndirectLight>(*ctx);
     IndirectLightView giView;
     check("IndirectLight::run (half resolution, blur: the albedo bound for the upsampling)", [&] {
-        IndirectLightSettings g;
-        g.rays = 4;
-        g.resolution = AoResolution::Half;
-        g.blurRadius = 1;
-        gi->run(view, g);
+        gi->run(view, {.rays = 4, .resolution = AoResolution::Half, .blurRadius = 1});
     });
     check("IndirectLight::run (temporal) and prepare", [&] {
         IndirectLightSettings g;

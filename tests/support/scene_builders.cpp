@@ -150,6 +150,11 @@ glm::dvec3 worldPoint(const Image& viewPositions, const glm::dmat4& toWorld, int
     return glm::dvec3(toWorld * glm::dvec4(texel3(viewPositions, x, y), 1.0));
 }
 
+Camera cornellCamera(int width, int height) {
+    return Camera::perspective({{278, 273, -700}, {278, 273, 0}, {0, 1, 0}}, glm::radians(40.0f),
+                               float(width) / float(height), 10.0f, 5000.0f);
+}
+
 ViewRay pixelRay(const Camera& camera, int x, int y, int width, int height) {
     const glm::dvec2 ndc = pixelNdc(x, y, width, height);
     const glm::dmat4 p(camera.projection);

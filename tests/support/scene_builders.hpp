@@ -47,6 +47,10 @@ std::shared_ptr<MeshData> icosphereMesh(int subdivisions);
 //! A scene of one mesh with the given transform and a grey material.
 Scene singleMeshScene(std::shared_ptr<const MeshData> mesh, const glm::mat4& model = glm::mat4(1.0f));
 
+//! The camera the host-buffer tests look into the Cornell box with: from (278, 273, -700)
+//! at its back wall, 40 degrees vertical field of view, near 10, far 5000.
+Camera cornellCamera(int width, int height);
+
 //! Ray through the centre of pixel (x, y) of a width x height image (row 0 at the top),
 //! in view space, computed in double from the camera's float projection matrix.
 struct ViewRay {

@@ -93,23 +93,18 @@ public:
     std::vector<TechniqueOutput> outputs(const std::vector<std::string>& names) override {
         std::vector<TechniqueOutput> out;
         for (const std::string& name : names) {
-            TechniqueOutput o;
-            o.name = name;
             if (name == "ao") {
-                o.image = readTexture(ctx_, result_.ao);
-                o.display = o.image;
+                out.push_back(plainOutput(name, readTexture(ctx_, result_.ao), assets::PngEncoding::Linear));
             } else if (name == "bent_normal" && result_.bentNormal) {
-                o.image = rgbOf(readTexture(ctx_, result_.bentNormal));
-                o.display = o.image;
+                TechniqueOutput o = plainOutput(name, rgbOf(readTexture(ctx_, result_.bentNormal)), assets::PngEncoding::Linear);
                 for (float& v : o.display.pixels) v = v * 0.5f + 0.5f;
+                out.push_back(o);
             } else if (const std::string why = missingOutput(name); !why.empty()) {
                 throw Error(ErrorCode::InvalidArgument, "ao output \"" + name + "\" " + why);
             } else {
                 throw Error(ErrorCode::InvalidArgument, "ao has no output \"" + name +
                                                             "\" (outputs: ao, bent_normal with bent_normals=1)");
             }
-            o.encoding = assets::PngEncoding::Linear;
-            out.push_back(o);
         }
         return out;
     }

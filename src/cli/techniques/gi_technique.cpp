@@ -65,11 +65,7 @@ public:
         std::vector<TechniqueOutput> out;
         for (const std::string& name : names) {
             if (name != "indirect") throw Error(ErrorCode::InvalidArgument, "gi has no output \"" + name + "\" (outputs: indirect)");
-            TechniqueOutput o;
-            o.name = name;
-            o.image = rgbOf(readTexture(ctx_, result_.radiance));
-            o.display = o.image;
-            out.push_back(o);
+            out.push_back(plainOutput(name, rgbOf(readTexture(ctx_, result_.radiance)), assets::PngEncoding::Srgb));
         }
         return out;
     }

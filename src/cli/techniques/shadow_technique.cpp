@@ -140,12 +140,7 @@ public:
         std::vector<TechniqueOutput> out;
         for (const std::string& name : names) {
             if (name != "shadow") throw Error(ErrorCode::InvalidArgument, "shadow has no output \"" + name + "\" (outputs: shadow)");
-            TechniqueOutput o;
-            o.name = name;
-            o.image = readTexture(ctx_, result_);
-            o.display = o.image;
-            o.encoding = assets::PngEncoding::Linear;
-            out.push_back(o);
+            out.push_back(plainOutput(name, readTexture(ctx_, result_), assets::PngEncoding::Linear));
         }
         return out;
     }
