@@ -11,6 +11,13 @@ foreach(header IN LISTS headers)
   file(READ "${SOURCE_DIR}/shaders/${header}" text)
   string(REGEX REPLACE "[];[]" "," text "${text}") # CMake lists: no ';', no brackets
   string(REGEX MATCHALL "\nstruct [A-Za-z0-9_]+ {\n[^}]*}" structs "${text}")
+  # A struct written otherwise (not at the line's start, braces elsewhere) would be skipped.
+  string(REGEX MATCHALL "struct [A-Za-z0-9_]+ *{" declared_structs "${text}")
+  list(LENGTH structs read_count)
+  list(LENGTH declared_structs declared_count)
+  if(NOT read_count EQUAL declared_count)
+    message(FATAL_ERROR "${header}: read ${read_count} of ${declared_count} structs")
+  endif()
   if(NOT structs)
     continue()
   endif()

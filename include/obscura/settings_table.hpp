@@ -2,7 +2,7 @@
 // Settings tables: every field of a settings struct described once, next to the struct: its
 // tool key, unit, range and meaning (the default is the struct's initializer). The module's
 // run() validates with the table, tools parse `key=value` and list their keys with it, and
-// the settings tables in docs/ are generated from it (`obscura settings --markdown`). A host
+// the settings tables in docs/ are generated from it (`obscura settings`). A host
 // can build its own panel or config reader on it.
 //
 // Ranges are written as readers read them: "[1, 1024]", "(0, 1]", "[0, inf)" (an infinite
@@ -50,6 +50,8 @@ struct OBSCURA_API SettingDescription {
     SettingDescription(std::string field, SettingType type, std::string unit, std::string range, std::string doc,
                        std::vector<std::pair<std::string, int>> choices = {});
     int channels() const { return type == SettingType::Color ? 3 : 1; }
+    //! The tool key of a field name: snake case, '.' as '_' (blurRadius: blur_radius).
+    static std::string keyOf(const std::string& field);
     //! Throws Error{InvalidArgument} "<owner>::<field> must be in <range> <unit>, got <value>".
     void check(double value, const std::string& owner) const;
     //! The channels' values of `text`; throws Error{Parse} "<key>=<text>: <why not>".
@@ -156,7 +158,8 @@ SettingsTable<S> nested(const std::string& field, N S::*member, const SettingsTa
     for (const Setting<N>& in : inner) {
         Setting<S> row{static_cast<const SettingDescription&>(in), {}, {}};
         row.field = field + "." + in.field;
-        row.key = in.key == "enabled" ? field : field + "_" + in.key;
+        const std::string prefix = SettingDescription::keyOf(field);
+        row.key = in.key == "enabled" ? prefix : prefix + "_" + in.key;
         row.get = [member, get = in.get](const S& s, int c) { return get(s.*member, c); };
         row.set = [member, set = in.set](S& s, int c, double v) { set(s.*member, c, v); };
         rows.push_back(std::move(row));

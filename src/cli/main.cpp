@@ -1,4 +1,4 @@
-// obscura: command-line front end (render | info | voxelize | reference | bench).
+// obscura: command-line front end (render | info | voxelize | reference | bench | settings).
 #include "commands.hpp"
 #include "obscura/error.hpp"
 #include "obscura/version.hpp"
@@ -15,8 +15,8 @@ int main(int argc, char** argv) {
 #ifdef OBSCURA_WITH_REFERENCE
     obscura::cli::addReferenceCommand(app);
     obscura::cli::addBenchCommand(app);
-    obscura::cli::addSettingsCommand(app);
 #endif
+    obscura::cli::addSettingsCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -134,7 +134,8 @@ void addSettingsCommand(CLI::App& app) {
             return;
         }
         if (!update->empty()) {
-            syncDocs(*update, true);
+            // Rewrites what differs; still fails for a table missing from the docs or repeated.
+            if (const int rc = syncDocs(*update, true); rc != 0) throw CLI::RuntimeError(rc);
             return;
         }
         for (const DocumentedTable& t : allTables()) std::printf("### `%s`\n\n%s\n", t.name.c_str(), t.markdown.c_str());

@@ -31,11 +31,17 @@ struct VoxelizeOptions {
 
 VoxelizerSettings settingsFrom(const VoxelizeOptions& o) {
     VoxelizerSettings s;
-    if (o.resolution < 8 || o.resolution > 2048 || (o.resolution & (o.resolution - 1)) != 0)
-        throw Error(ErrorCode::Parse, "--res " + std::to_string(o.resolution) + ": expected a power of two in [8, 2048]");
+    const Setting<VoxelizerSettings>& resolution = *findSetting(VoxelizerSettings::table(), "resolution");
+    try {
+        resolution.check(o.resolution, "VoxelizerSettings");
+    } catch (const Error&) {
+        throw Error(ErrorCode::Parse, "--res " + std::to_string(o.resolution) + ": expected one of " + resolution.range);
+    }
     s.resolution = o.resolution;
-    if (o.slices % kSlicesPerTarget != 0 || o.slices < kSlicesPerTarget || o.slices > 8 * kSlicesPerTarget)
-        throw Error(ErrorCode::Parse, "--slices " + std::to_string(o.slices) + ": expected a multiple of 128 in [128, 1024]");
+    const int maxSlices = int(findSetting(VoxelizerSettings::table(), "targets")->max) * kSlicesPerTarget;
+    if (o.slices % kSlicesPerTarget != 0 || o.slices < kSlicesPerTarget || o.slices > maxSlices)
+        throw Error(ErrorCode::Parse, "--slices " + std::to_string(o.slices) + ": expected a multiple of 128 in [128, " +
+                                          std::to_string(maxSlices) + "]");
     s.targets = o.slices / kSlicesPerTarget;
     if (o.mode == "surface") s.mode = VoxelMode::Surface;
     else if (o.mode == "solid") s.mode = VoxelMode::Solid;
@@ -102,7 +108,9 @@ void addVoxelizeCommand(CLI::App& app) {
     auto options = std::make_shared<VoxelizeOptions>();
     CLI::App* cmd = app.add_subcommand("voxelize", "Voxelize a scene into grid.json + grid.u8 (one byte per voxel)");
     cmd->add_option("--scene", options->scene, "Built-in scene name, JSON scene file, or mesh file")->capture_default_str();
-    cmd->add_option("--res", options->resolution, "Voxels along x and y: a power of two in [8, 2048]")->capture_default_str();
+    cmd->add_option("--res", options->resolution,
+                    "Voxels along x and y: " + findSetting(VoxelizerSettings::table(), "resolution")->range)
+        ->capture_default_str();
     cmd->add_option("--slices", options->slices, "Voxels along z: 128 per render target, [128, 1024]")->capture_default_str();
     cmd->add_option("--mode", options->mode, "surface (OR) or solid (XOR, watertight meshes)")->capture_default_str();
     cmd->add_option("--out", options->out, "Output directory")->required();

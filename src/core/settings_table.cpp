@@ -65,10 +65,12 @@ std::string numberText(double v, bool single = false) {
 
 } // namespace
 
+std::string SettingDescription::keyOf(const std::string& field) { return snakeCase(field); }
+
 SettingDescription::SettingDescription(std::string fieldName, SettingType settingType, std::string settingUnit,
                                        std::string settingRange, std::string settingDoc,
                                        std::vector<std::pair<std::string, int>> settingChoices)
-    : field(std::move(fieldName)), key(snakeCase(field)), type(settingType), unit(std::move(settingUnit)),
+    : field(std::move(fieldName)), key(keyOf(field)), type(settingType), unit(std::move(settingUnit)),
       range(std::move(settingRange)), doc(std::move(settingDoc)), choices(std::move(settingChoices)) {
     if (type == SettingType::Choice || type == SettingType::Flag) return;
     if (range.find('|') != std::string::npos) {
@@ -101,9 +103,10 @@ void SettingDescription::check(double value, const std::string& owner) const {
     } else if (ok && type != SettingType::Flag) {
         ok = (minOpen ? value > min : value >= min) && (maxOpen ? value < max : value <= max);
     }
-    if (!ok)
-        throw Error(ErrorCode::InvalidArgument, owner + "::" + field + " must be " + (allowed.empty() ? "in " : "one of ") +
-                                                    range + (unit.empty() ? "" : " " + unit) + ", got " + numberText(value));
+    if (ok) return;
+    const bool single = type == SettingType::Real || type == SettingType::Color;
+    throw Error(ErrorCode::InvalidArgument, owner + "::" + field + " must be " + (allowed.empty() ? "in " : "one of ") +
+                                                range + (unit.empty() ? "" : " " + unit) + ", got " + numberText(value, single));
 }
 
 std::vector<double> SettingDescription::parse(const std::string& text) const {
@@ -135,8 +138,10 @@ std::vector<double> SettingDescription::parse(const std::string& text) const {
         if (used == 0 || used != parts[i].size()) throw Error(ErrorCode::Parse, where + ": not a number");
         if ((type == SettingType::Integer || type == SettingType::Unsigned) && v != std::floor(v))
             throw Error(ErrorCode::Parse, where + ": must be a whole number");
+        // Checked as the field holds it: a float rounds 1e-50 to 0 and 0.99999999 to 1.
+        const bool single = type == SettingType::Real || type == SettingType::Color;
         try {
-            check(v, "");
+            check(single ? double(float(v)) : v, "");
         } catch (const Error&) {
             throw Error(ErrorCode::Parse, where + ": must be " + (allowed.empty() ? "in " : "one of ") + range +
                                               (unit.empty() ? "" : " " + unit));

@@ -31,7 +31,8 @@ using namespace detail;
 void validateSettings(const ShadowMapSettings& s, int maxTextureSize) {
     obscura::validateSettings(ShadowMapSettings::table(), s, "ShadowMapSettings");
     static_assert(kMaxShadowCascades == 4, "the table's cascades range");
-    requireInRange(s.resolution, 16, std::min(8192, maxTextureSize), "ShadowMapSettings::resolution", "texels");
+    const double largest = findSetting(ShadowMapSettings::table(), "resolution")->max; // the table's bound
+    requireInRange(s.resolution, 16, std::min(largest, double(maxTextureSize)), "ShadowMapSettings::resolution", "texels");
 }
 
 glm::dmat4 worldToClip(const Camera& c) { return glm::dmat4(c.projection) * glm::dmat4(c.view); }

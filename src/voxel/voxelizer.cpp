@@ -36,7 +36,10 @@ int log2i(int v) {
 }
 
 void validateSettings(const VoxelizerSettings& s) {
-    obscura::validateSettings(VoxelizerSettings::table(), s, "VoxelizerSettings");
+    // A fitted box ignores boxMin and boxMax, whatever they hold.
+    VoxelizerSettings checked = s;
+    if (s.fitBox) checked.boxMin = VoxelizerSettings{}.boxMin, checked.boxMax = VoxelizerSettings{}.boxMax;
+    obscura::validateSettings(VoxelizerSettings::table(), checked, "VoxelizerSettings");
     if (!s.fitBox) {
         if (glm::any(glm::lessThanEqual(s.boxMax, s.boxMin)))
             throw Error(ErrorCode::InvalidArgument, "VoxelizerSettings::boxMax must exceed boxMin on every axis, got boxMin (" +

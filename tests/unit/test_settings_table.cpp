@@ -92,6 +92,12 @@ TEST_CASE("settings tables: keys, nested fields, parsing and messages", "[settin
     CHECK_THROWS_WITH(applySetting(ao, s, "radius", "0"), Catch::EndsWith("radius=0: must be in (0, inf) world units"));
     CHECK_THROWS_WITH(applySetting(ao, s, "ray_lanes", "3"), Catch::EndsWith("ray_lanes=3: must be one of 1|2|4|8|16"));
     CHECK_THROWS_WITH(applySetting(ao, s, "march", "fast"), Catch::EndsWith("march=fast: expected one of view|texture|hiz"));
+    // Checked as the float field holds the value: 1e-50 would be 0, 1e39 infinite.
+    CHECK_THROWS_WITH(applySetting(ao, s, "radius", "1e-50"), Catch::EndsWith("must be in (0, inf) world units"));
+    CHECK_THROWS_WITH(applySetting(ao, s, "radius", "1e39"), Catch::EndsWith("must be in (0, inf) world units"));
+    ShadowMaskSettings mask;
+    CHECK_THROWS_AS(applySetting(ShadowMaskSettings::table(), mask, "light_bleed_reduction", "0.99999999"), Error);
+    CHECK(SettingDescription::keyOf("shadowFilter.pcfRadius") == "shadow_filter_pcf_radius");
 
     // The validator's message names the struct, the field, the range and the value.
     s = {};
