@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt,  # noqa: E402
+from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt, ssdo_overhead_section,  # noqa: E402
                            lanes_section, march_section, own_ms, quarter_section, refine_section, resolution_rows,
                            resolution_section, thickness_section, tiles_section)
 
@@ -270,7 +270,7 @@ def shown(path):
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
                  lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=(),
-                 refine_rows=()):
+                 refine_rows=(), ssdo_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -336,6 +336,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += march_section(list(march_rows))
     lines += thickness_section(list(thickness_rows))
     lines += falloff_section(list(falloff_rows))
+    lines += ssdo_overhead_section(list(ssdo_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
@@ -362,6 +363,9 @@ def main():
     parser.add_argument("--refine-study", action="append", default=[],
                         help="bench.json of presets medium, medium_half, high and high_half with --variant "
                              "refine_threshold=0 (refinement table only)")
+    parser.add_argument("--ssdo-overhead-study", action="append", default=[],
+                        help="bench.json of ao.raymarch and ssdo (with --variant bounce=1) at the same rays and steps "
+                             "(SSDO overhead table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
@@ -390,6 +394,7 @@ def main():
     refine_rows = study(args.refine_study, "refinement study")
     lanes_rows = study(args.lanes_study, "lanes study")
     tiles_rows = study(args.tiles_study, "tiles study")
+    ssdo_rows = study(args.ssdo_overhead_study, "SSDO overhead study")
     gpu_rows = study(args.gpu, "GPU")
     gpu_study_rows = study(args.gpu_study, "GPU study")
     provenance = []
@@ -399,7 +404,7 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows)
+                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows, ssdo_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

@@ -17,3 +17,16 @@ for formula in standard physical thesis; do
 done
 oiiotool "$work/standard.png" "$work/physical.png" "$work/thesis.png" --mosaic 3x1 -o "$out/compose_formulas.png"
 echo "wrote $out/compose_formulas.png"
+
+# docs/ssdo.md: the Cornell box lit by blender-data's courtyard.exr through its open front:
+# SSDO's direct light, its bounce (times 2 to show), and their sum.
+worlds=/usr/share/blender/datafiles/studiolights/world
+for output in direct indirect; do
+  "$obscura" render --scene cornell --environment "$worlds/courtyard.exr" --size 240x240 --technique ssdo \
+    --set bounce=1 --set rays=32 --output $output --out "$work/ssdo_$output.exr" > /dev/null 2>&1
+done
+oiiotool "$work/ssdo_indirect.exr" --mulc 2 -o "$work/ssdo_indirect2.exr"
+oiiotool "$work/ssdo_direct.exr" "$work/ssdo_indirect.exr" --add -o "$work/ssdo_sum.exr"
+oiiotool "$work/ssdo_direct.exr" "$work/ssdo_indirect2.exr" "$work/ssdo_sum.exr" --mosaic 3x1 \
+  --colorconvert linear sRGB -d uint8 -o "$out/ssdo_cornell.png"
+echo "wrote $out/ssdo_cornell.png"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates docs/results.md: builds the obscura tool, benchmarks every technique on the
 # Cornell box and four real models (Debian's assimp-testmodels) against the Embree
-# reference, and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
+# reference (SSDO lit by two of blender-data's HDR environments), and the voxelizer (eight copies of 2CylinderEngine, about 1M triangles) and
 # its traversals, the half- and quarter-resolution trade-off at 512x512, half resolution
 # with and without its refinement, the reduced-resolution presets with and without geometry
 # tiles, ray lanes, the screen-space marches (view, texture, Hi-Z), thickness (constant,
@@ -12,6 +12,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
 obscura_build -DOBSCURA_BUILD_CLI=ON -- obscura_cli
 models=/usr/share/assimp/models
+worlds=/usr/share/blender/datafiles/studiolights/world
 out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
@@ -19,6 +20,7 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
   --scene "$models/OBJ/spider.obj" \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --scene "$models/Collada/duck.dae" \
+  --environment "$worlds/forest.exr" --environment "$worlds/courtyard.exr" \
   --size 128x128 --frames 20 --spp 1024 --reference-performance \
   --voxels --voxel-scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out"
@@ -113,6 +115,22 @@ done
   --variant falloff=none --variant falloff=quadratic --variant falloff=smooth \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/falloffs"
 falloffs=(--falloff-study "$out/falloffs/bench.json")
+# SSDO's overhead over AO (the paper's Table 1): ao.raymarch, ssdo and ssdo with its bounce
+# at N = 8 and 16 rays, 8 steps, three sizes; the two ssdo runs timed in turn. Only the times
+# are reported, so the references take 64 samples.
+ssdo=()
+for size in 128x128 256x256 512x512; do
+  for rays in 8 16; do
+    dir="$out/ssdo_overhead/$size-$rays"
+    "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene cornell --environment "$worlds/forest.exr" \
+      --techniques ao.raymarch --presets medium --size "$size" --frames 20 --spp 64 --set "rays=$rays" --set steps=8 \
+      --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir/ao"
+    "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene cornell --environment "$worlds/forest.exr" \
+      --techniques ssdo --presets medium --size "$size" --frames 20 --spp 64 --set "rays=$rays" --set steps=8 \
+      --variant bounce=1 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$dir/ssdo"
+    ssdo+=(--ssdo-overhead-study "$dir/ao/bench.json" --ssdo-overhead-study "$dir/ssdo/bench.json")
+  done
+done
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
 # the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()
@@ -126,4 +144,4 @@ done
 /usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
   --resolution-study "$out/resolution/bench.json" \
   --resolution-study "$out/resolution/shadows/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
-  "${thickness[@]}" "${falloffs[@]}" --refine-study "$out/refine/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  "${thickness[@]}" "${falloffs[@]}" "${ssdo[@]}" --refine-study "$out/refine/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

@@ -5,6 +5,8 @@
 #include "obscura/camera.hpp"
 #include "obscura/compose.hpp"
 #include "obscura/context.hpp"
+#include "obscura/directional_occlusion.hpp"
+#include "obscura/environment.hpp"
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"

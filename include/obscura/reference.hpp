@@ -138,6 +138,9 @@ struct IndirectLight {
     //! direct radiance that a G-buffer without shadow maps provides, so that a gatherer's
     //! own error can be told from the error of its input.
     bool directVisibility = true;
+    //! Whether L at the hits includes the environment's light, (albedo / pi) Integral L_env V
+    //! cos (Scene::environment, with visibility): the bounce of image-based light.
+    bool environment = false;
 };
 
 //! Shadow of Scene::lights[light], 2 channels. Channel 0 in [0, 1], 1 = lit: for point,
@@ -168,6 +171,9 @@ struct SingleScattering {
 struct ImageBasedLight {
     bool irradianceOnly = false;
     bool visibility = true;
+    //! Occluders farther than this do not block (world units, (0, inf]): the quantity a
+    //! method that looks for occluders within a radius estimates.
+    double radius = kInfinity;
 };
 
 using Quantity = std::variant<AmbientOcclusion, Obscurance, BentNormal, DirectLight, IndirectLight, Shadow,

@@ -51,7 +51,7 @@ layout(std140, binding = GI_PARAMS_UBO_BINDING) uniform GiBlock {
 };
 layout(binding = GI_RADIANCE_UNIT) uniform sampler2D directRadiance;
 layout(binding = GI_ALBEDO_UNIT) uniform sampler2D albedoTexture;
-layout(binding = GI_OUT_IMAGE, rgba16f) writeonly uniform image2D giOut;
+layout(binding = GI_OUT_IMAGE, rgba16f) writeonly uniform image2D integratorOut;
 layout(binding = GI_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
 
 // The radiance leaving the surface at the hit p + w t (w a unit direction, t a distance)
@@ -128,43 +128,13 @@ vec3 giRadianceSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pi
     return sum;
 }
 
-// No return before rayLanesSum, which every invocation of the group must reach.
-void main() {
-    ivec2 pixel, full;
-    const bool mine = integratorPixel(gi.size, gi.scale, pixel, full);
-#ifdef REFINE
-    const bool guide = false; // the listed pixels are written at full resolution, unfiltered
-#else
-    const bool guide = gi.writeGuide != 0;
-#endif
-    const float depth = texelFetch(visDepth, full, 0).r;
-    const vec4 normalTexel = texelFetch(visNormal, full, 0);
-    const bool background = isBackground(depth) || normalTexel.a == 0.0;
-    vec3 p = vec3(0.0), normal = vec3(0.0, 0.0, 1.0), own = vec3(0.0);
-    if (mine && !background) {
-        p = viewPositionFromDepth(pixelCenterUv(full), depth);
-        normal = safeNormalize(normalTexel.xyz, viewDirectionTo(p));
-        own = giRadianceSum(p, depth, normal, storedNormalError(normalTexel), pixel);
-    }
-    const RayBatchPartial lanes = rayLanesSum(RayBatchPartial(vec4(own, 0.0), vec4(0.0)));
-    if (!mine || rayLane() != 0u) return;
-    if (background) {
-        imageStore(giOut, pixel, vec4(0.0));
-        if (guide) imageStore(guideOut, pixel, vec4(0.0));
-        return;
-    }
-    const uint slot = rayBatchSlot(pixel, gi.size);
-    const RayBatchPartial sums = rayBatchMerged(slot, lanes);
-    if (!rayBatchLast()) {
-        rayBatchKeep(slot, sums);
-        return;
-    }
-    // A filtered result is the incident term alone: the filters weigh by depth and normal only,
-    // so an albedo multiplied in here would be blurred across texture edges and, at a reduced
-    // resolution, taken from the block's top-left pixel for the whole block. They multiply
-    // each G-buffer pixel's own albedo in after the last step (FilterImages::modulate).
-    const vec3 albedo = guide ? vec3(1.0) : clampAlbedo(texelFetch(albedoTexture, full, 0).rgb);
-    const vec3 meanRadiance = sums.a.rgb / float(gi.rayCount); // E / pi: the directions are cosine-weighted
-    imageStore(giOut, pixel, roundedToHalf(vec4(clampRadiance(albedo * meanRadiance), 1.0)));
-    if (guide) imageStore(guideOut, pixel, vec4(normal, p.z));
+ivec2 integratorSize() { return gi.size; }
+int integratorScale() { return gi.scale; }
+bool integratorWritesGuide() { return gi.writeGuide != 0; }
+vec3 integratorSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pixel) {
+    return giRadianceSum(p, depth, normal, normalError, pixel);
 }
+// E / pi: the directions are cosine-weighted.
+vec3 integratorIncident(vec3 sum) { return sum / float(gi.rayCount); }
+
+#include "../filters/rgb_integrator_main.glsl"

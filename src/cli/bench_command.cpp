@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -29,6 +30,8 @@ namespace {
 
 struct BenchOptions {
     std::vector<std::string> scenes{"cornell"};
+    //! Each lights every scene once more, for the techniques that need an environment.
+    std::vector<std::string> environments;
     std::string techniques = "*";
     std::string presets; //!< comma-separated; empty = every preset of each technique
     std::string size = "128x128";
@@ -207,22 +210,40 @@ public:
         cache_ = o.cache.empty() ? std::filesystem::path(o.out) / "reference-cache" : std::filesystem::path(o.cache);
     }
 
+    // The scene as it is for every technique that runs without an environment, then once per
+    // --environment for those that need one (the others' references keep their cache keys).
     void runScene(const std::string& sceneName, Context& ctx) {
+        runScene(sceneName, "", ctx);
+        for (const std::string& environment : o_.environments) runScene(sceneName, environment, ctx);
+    }
+
+    void runScene(const std::string& sceneName, const std::string& environment, Context& ctx) {
         SceneOptions so;
         so.scene = sceneName;
         so.size = o_.size;
-        const ResolvedScene r = resolveScene(so);
+        so.environment = environment;
+        ResolvedScene r = resolveScene(so);
+        if (!environment.empty()) r.scene.name += "+" + std::filesystem::path(parseEnvironment(environment).path).stem().string();
+        Scene withoutEnvironment = r.scene.scene;
+        withoutEnvironment.environment.reset();
+        std::vector<std::pair<std::string, const TechniqueInfo*>> chosen;
+        for (const auto& [name, info] : techniques()) {
+            if (fnmatch(o_.techniques.c_str(), name.c_str(), 0) != 0) continue;
+            const auto run = info.create(ctx);
+            // With an environment given, only the techniques that need one run again.
+            if (!environment.empty() && run->unsupported(withoutEnvironment).empty()) continue;
+            if (const std::string why = run->unsupported(r.scene.scene); !why.empty()) {
+                if (o_.environments.empty()) std::printf("  %-10s skipped: %s\n", name.c_str(), why.c_str());
+                continue;
+            }
+            chosen.push_back({name, &info});
+        }
+        if (chosen.empty() && !environment.empty()) return;
         const reference::RayScene rays(r.scene.scene);
         const reference::ShadingPoints cameraPoints = reference::fromCamera(rays, r.camera, r.width, r.height);
         std::printf("scene %s: %zu triangles, %dx%d\n", r.scene.name.c_str(), rays.triangleCount(), r.width, r.height);
-        for (const auto& [name, info] : techniques()) {
-            if (fnmatch(o_.techniques.c_str(), name.c_str(), 0) != 0) continue;
-            if (const std::string why = info.create(ctx)->unsupported(r.scene.scene); !why.empty()) {
-                std::printf("  %-10s skipped: %s\n", name.c_str(), why.c_str());
-                continue;
-            }
-            for (const std::vector<PresetRun>& group : presetGroups(info)) runTechnique(ctx, r, rays, cameraPoints, info, group);
-        }
+        for (const auto& [name, info] : chosen)
+            for (const std::vector<PresetRun>& group : presetGroups(*info)) runTechnique(ctx, r, rays, cameraPoints, *info, group);
     }
 
     void referencePerformance(const std::string& sceneName) {
@@ -561,6 +582,9 @@ void addBenchCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("bench", "Time every technique and measure its error against the reference");
     cmd->add_option("--scene", o->scenes, "Scene(s): built-in name, JSON scene or mesh file (repeatable)")
         ->capture_default_str();
+    cmd->add_option("--environment", o->environments,
+                    "FILE[,intensity[,rotation_deg]] (repeatable): each scene again, lit by it, for the techniques that need "
+                    "an environment");
     cmd->add_option("--techniques", o->techniques, "Glob of technique names")->capture_default_str();
     cmd->add_option("--presets", o->presets, "Comma-separated presets (default: all of each technique); X and X_half, when both run, take their timed frames in turn");
     cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();

@@ -2,7 +2,11 @@
 
 #include "obscura/error.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
 
 namespace obscura::cli {
 namespace {
@@ -22,12 +26,40 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
                    "without near,far the planes are fitted to the scene's bounds seen from the eye)");
     cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
     cmd.add_option("--depth", o.depth, "Depth convention: standard, zero_to_one, reversed")->capture_default_str();
+    cmd.add_option("--environment", o.environment,
+                   "FILE[,intensity[,rotation_deg]]: an equirectangular EXR/HDR lighting the scene (replaces its own)");
+}
+
+Environment parseEnvironment(const std::string& text) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t comma; (comma = text.find(',', start)) != std::string::npos; start = comma + 1)
+        parts.push_back(text.substr(start, comma - start));
+    parts.push_back(text.substr(start));
+    if (parts.empty() || parts[0].empty() || parts.size() > 3)
+        throw Error(ErrorCode::Parse, "--environment " + text + ": expected FILE[,intensity[,rotation_deg]]");
+    const auto number = [&](const std::string& s, const char* what) {
+        try {
+            std::size_t used = 0;
+            const double v = std::stod(s, &used);
+            if (used == s.size() && std::isfinite(v)) return v;
+        } catch (const std::exception&) {
+        }
+        throw Error(ErrorCode::Parse, "--environment " + text + ": " + what + " \"" + s + "\" is not a finite number");
+    };
+    Environment e;
+    e.path = parts[0];
+    if (parts.size() > 1) e.intensity = static_cast<float>(number(parts[1], "intensity"));
+    if (parts.size() > 2) e.rotation = static_cast<float>(number(parts[2], "rotation_deg") * 3.14159265358979323846 / 180.0);
+    if (e.intensity < 0.0f) throw Error(ErrorCode::Parse, "--environment " + text + ": intensity must be >= 0");
+    return e;
 }
 
 ResolvedScene resolveScene(const SceneOptions& o) {
     ResolvedScene r;
     std::tie(r.width, r.height) = assets::parseImageSize(o.size);
     r.scene = assets::loadScene(o.scene);
+    if (!o.environment.empty()) r.scene.scene.environment = parseEnvironment(o.environment);
     const Bounds bounds = sceneBounds(r.scene.scene);
     const assets::CameraSpec spec =
         o.camera.empty() ? r.scene.camera : assets::parseCameraSpec(o.camera, r.scene.camera, bounds);

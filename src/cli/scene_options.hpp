@@ -13,6 +13,7 @@ struct SceneOptions {
     std::string camera;            //!< ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy_deg[,near,far]; empty = the scene's own
     std::string size = "256x256";
     std::string depth = "standard"; //!< standard | zero_to_one | reversed
+    std::string environment;        //!< FILE[,intensity[,rotation_deg]]; empty = the scene's own
 };
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& options);
@@ -22,6 +23,9 @@ struct ResolvedScene {
     Camera camera;
     int width = 0, height = 0;
 };
+
+//! Parses --environment's "FILE[,intensity[,rotation_deg]]"; throws Error{Parse}.
+Environment parseEnvironment(const std::string& text);
 
 //! Loads the scene and builds the camera; throws obscura::Error naming the bad option.
 ResolvedScene resolveScene(const SceneOptions& options);

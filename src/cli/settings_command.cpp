@@ -4,6 +4,8 @@
 
 #include "obscura/ambient_occlusion.hpp"
 #include "obscura/compose.hpp"
+#include "obscura/directional_occlusion.hpp"
+#include "obscura/environment.hpp"
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
@@ -49,6 +51,8 @@ DocumentedTable documented(const std::string& name) {
 std::vector<DocumentedTable> allTables() {
     return {documented<AmbientOcclusionSettings>("AmbientOcclusionSettings"),
             documented<IndirectLightSettings>("IndirectLightSettings"),
+            documented<DirectionalOcclusionSettings>("DirectionalOcclusionSettings"),
+            documented<EnvironmentSettings>("EnvironmentSettings"),
             documented<ComposeSettings>("ComposeSettings"),
             documented<GBufferSettings>("GBufferSettings"),
             documented<ScreenTraceSettings>("ScreenTraceSettings"),

@@ -6,6 +6,7 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
+#include "visibility/screen_inputs.hpp"
 #include "obscura/context.hpp"
 #include "shaders/compose/compose_bindings.h"
 
@@ -109,10 +110,6 @@ struct Composer::Impl {
     SizedTexture radiance, display;
     int width = 0, height = 0;
 
-    void bindRead(int unit, GLuint texture) {
-        ctx.state.bindTexture(ctx, unit, texture);
-        ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
-    }
 };
 
 bool combineReadsAo(const ComposeSettings& s, bool withIndirect) {
@@ -180,12 +177,12 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     {
         PassScope pass(ctx, "compose.combine");
         ctx.gl.UseProgram(ctx.shaders->program(programStages()[0]));
-        d.bindRead(COMPOSE_DIRECT_UNIT, g.directRadiance.name);
-        d.bindRead(COMPOSE_ALBEDO_UNIT, g.albedo.name);
-        d.bindRead(COMPOSE_DEPTH_UNIT, g.depth.name);
+        bindNearest(ctx, COMPOSE_DIRECT_UNIT, g.directRadiance.name);
+        bindNearest(ctx, COMPOSE_ALBEDO_UNIT, g.albedo.name);
+        bindNearest(ctx, COMPOSE_DEPTH_UNIT, g.depth.name);
         // Unused inputs read the radiance itself: a valid texture, never sampled.
-        d.bindRead(COMPOSE_AO_UNIT, hasAo ? in.ao.name : g.directRadiance.name);
-        d.bindRead(COMPOSE_INDIRECT_UNIT, hasIndirect ? in.indirect.name : g.directRadiance.name);
+        bindNearest(ctx, COMPOSE_AO_UNIT, hasAo ? in.ao.name : g.directRadiance.name);
+        bindNearest(ctx, COMPOSE_INDIRECT_UNIT, hasIndirect ? in.indirect.name : g.directRadiance.name);
         ctx.state.bindImage(ctx, COMPOSE_RADIANCE_IMAGE, radiance, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatchCompute2D(ctx, w, h, COMPOSE_WORKGROUP);
         ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -193,7 +190,7 @@ TextureView Composer::compose(const ComposeInputs& in, const ComposeSettings& s)
     {
         PassScope pass(ctx, "compose.tonemap");
         ctx.gl.UseProgram(ctx.shaders->program(programStages()[1]));
-        d.bindRead(COMPOSE_RADIANCE_UNIT, radiance);
+        bindNearest(ctx, COMPOSE_RADIANCE_UNIT, radiance);
         ctx.state.bindImage(ctx, COMPOSE_DISPLAY_IMAGE, display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
         dispatchCompute2D(ctx, w, h, COMPOSE_WORKGROUP);
     }

@@ -87,6 +87,16 @@ Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int 
     return tex;
 }
 
+Texture createTextureCube(ContextImpl& ctx, GLenum internalFormat, int size, int levels, std::string_view name) {
+    drainGlErrors(ctx);
+    GLuint t = 0;
+    ctx.gl.CreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t);
+    Texture tex = track<ObjectKind::Texture>(ctx, t, name);
+    ctx.gl.TextureStorage2D(t, levels, internalFormat, size, size);
+    checkAllocation(ctx, std::string(name) + " (6x" + std::to_string(size) + "x" + std::to_string(size) + ")");
+    return tex;
+}
+
 Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
                              std::string_view name) {
     drainGlErrors(ctx);

@@ -73,10 +73,6 @@ struct IndirectLight::Impl {
     ScreenIntegrator screen;
     Buffer params;
 
-    void bindRead(int unit, GLuint texture) {
-        ctx.state.bindTexture(ctx, unit, texture);
-        ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
-    }
 
     void uploadParams(const GBufferView& g, const IndirectLightSettings& s, glm::ivec2 size, int scale) {
         shader::GiParams p{};
@@ -130,8 +126,8 @@ IndirectLightView IndirectLight::run(const GBufferView& g, const IndirectLightSe
     StateScope scope(ctx);
     d.uploadParams(g, s, ScreenIntegrator::reducedSize(view, shape.scale), shape.scale);
     d.screen.begin(ctx, view, peeled, s.frameIndex, shape);
-    d.bindRead(GI_RADIANCE_UNIT, g.directRadiance.name);
-    d.bindRead(GI_ALBEDO_UNIT, g.albedo.name);
+    bindNearest(ctx, GI_RADIANCE_UNIT, g.directRadiance.name);
+    bindNearest(ctx, GI_ALBEDO_UNIT, g.albedo.name);
     const IntegratorResult result = d.screen.run(
         ctx, view, shape, {GI_OUT_IMAGE, GI_OUT_IMAGE, GI_GUIDE_OUT_IMAGE},
         [&](const char* variant) { return integratorProgram(ctx, s, variant); },

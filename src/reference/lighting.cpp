@@ -145,8 +145,30 @@ Estimator direct(const RayScene::Impl& scene, const DirectLight& q) {
     };
 }
 
+// One sample of each strategy (the cosine and the environment's luminance) of the irradiance
+// E = Integral L_env(w) V(w) (n.w) dw at a point leaving `origin` with normal n, combined by
+// the balance heuristic: f / (p_cosine + p_env) each. V: no occluder within `radius`.
+glm::dvec3 environmentIrradianceSample(const RayScene::Impl& scene, const glm::vec3& origin, const glm::dvec3& n,
+                                       bool visibility, double radius, const glm::dvec2& uCosine,
+                                       const glm::dvec2& uEnvironment, std::uint64_t& rays) {
+    const auto& env = *scene.environment;
+    const auto contribution = [&](const glm::dvec3& w) {
+        const double c = glm::dot(n, w);
+        if (c <= 0.0) return glm::dvec3(0.0);
+        if (visibility) {
+            ++rays;
+            if (scene.occluded(origin, w, radius)) return glm::dvec3(0.0);
+        }
+        return env.radiance(w) * c / (c / kPi + env.pdf(w));
+    };
+    double pdf = 0.0;
+    return contribution(toWorld(cosineHemisphere(uCosine), n)) + contribution(env.sample(uEnvironment, pdf));
+}
+
 Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
     if (!(q.radius > 0.0)) throw Error(ErrorCode::InvalidArgument, "IndirectLight::radius must be > 0 world units");
+    if (q.environment && !scene.environment)
+        throw Error(ErrorCode::InvalidArgument, "IndirectLight::environment needs Scene::environment");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const LightSampler lights(scene, q.directVisibility);
         const glm::vec3 origin = surfaceOrigin(scene, p);
@@ -165,6 +187,13 @@ Estimator indirect(const RayScene::Impl& scene, const IndirectLight& q) {
             const double offset = std::ldexp(hit->distance + glm::length(glm::dvec3(origin)), -20);
             sum += directRadiance(lights, scene.scene, y, ng, scene.shadingNormal(*hit, ng), scene.albedo(*hit),
                                   scene.emission(*hit, -w), s.uniform2(), offset, rays);
+            if (q.environment) {
+                // The hit's own image-based light, one sample of each strategy, from a point
+                // moved off the surface by the hit's error bound.
+                const glm::vec3 from = offsetOrigin(y, ng, std::max(offset, scene.floatError));
+                sum += scene.albedo(*hit) / kPi *
+                       environmentIrradianceSample(scene, from, ng, true, kInfinity, s.uniform2(), s.uniform2(), rays);
+            }
         }
         return glm::dvec4(p.albedo * sum / double(n), 0.0);
     };
@@ -194,25 +223,14 @@ Estimator shadow(const RayScene::Impl& scene, const Shadow& q) {
 Estimator imageBased(const RayScene::Impl& scene, const ImageBasedLight& q) {
     if (!scene.environment)
         throw Error(ErrorCode::InvalidArgument, "ImageBasedLight needs Scene::environment (an equirectangular HDR file)");
+    if (!(q.radius > 0.0)) throw Error(ErrorCode::InvalidArgument, "ImageBasedLight::radius must be > 0 world units");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
-        const auto& env = *scene.environment;
         const glm::vec3 origin = surfaceOrigin(scene, p);
-        const auto contribution = [&](const glm::dvec3& w) {
-            const double c = glm::dot(p.normal, w);
-            if (c <= 0.0) return glm::dvec3(0.0);
-            if (q.visibility) {
-                ++rays;
-                if (scene.occluded(origin, w, kInfinity)) return glm::dvec3(0.0);
-            }
-            // Balance heuristic with one sample of each strategy: f / (p_cosine + p_env).
-            return env.radiance(w) * c / (c / kPi + env.pdf(w));
-        };
         glm::dvec3 e(0.0);
-        for (int i = 0; i < n; ++i) {
-            e += contribution(toWorld(cosineHemisphere(s.point(static_cast<std::uint32_t>(i))), p.normal));
-            double pdf = 0.0;
-            e += contribution(env.sample(s.lightPoint(static_cast<std::uint32_t>(i)), pdf));
-        }
+        for (int i = 0; i < n; ++i)
+            e += environmentIrradianceSample(scene, origin, p.normal, q.visibility, q.radius,
+                                             s.point(static_cast<std::uint32_t>(i)),
+                                             s.lightPoint(static_cast<std::uint32_t>(i)), rays);
         e /= double(n);
         return glm::dvec4(q.irradianceOnly ? e : p.albedo / kPi * e, 0.0);
     };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <cstdio>
 #include <mutex>
@@ -127,11 +128,13 @@ std::string describe(const Quantity& q) {
                        s << "indirect radius=" << v.radius;
                        // Only when off: cache keys of the default stay as they were.
                        if (!v.directVisibility) s << " direct_visibility=0";
+                       if (v.environment) s << " environment=1";
                    },
                    [&](const Shadow& v) { s << "shadow light=" << v.light; },
                    [&](const SingleScattering& v) { s << "media medium=" << v.medium << " shadows=" << v.shadows; },
                    [&](const ImageBasedLight& v) {
                        s << "ibl irradiance=" << v.irradianceOnly << " visibility=" << v.visibility;
+                       if (std::isfinite(v.radius)) s << " radius=" << v.radius; // only when limited: keys stay
                    },
                },
                q);

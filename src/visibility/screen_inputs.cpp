@@ -7,14 +7,10 @@
 #include "shaders/visibility/visibility_bindings.h"
 
 namespace obscura::detail {
-namespace {
-
 void bindNearest(ContextImpl& ctx, int unit, GLuint texture) {
     ctx.state.bindTexture(ctx, unit, texture);
     ctx.state.bindSampler(ctx, unit, ctx.nearestClampSampler());
 }
-
-} // namespace
 
 void requireViewInput(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what,
                       SampledAs kind) {

@@ -446,7 +446,7 @@ TEST_CASE("The full resolution blur of AO bent normals and indirect light comput
     test::overrideShaders(f.ctx, {{"ao/ao.comp.glsl", "const Estimate e = Estimate(sums.a.x, sums.a.yzw, sums.b.x);",
                                    "const Estimate e = Estimate(1.0 - filterTestValue(pixel, 0u), filterTestDirection(pixel), 1.0);",
                                    kHashGlsl},
-                                  {"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * meanRadiance), 1.0)",
+                                  {"filters/rgb_integrator_main.glsl", "vec4(clampRadiance(albedo * integratorIncident(sums.a.rgb)), 1.0)",
                                    "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)",
                                    kHashGlsl},
                                   kNoModulation});
@@ -565,7 +565,7 @@ TEST_CASE("The half and quarter resolution blur and upsampling of indirect light
     FilterFixture f;
     // The albedo the upsampling multiplies in is left out here (kNoModulation): the test of
     // that step is "Filtered indirect light takes each pixel's own albedo" in test_indirect_light_gather.cpp.
-    test::overrideShaders(f.ctx, {{"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * meanRadiance), 1.0)",
+    test::overrideShaders(f.ctx, {{"filters/rgb_integrator_main.glsl", "vec4(clampRadiance(albedo * integratorIncident(sums.a.rgb)), 1.0)",
                                    "vec4(filterTestValue(pixel, 0u), filterTestValue(pixel, 1u), filterTestValue(pixel, 2u), 1.0)",
                                    kHashGlsl},
                                   kNoModulation});
@@ -615,7 +615,7 @@ TEST_CASE("The blur and upsampling keep a constant image exactly constant as GLS
             std::vector<test::ShaderEdit> edits = rounding ? std::vector<test::ShaderEdit>{} : noRounding;
             edits.push_back(kNoModulation); // a constant times the albedo is not constant
             if (indirect)
-                edits.push_back({"gi/gi.comp.glsl", "vec4(clampRadiance(albedo * meanRadiance), 1.0)",
+                edits.push_back({"filters/rgb_integrator_main.glsl", "vec4(clampRadiance(albedo * integratorIncident(sums.a.rgb)), 1.0)",
                                  "vec4(" + constant(kRed) + ", " + constant(kGreen) + ", " + constant(kBlue) + ", 1.0)", ""});
             else
                 edits.push_back({"ao/ao.comp.glsl", "const Estimate e = Estimate(sums.a.x, sums.a.yzw, sums.b.x);",

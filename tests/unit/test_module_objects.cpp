@@ -21,6 +21,8 @@ TEST_CASE("module objects are neither copyable nor movable", "[unit]") {
     STATIC_REQUIRE(pinned<GBuffer>);
     STATIC_REQUIRE(pinned<AmbientOcclusion>);
     STATIC_REQUIRE(pinned<IndirectLight>);
+    STATIC_REQUIRE(pinned<DirectionalOcclusion>);
+    STATIC_REQUIRE(pinned<EnvironmentMap>);
     STATIC_REQUIRE(pinned<Composer>);
     STATIC_REQUIRE(pinned<ScreenVisibility>);
     STATIC_REQUIRE(pinned<ShadowMaps>);

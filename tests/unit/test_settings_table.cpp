@@ -3,6 +3,8 @@
 // own, so a range edited in a header is tested as edited.
 #include "obscura/ambient_occlusion.hpp"
 #include "obscura/compose.hpp"
+#include "obscura/directional_occlusion.hpp"
+#include "obscura/environment.hpp"
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
@@ -64,6 +66,8 @@ void checkTable(const std::string& name, const S& defaults = S{}) {
 TEST_CASE("every module's settings table: unique keys, defaults inside, bounds as written", "[settings]") {
     checkTable<AmbientOcclusionSettings>("AmbientOcclusionSettings");
     checkTable<IndirectLightSettings>("IndirectLightSettings");
+    checkTable<DirectionalOcclusionSettings>("DirectionalOcclusionSettings");
+    checkTable<EnvironmentSettings>("EnvironmentSettings");
     checkTable<ComposeSettings>("ComposeSettings");
     GBufferSettings gbuffer; // the size has no default: the caller's image
     gbuffer.width = gbuffer.height = 64;

@@ -1,0 +1,117 @@
+// Screen-space directional occlusion (Ritschel et al. 2009) at the integrator's resolution:
+// one invocation per pixel, at the top-left G-buffer pixel of its block; when the result is
+// filtered, also writes the guide for the filters. REFINE: the pixels the upsampling listed,
+// at full resolution; TILES: one group per tile with geometry (as AO's integrator).
+// Both passes take the same `rays` cosine-weighted directions and march each with `steps`
+// depth-buffer samples out to the radius (steps = 1: the paper's one point at a random
+// distance), so that a direction the direct pass finds open, the bounce finds open too.
+//   PASS = SSDO_PASS_DIRECT: the mean of the environment's radiance over the open directions,
+//     E / pi of the visible sky (the albedo multiplies it, here or after the filters).
+//   PASS = SSDO_PASS_BOUNCE: the light of the occluders: each hidden sample stands for a patch
+//     of area A_s = pi r^2 / N of the surface its pixel shows, which sends that pixel's
+//     outgoing radiance toward p: (1/pi) Sum L_q min(A_s cos_s / d^2, omega_max) cos_r.
+//! Every permutation the module compiles (validated by glslangValidator at build time):
+//! variant: PASS=0 SCREEN_MARCH=0
+//! variant: PASS=0 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: PASS=0 SCREEN_MARCH=0 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=0 SCREEN_MARCH=1
+//! variant: PASS=0 SCREEN_MARCH=1 SCREEN_PEELED
+//! variant: PASS=0 SCREEN_MARCH=1 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=0 SCREEN_MARCH=2
+//! variant: PASS=0 SCREEN_MARCH=2 SCREEN_PEELED
+//! variant: PASS=0 SCREEN_MARCH=2 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=0 SCREEN_MARCH=0 TILES
+//! variant: PASS=0 SCREEN_MARCH=0 REFINE
+//! variant: PASS=0 SCREEN_MARCH=0 RAY_LANES=16
+//! variant: PASS=0 SCREEN_MARCH=0 RAY_LANES=4 TILES
+//! variant: PASS=1 SCREEN_MARCH=0
+//! variant: PASS=1 SCREEN_MARCH=0 SCREEN_PEELED
+//! variant: PASS=1 SCREEN_MARCH=0 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=1 SCREEN_MARCH=1
+//! variant: PASS=1 SCREEN_MARCH=1 SCREEN_PEELED
+//! variant: PASS=1 SCREEN_MARCH=1 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=1 SCREEN_MARCH=2
+//! variant: PASS=1 SCREEN_MARCH=2 SCREEN_PEELED
+//! variant: PASS=1 SCREEN_MARCH=2 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=1 SCREEN_MARCH=0 TILES
+//! variant: PASS=1 SCREEN_MARCH=0 REFINE
+//! variant: PASS=1 SCREEN_MARCH=0 RAY_LANES=16
+//! variant: PASS=1 SCREEN_MARCH=0 RAY_LANES=4 TILES
+#include "../common/sampling.glsl"
+#include "../visibility/screen_march.glsl"
+#include "../environment/environment.glsl"
+#include "ssdo_bindings.h"
+#include "../filters/refine_list.glsl"
+#include "../common/ray_batch.glsl"
+#if SSDO_WORKGROUP != FILTER_WORKGROUP
+#error "the refinement dispatch and the ray lanes count FILTER_WORKGROUP^2 pixels a group"
+#endif
+
+layout(local_size_x = SSDO_WORKGROUP, local_size_y = SSDO_WORKGROUP, local_size_z = RAY_LANES) in;
+layout(std140, binding = SSDO_PARAMS_UBO_BINDING) uniform SsdoBlock {
+    SsdoParams ssdo;
+};
+layout(binding = SSDO_SENDER_UNIT) uniform sampler2D senderRadiance;
+layout(binding = SSDO_ALBEDO_UNIT) uniform sampler2D albedoTexture;
+layout(binding = SSDO_LIGHT_UNIT) uniform sampler2D lightRadiance;
+layout(binding = SSDO_OUT_IMAGE, rgba16f) writeonly uniform image2D integratorOut;
+layout(binding = SSDO_GUIDE_OUT_IMAGE, rgba32f) writeonly uniform image2D guideOut;
+
+// What one occluding sample at distance t along w sends to p (the bounce): the patch of the
+// surface its pixel q shows, at that surface's point o and normal, if o faces p and lies in
+// p's hemisphere. The patch's solid angle A_s cos_s / d^2 is capped at what a disc of area
+// A_s subtends on its axis from its own radius (SsdoParams::patchSolidAngle): as the scene
+// and the radius scale together, so do A_s and d^2, and the cap is the same number.
+vec3 ssdoSender(vec3 p, vec3 normal, vec3 w, float t) {
+    ivec2 q;
+    if (!screenPixelOf(p + w * t, q)) return vec3(0.0);
+    const float depth = texelFetch(visDepth, q, 0).r;
+    if (isBackground(depth)) return vec3(0.0);
+    const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth);
+    const vec3 sn = texelFetch(visNormal, q, 0).xyz;
+    const vec3 v = o - p;
+    const float d2 = dot(v, v);
+    if (!(d2 > 0.0)) return vec3(0.0);
+    const float d = sqrt(d2);
+    const float cosR = dot(normal, v) / d, cosS = -dot(sn, v) / max(length(sn), 1e-30) / d;
+    if (!(cosR > 0.0 && cosS > 0.0)) return vec3(0.0); // behind p, or seen from behind (back face)
+    const float solidAngle = min(ssdo.patchArea * cosS / d2, ssdo.patchSolidAngle);
+    vec3 radiance = texelFetch(senderRadiance, q, 0).rgb;
+    if (ssdo.addLight != 0) radiance += texelFetch(lightRadiance, q, 0).rgb;
+    return clampRadiance(radiance) * (solidAngle * cosR);
+}
+
+// This batch's sum (ray_batch.glsl): open directions' environment radiance, or the senders'.
+vec3 ssdoSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
+    const vec2 rotation = pixelRotation(pixel, frame.sampleShift);
+    const float jitter = pixelJitter(pixel, frame.sampleShift);
+    const uint n = uint(ssdo.rayCount);
+    const mat3 toWorld = mat3(ssdo.viewToWorld);
+    vec3 sum = vec3(0.0);
+    for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
+        const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
+        const float t = screenMarch(ScreenRayStart(p, normal, normalError), w, ssdo.radius, ssdo.stepCount, jitter, ssdo.thickness);
+#if PASS == SSDO_PASS_DIRECT
+        if (t < 0.0) sum += environmentRadiance(toWorld * w, ssdo.environmentLevel);
+#else
+        if (t >= 0.0) sum += ssdoSender(p, normal, w, t);
+#endif
+    }
+    return sum;
+}
+
+ivec2 integratorSize() { return ssdo.size; }
+int integratorScale() { return ssdo.scale; }
+bool integratorWritesGuide() { return ssdo.writeGuide != 0; }
+vec3 integratorSum(vec3 p, float depth, vec3 normal, float normalError, ivec2 pixel) {
+    return ssdoSum(p, normal, normalError, pixel);
+}
+vec3 integratorIncident(vec3 sum) {
+#if PASS == SSDO_PASS_DIRECT
+    return sum / float(ssdo.rayCount); // cosine-weighted: E / pi
+#else
+    return ssdo.bounceStrength * sum / OBSCURA_PI;
+#endif
+}
+
+#include "../filters/rgb_integrator_main.glsl"

@@ -1,0 +1,49 @@
+// Screen-space directional occlusion: binding points and the parameter block, shared by
+// src/ssdo/*.cpp and shaders/ssdo/*.glsl.
+#ifndef OBSCURA_SSDO_BINDINGS_H
+#define OBSCURA_SSDO_BINDINGS_H
+
+#include "../common/bindings_preamble.h"
+
+#include "../visibility/visibility_bindings.h" // the G-buffer's depth and normal units
+
+OBSCURA_SHADER_BEGIN
+
+#define SSDO_PARAMS_UBO_BINDING 8
+#define SSDO_SENDER_UNIT 10     // bounce: the direct pass's result, the G-buffer's size
+#define SSDO_ALBEDO_UNIT 11     // the G-buffer's albedo
+#define SSDO_LIGHT_UNIT 12      // bounce: the G-buffer's direct radiance (its lights), when it has one
+#define SSDO_OUT_IMAGE 0        // rgba16f, at the integrator's resolution
+#define SSDO_GUIDE_OUT_IMAGE 2  // rgba32f: view normal xyz, view z (0 = background), for the filters
+
+#define SSDO_PASS_DIRECT 0
+#define SSDO_PASS_BOUNCE 1
+
+#define SSDO_WORKGROUP 8
+
+struct SsdoParams {
+    float radius;           // r_max, world = view units
+    float thickness;        // world units
+    float patchArea;        // bounce: A_s = pi r_max^2 / N, world units^2
+    float patchSolidAngle;  // bounce: the most solid angle one patch may subtend, sr
+    int rayCount;
+    int stepCount;
+    int writeGuide; // 1: the result is filtered, so the guide is written
+    int addLight;   // bounce: 1 adds the G-buffer's direct radiance to the senders'
+    ivec2 size;     // the integrator's resolution, pixels
+    int scale;      // G-buffer pixels per integrator pixel: 1, 2 or 4
+    float bounceStrength;
+    float environmentLevel; // direct: the cube's level each sample reads
+    float pad0;
+    float pad1;
+    float pad2;
+    mat4 viewToWorld; // rotation only (directions)
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(SsdoParams) == 4 * 16 + 64, "SsdoParams must match std140");
+#endif
+
+OBSCURA_SHADER_END
+
+#endif

@@ -1,0 +1,124 @@
+// SSDO against the Embree reference: a floor meeting a wall under an environment whose half
+// toward the wall is red and the other half blue. The wall blocks red directions only, so the
+// floor's shadow near it is tinted by the colour it blocks (less red, as much blue), and SSDO
+// matches the reference's image-based light with occluders within r_max.
+#include "ao_fixture.hpp"
+#include "gl_fixture.hpp"
+#include "scene_builders.hpp"
+
+#include "obscura/assets.hpp"
+#include "obscura/obscura.hpp"
+#include "obscura/reference.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+using namespace obscura;
+
+namespace {
+
+// Red (2, 0, 0) toward -z (the wall's side: u in (1/4, 3/4), src/reference/environment.cpp's
+// convention), blue (0, 0, 2) toward +z; the boundary falls on texel edges.
+Image halfColouredEnvironment(int width, int height) {
+    Image img{width, height, 3, std::vector<float>(std::size_t(width) * std::size_t(height) * 3, 0.0f)};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const bool towardWall = x >= width / 4 && x < 3 * width / 4;
+            img.at(x, y, towardWall ? 0 : 2) = 2.0f;
+        }
+    return img;
+}
+
+} // namespace
+
+TEST_CASE("SSDO tints a floor's shadow by the environment colour its occluder blocks, as the reference does",
+          "[ssdo][reference]") {
+    test::AoFixture f;
+    DirectionalOcclusion ssdo(f.ctx);
+    constexpr int W = 96, H = 72, rays = 256, steps = 32;
+    constexpr double radius = 1.0;
+    Scene scene = test::wallScene();
+    for (auto& m : scene.materials) m.albedo = glm::vec3(1.0f); // 8-bit sRGB decodes 1 exactly
+    const std::filesystem::path exr = std::filesystem::temp_directory_path() / "obscura_half_coloured.exr";
+    const Image env = halfColouredEnvironment(256, 128);
+    assets::writeImage(exr, env);
+    scene.environment = Environment{exr.string(), 1.0f, 0.0f};
+    f.render(scene, test::wallCamera(W, H), W, H);
+    EnvironmentSettings es;
+    es.cubeSize = 128;
+    EnvironmentMap gpuEnv(f.ctx, env, es);
+    DirectionalOcclusionSettings s;
+    s.radius = float(radius);
+    s.rays = rays;
+    s.steps = steps;
+    s.prefilter = false; // level 0: the half boundary blurred over ~1 degree only
+    const Image direct = readTexture(f.ctx, ssdo.run(f.view, {&gpuEnv}, s).direct);
+
+    const reference::RayScene rayScene(scene);
+    const reference::ShadingPoints points =
+        reference::fromGBuffer(rayScene, f.view.camera, f.positions, readTexture(f.ctx, f.view.normal));
+    reference::RenderSettings rs;
+    rs.samplesPerPixel = 256;
+    // The march finds every hit within r (1 - 1/steps) and none beyond r: its expectation lies
+    // between the two references' (visibility within each radius).
+    reference::ImageBasedLight within;
+    within.radius = radius;
+    const reference::Reference lo = reference::render(rayScene, points, within, rs);
+    within.radius = radius * (1.0 - 1.0 / steps);
+    const reference::Reference hi = reference::render(rayScene, points, within, rs);
+
+    // Floor pixels near the wall (D < r / 2: some red blocked) and far from it (D > r: none).
+    double near[3] = {0, 0, 0}, nearLo[3] = {0, 0, 0}, nearHi[3] = {0, 0, 0}, far[3] = {0, 0, 0};
+    double noise = 0.0;
+    int nearCount = 0, farCount = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            glm::dvec3 p;
+            if (!test::wallFloorPixel(f, x, y, p)) continue;
+            const double distance = p.z + 1.0;
+            const std::size_t i = (std::size_t(y) * W + std::size_t(x)) * 3;
+            if (distance < 0.5 * radius) {
+                for (int k = 0; k < 3; ++k) {
+                    near[k] += direct.at(x, y, k);
+                    nearLo[k] += std::min(lo.value.pixels[i + std::size_t(k)], hi.value.pixels[i + std::size_t(k)]);
+                    nearHi[k] += std::max(lo.value.pixels[i + std::size_t(k)], hi.value.pixels[i + std::size_t(k)]);
+                }
+                ++nearCount;
+            } else if (distance > radius) {
+                for (int k = 0; k < 3; ++k) far[k] += direct.at(x, y, k);
+                ++farCount;
+            }
+        }
+    noise = std::sqrt(lo.noiseMse);
+    REQUIRE(nearCount > 50);
+    REQUIRE(farCount > 50);
+    for (int k = 0; k < 3; ++k) {
+        near[k] /= nearCount;
+        nearLo[k] /= nearCount;
+        nearHi[k] /= nearCount;
+        far[k] /= farCount;
+    }
+    INFO("near the wall: SSDO " << near[0] << ", " << near[2] << "; reference " << nearLo[0] << ".." << nearHi[0] << ", "
+                                << nearLo[2] << ".." << nearHi[2] << "; far " << far[0] << ", " << far[2]);
+    // Open floor: (rho / pi) * (pi/2 * 2 + pi/2 * 2) / 2 per colour = 1 for each of red and blue
+    // (half the cosine-weighted hemisphere each): the far pixels see both halves whole.
+    CHECK(far[0] == Approx(1.0).epsilon(0.02));
+    CHECK(far[2] == Approx(1.0).epsilon(0.02));
+    CHECK(far[1] == 0.0);
+    // The shadow is red's: blue stays whole (the wall blocks none of +z), red drops.
+    CHECK(near[2] == Approx(1.0).epsilon(0.02));
+    CHECK(near[0] < 0.9);
+    // Against the reference, the mean over the near pixels: the march's window, 5 sigma of the
+    // means of rays x pixels samples of {0, 2} (sigma <= 1 each) and of the reference's noise
+    // (its per-pixel RMSE over sqrt(pixels)), and the half floats' rounding (2^-11 relative).
+    const double sigma = std::sqrt(1.0 / (double(rays) * nearCount) + noise * noise / nearCount);
+    for (int k : {0, 2}) {
+        CHECK(near[k] >= nearLo[k] - 5.0 * sigma - 0x1p-11 * near[k]);
+        CHECK(near[k] <= nearHi[k] + 5.0 * sigma + 0x1p-11 * near[k]);
+    }
+    std::filesystem::remove(exr);
+}
