@@ -23,6 +23,13 @@
 // on its axis at its own radius r_max / sqrt(rays), the same d/r_max threshold at every scale:
 // the result does not change when the scene and r_max are scaled together.
 //
+// Lights (DirectionalOcclusionInputs::lights): their irradiance at each pixel as the
+// G-buffer computes it, times their shadow maps' lit fraction, times a screen-space
+// correction: the shadow biases move a map's receiver toward the light, so an occluder on
+// that segment (a contact shadow) is missed; a screen-space march from the pixel toward the
+// light over `shadowCorrection` times that segment finds it (ShadowMaskSettings::contactSteps
+// samples, as thin as its contactThickness; its contactLength is ShadowMaps::mask's only).
+//
 // Depth peeling: `thicknessMode` DepthPeeling (GBufferSettings::depthLayers = 2) classifies
 // samples against the second depth layer, so gaps behind thin objects stay open.
 //
@@ -34,12 +41,15 @@
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/screen_visibility.hpp"
+#include "obscura/scene.hpp"
 #include "obscura/settings_table.hpp"
+#include "obscura/shadow_maps.hpp"
 #include "obscura/texture.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 namespace obscura {
 
@@ -56,6 +66,7 @@ struct DirectionalOcclusionSettings {
     bool prefilter = true;
     bool bounce = false;
     float bounceStrength = 1.0f;
+    float shadowCorrection = 2.0f;
     AoResolution resolution = AoResolution::Full;
     int blurRadius = 0;
     float blurDepthSigma = 0.05f;
@@ -84,6 +95,9 @@ inline const SettingsTable<DirectionalOcclusionSettings>& DirectionalOcclusionSe
             flag("prefilter", &S::prefilter, "read the environment at the level whose texels subtend 2 pi / rays (false: level 0)"),
             flag("bounce", &S::bounce, "also compute `indirect`, the occluders' light (pass ssdo.bounce)"),
             number("bounceStrength", &S::bounceStrength, "", "[0, inf)", "scales the bounce (1: the estimate)"),
+            number("shadowCorrection", &S::shadowCorrection, "biased segments", "[0, inf)",
+                   "lights: the screen march toward each shadowed light covers this multiple of the segment the "
+                   "shadow biases skip (0: off)"),
         },
         integratorRows<S>());
     return rows;
@@ -92,8 +106,18 @@ inline const SettingsTable<DirectionalOcclusionSettings>& DirectionalOcclusionSe
 //! What lights the pixels.
 struct DirectionalOcclusionInputs {
     //! The environment (required): its cube, at its lookup's intensity and rotation. Its sun,
-    //! when split out, is not included (a directional light for the host's own shading).
+    //! when split out, is not included: pass it among `lights`.
     const EnvironmentMap* environment = nullptr;
+    //! Point, spot, directional, sphere and rect lights (Scene::lights' units), added to
+    //! `direct` at full resolution by pass "ssdo.lights" with their shadow maps' visibility:
+    //! give the G-buffer no direct lighting of its own (GBufferSettings::directLighting), or
+    //! the bounce counts these lights twice. The span must outlive the call.
+    std::span<const Light> lights{};
+    //! Maps of some of `lights` (ShadowMaps::render with the same lights, in order): their
+    //! visibility, Hard or Pcf as `shadowFilter` says, corrected in screen space along the
+    //! segment the biases skip (DirectionalOcclusionSettings::shadowCorrection). Null: unshadowed.
+    const ShadowMapSet* shadows = nullptr;
+    ShadowMaskSettings shadowFilter{};
 };
 
 struct DirectionalOcclusionView {
@@ -108,9 +132,10 @@ public:
     ~DirectionalOcclusion();
 
     //! Passes "ssdo.hiz" (HiZ march), "ssdo.direct", then "ssdo.blur", "ssdo.upsample",
-    //! "ssdo.refine", "ssdo.temporal" when used; with `bounce` "ssdo.bounce" and its own
-    //! "ssdo_bounce.*" filters. Throws Error{InvalidArgument} for settings out of range, no
-    //! environment (or one of another Context), a G-buffer without depth, normal or albedo
+    //! "ssdo.refine", "ssdo.temporal" when used, "ssdo.lights" with lights; with `bounce`
+    //! "ssdo.bounce" and its own "ssdo_bounce.*" filters. Throws Error{InvalidArgument} for
+    //! settings out of range, no environment (or one of another Context), lights out of range,
+    //! shadow maps that do not fit them or the camera, a G-buffer without depth, normal or albedo
     //! (or backDepth for DepthPeeling and PeelingOrConstant), or a G-buffer texture that is
     //! one of this object's outputs. The view stays valid until the next run.
     DirectionalOcclusionView run(const GBufferView& gbuffer, const DirectionalOcclusionInputs& inputs,

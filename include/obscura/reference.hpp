@@ -171,9 +171,12 @@ struct SingleScattering {
 struct ImageBasedLight {
     bool irradianceOnly = false;
     bool visibility = true;
-    //! Occluders farther than this do not block (world units, (0, inf]): the quantity a
-    //! method that looks for occluders within a radius estimates.
+    //! Occluders farther than this do not block the environment (world units, (0, inf]): the
+    //! quantity a method that looks for occluders within a radius estimates.
     double radius = kInfinity;
+    //! Also the scene's lights' direct light (DirectLight without emission, shadowed by every
+    //! occluder, with the geometric normal), as SSDO's `direct` holds it.
+    bool lights = false;
 };
 
 using Quantity = std::variant<AmbientOcclusion, Obscurance, BentNormal, DirectLight, IndirectLight, Shadow,

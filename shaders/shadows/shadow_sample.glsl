@@ -355,6 +355,19 @@ vec3 shadowReceiver(int k, vec3 p, vec3 n, vec3 l, float c, int m) {
            l * (shadowLights[k].constantBias + shadowLights[k].slopeBias * texel * tanTheta);
 }
 
+// How far the biases move the receiver of view point p (geometric normal n) from it: the
+// segment toward the light along which the map cannot see occluders (0 where the light does
+// not reach the front side). SSDO's shadow correction marches the screen along it.
+float shadowBiasLength(int k, vec3 p, vec3 n) {
+    const vec3 l = shadowToLight(k, p);
+    const float c = dot(n, l);
+    if (!(c > 0.0)) return 0.0;
+    int m = 0;
+    for (int i = 0; i + 1 < shadowLights[k].mapCount; ++i) m += -p.z > shadowLights[k].cascades[i].sliceEnd ? 1 : 0;
+    m = shadowIsPoint(k) ? shadowPointMap(k, p) : m;
+    return length(shadowReceiver(k, p, n, l, c, m) - p);
+}
+
 // Lit fraction of mapped light k at view point p with geometric normal n: 0 where the light
 // does not reach the front side (facing away, outside a spot's cone).
 float shadowVisibility(int k, vec3 p, vec3 n) {

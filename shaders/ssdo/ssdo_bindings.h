@@ -19,6 +19,8 @@ OBSCURA_SHADER_BEGIN
 #define SSDO_PASS_DIRECT 0
 #define SSDO_PASS_BOUNCE 1
 
+#define SSDO_ENVIRONMENT_TERM_UNIT 10 // lights pass: the direct pass's result, the G-buffer's size
+
 #define SSDO_WORKGROUP 8
 
 struct SsdoParams {
@@ -34,6 +36,10 @@ struct SsdoParams {
     int scale;      // G-buffer pixels per integrator pixel: 1, 2 or 4
     float bounceStrength;
     float environmentLevel; // direct: the cube's level each sample reads
+    int lightCount;         // lights pass
+    float shadowCorrection; // lights pass: the march's reach in biased segments (0: none)
+    float contactThickness; // lights pass: ShadowMaskSettings::contactThickness, world units
+    int contactSteps;       // lights pass: ShadowMaskSettings::contactSteps
     float pad0;
     float pad1;
     float pad2;
@@ -41,7 +47,7 @@ struct SsdoParams {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SsdoParams) == 4 * 16 + 64, "SsdoParams must match std140");
+static_assert(sizeof(SsdoParams) == 5 * 16 + 64, "SsdoParams must match std140");
 #endif
 
 OBSCURA_SHADER_END

@@ -41,4 +41,11 @@ const GBufferView& LitGBuffer::render(const FrameSetup& frame, GBufferSettings s
     return view_;
 }
 
+const GBufferView& LitGBuffer::renderUnlit(const FrameSetup& frame, GBufferSettings settings) {
+    maps_used_ = enabled_ ? &shadows_.render(frame.scene.scene, frame.camera, maps_) : nullptr;
+    settings.directLighting = false;
+    view_ = gbuffer_.render(frame.scene.scene, frame.camera, settings);
+    return view_;
+}
+
 } // namespace obscura::cli

@@ -28,6 +28,12 @@ public:
     //! and the G-buffer; `settings` gives everything but the shadows.
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);
 
+    //! For a technique that lights the pixels itself (ssdo): the shadow maps as render() would
+    //! (shadowMaps() returns them, or null), and a G-buffer without direct light.
+    const GBufferView& renderUnlit(const FrameSetup& frame, GBufferSettings settings);
+    const ShadowMapSet* shadowMaps() const { return maps_used_; }
+    const ShadowMaskSettings& shadowFilter() const { return filter_; }
+
     GBuffer& gbuffer() { return gbuffer_; }
     //! Whether the direct light, when the G-buffer computes it, is shadowed where the scene's
     //! lights cast shadows (the "shadows" setting).
@@ -44,6 +50,7 @@ private:
     bool enabled_ = true;
     ShadowMapSettings maps_;
     ShadowMaskSettings filter_;
+    const ShadowMapSet* maps_used_ = nullptr;
     GBufferView view_;
 };
 

@@ -10,6 +10,7 @@
 #include "core/validate.hpp"
 #include "gbuffer/host_inputs.hpp"
 #include "gbuffer/host_region.hpp"
+#include "gbuffer/light_records.hpp"
 #include "shadows/shadow_lookup.hpp"
 #include "core/mesh_cache.hpp"
 #include "obscura/context.hpp"
@@ -28,35 +29,6 @@ namespace {
 using namespace detail;
 
 
-shader::LightData toViewSpace(const Light& l, const glm::dmat4& view) {
-    shader::LightData d{};
-    const glm::dvec3 p = glm::dvec3(view * glm::dvec4(glm::dvec3(l.position), 1.0));
-    const glm::dvec3 dir = glm::normalize(glm::dmat3(view) * glm::dvec3(l.direction));
-    int type = GBUFFER_LIGHT_POINT;
-    switch (l.type) {
-    case LightType::Point: type = GBUFFER_LIGHT_POINT; break;
-    case LightType::Spot: type = GBUFFER_LIGHT_SPOT; break;
-    case LightType::Directional: type = GBUFFER_LIGHT_DIRECTIONAL; break;
-    case LightType::Rect: type = GBUFFER_LIGHT_RECT; break;
-    case LightType::Sphere: type = GBUFFER_LIGHT_SPHERE; break;
-    }
-    d.position = glm::vec3(p);
-    d.type = static_cast<float>(type);
-    d.direction = l.type == LightType::Point || l.type == LightType::Sphere ? glm::vec3(0.0f) : glm::vec3(dir);
-    d.radius = l.radius;
-    d.radiance = l.color * l.intensity;
-    d.cosInner = std::cos(l.innerAngle);
-    d.cosOuter = std::cos(l.outerAngle);
-    if (l.type == LightType::Rect) {
-        // Width axis made orthogonal to the normal, in view space.
-        const glm::dvec3 t = glm::dvec3(l.tangent) - glm::dot(glm::dvec3(l.tangent), glm::normalize(glm::dvec3(l.direction))) *
-                                                         glm::normalize(glm::dvec3(l.direction));
-        const glm::dvec3 u = glm::normalize(glm::dmat3(view) * t);
-        d.halfWidthAxis = glm::vec3(u * (0.5 * l.size.x));
-        d.halfHeight = 0.5f * l.size.y;
-    }
-    return d;
-}
 
 void dispatchOverImage(ContextImpl& ctx, int width, int height) {
     dispatchCompute2D(ctx, width, height, GBUFFER_WORKGROUP_SIZE);
@@ -76,8 +48,6 @@ struct GBuffer::Impl {
     Framebuffer fbo;
     Texture backDepth;     //!< second depth layer, only while depthLayers = 2 is asked for
     Framebuffer peelFbo;
-    Buffer lights;
-    std::size_t lightCapacity = 0;
     Sampler materialSampler;     //!< our uploaded images, mipmapped
     Sampler hostMaterialSampler; //!< host textures: no mipmaps assumed (an incomplete chain would sample black)
     SizedTexture adoptedNormal; //!< adopt() output
@@ -189,42 +159,7 @@ struct GBuffer::Impl {
         peelFbo = std::move(f);
     }
 
-    // Per light, its record in the shadow binding, or -1 (unshadowed).
-    std::vector<int> shadowRecordOf;
-    ShadowBinding shadowBinding;
-
-    // Binds the records of the lights that have maps; returns whether any has.
-    bool bindShadows(const Scene& scene, const Camera& camera, const GBufferSettings& settings) {
-        shadowRecordOf.assign(scene.lights.size(), -1);
-        if (!settings.directLighting || !settings.shadows || !settings.shadows->depth) return false;
-        std::vector<shader::ShadowParams> records;
-        for (std::size_t i = 0; i < scene.lights.size(); ++i)
-            if (const ShadowMapInfo* info = settings.shadows->find(i)) {
-                shadowRecordOf[i] = static_cast<int>(records.size());
-                records.push_back(shadowRecord(*info, camera, settings.shadowFilter, settings.shadows->resolution));
-            }
-        if (records.empty()) return false;
-        shadowBinding.bind(ctx, settings.shadows->depth, records, settings.shadowFilter.filter);
-        return true;
-    }
-
-    void uploadLights(const Scene& scene, const glm::dmat4& view) {
-        std::vector<shader::LightData> data;
-        data.reserve(scene.lights.size());
-        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-            data.push_back(toViewSpace(scene.lights[i], view));
-            data.back().shadowRecord = static_cast<float>(shadowRecordOf[i]);
-        }
-        const std::size_t needed = std::max<std::size_t>(1, data.size());
-        if (!lights || lightCapacity < needed) {
-            lights = createBuffer(ctx, static_cast<GLsizeiptr>(needed * sizeof(shader::LightData)), nullptr,
-                                  GL_DYNAMIC_STORAGE_BIT, "gbuffer.lights");
-            lightCapacity = needed;
-        }
-        if (!data.empty())
-            ctx.gl.NamedBufferSubData(lights.get(), 0, static_cast<GLsizeiptr>(data.size() * sizeof(data[0])), data.data());
-        ctx.state.bindStorageBuffer(ctx, GBUFFER_LIGHTS_SSBO_BINDING, lights.get());
-    }
+    LightRecords lights;
 
     GLuint materialTexture(const Material& m) {
         if (m.albedoTexture != 0) return m.albedoTexture;
@@ -300,18 +235,8 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     validateSettings(GBufferSettings::table(), settings, "GBufferSettings");
     const ProjectionInfo projection = analyzeProjection(camera);
     validateScene(scene);
-    if (settings.shadows) {
-        validateShadowMask(settings.shadowFilter, "GBufferSettings::shadowFilter");
-        const ShadowFilter filter = settings.shadowFilter.filter;
-        if (filter != ShadowFilter::Hard && filter != ShadowFilter::Pcf)
-            throw Error(ErrorCode::InvalidArgument, "GBufferSettings::shadowFilter: the G-buffer looks shadows up with "
-                                                    "Hard or Pcf; the moment filters and PCSS are ShadowMaps::mask's");
-        requireMapsFor(*settings.shadows, camera, "GBufferSettings::shadows");
-        for (const ShadowMapInfo& m : settings.shadows->maps)
-            if (m.light >= scene.lights.size())
-                throw Error(ErrorCode::InvalidArgument, "GBufferSettings::shadows has maps of light " + std::to_string(m.light) +
-                                                            " but the scene has " + std::to_string(scene.lights.size()) + " lights");
-    }
+    if (settings.shadows)
+        validateLightShadows(*settings.shadows, settings.shadowFilter, scene.lights.size(), camera, "GBufferSettings");
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const GLuint texture = scene.materials[i].albedoTexture;
         if (texture == 0) continue;
@@ -334,8 +259,9 @@ GBufferView GBuffer::render(const Scene& scene, const Camera& camera, const GBuf
     impl_->ensureTargets(settings.width, settings.height);
     const glm::dmat4 view(camera.view);
     impl_->frame.bind(ctx, camera, settings.width, settings.height, 0.0); // our depth is 32-bit float
-    const bool shadowed = impl_->bindShadows(scene, camera, settings);
-    impl_->uploadLights(scene, view);
+    const bool shadowed = impl_->lights.bindShadows(ctx, scene.lights, camera,
+                                                    settings.directLighting ? settings.shadows : nullptr, settings.shadowFilter);
+    impl_->lights.upload(ctx, scene.lights, view, "gbuffer.lights");
 
     const GLuint fbo = impl_->fbo.get();
     gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -496,8 +422,8 @@ std::size_t GBuffer::memoryBytes() const {
         total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) *
                  (bytesPerTexel(GL_DEPTH_COMPONENT32F) + 2 * bytesPerTexel(GL_RGBA16F) + bytesPerTexel(GL_SRGB8_ALPHA8));
     if (i.backDepth) total += static_cast<std::size_t>(i.width) * static_cast<std::size_t>(i.height) * bytesPerTexel(GL_DEPTH_COMPONENT32F);
-    total += i.lightCapacity * sizeof(shader::LightData);
-    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.shadowBinding.memoryBytes() + i.regionCopyBytes() +
+    total += i.lights.memoryBytes();
+    total += i.adoptedNormal.bytes() + i.positions.bytes() + i.regionCopyBytes() +
              (i.nearPlaneCount ? sizeof(GLuint) : 0);
     return total;
 }

@@ -226,11 +226,16 @@ Estimator imageBased(const RayScene::Impl& scene, const ImageBasedLight& q) {
     if (!(q.radius > 0.0)) throw Error(ErrorCode::InvalidArgument, "ImageBasedLight::radius must be > 0 world units");
     return [&scene, q](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const glm::vec3 origin = surfaceOrigin(scene, p);
+        const LightSampler lights(scene, q.visibility);
         glm::dvec3 e(0.0);
-        for (int i = 0; i < n; ++i)
+        for (int i = 0; i < n; ++i) {
             e += environmentIrradianceSample(scene, origin, p.normal, q.visibility, q.radius,
                                              s.point(static_cast<std::uint32_t>(i)),
                                              s.lightPoint(static_cast<std::uint32_t>(i)), rays);
+            if (q.lights)
+                for (const Light& l : scene.scene.lights)
+                    e += lights.sample(l, p.position, p.normal, p.normal, s.uniform2(), p.uncertainty, rays).irradiance;
+        }
         e /= double(n);
         return glm::dvec4(q.irradianceOnly ? e : p.albedo / kPi * e, 0.0);
     };

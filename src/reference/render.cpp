@@ -135,6 +135,7 @@ std::string describe(const Quantity& q) {
                    [&](const ImageBasedLight& v) {
                        s << "ibl irradiance=" << v.irradianceOnly << " visibility=" << v.visibility;
                        if (std::isfinite(v.radius)) s << " radius=" << v.radius; // only when limited: keys stay
+                       if (v.lights) s << " lights=1";
                    },
                },
                q);

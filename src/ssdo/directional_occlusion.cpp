@@ -4,13 +4,18 @@
 #include "core/shader_library.hpp"
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
+#include "core/compute.hpp"
+#include "core/pass_scope.hpp"
 #include "environment/environment_binding.hpp"
+#include "gbuffer/light_records.hpp"
+#include "shadows/shadow_lookup.hpp"
 #include "filters/screen_integrator.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "obscura/context.hpp"
 #include "shaders/ssdo/ssdo_bindings.h"
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -28,6 +33,15 @@ void validate(const DirectionalOcclusionSettings& s, const DirectionalOcclusionI
     if (!inputs.environment)
         throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionInputs::environment is required: SSDO lights the "
                                                 "pixels with an EnvironmentMap");
+}
+
+void validateLights(const DirectionalOcclusionInputs& inputs, const Camera& camera) {
+    Scene lights; // validateScene's checks of each light
+    lights.lights.assign(inputs.lights.begin(), inputs.lights.end());
+    validateScene(lights);
+    if (inputs.shadows)
+        validateLightShadows(*inputs.shadows, inputs.shadowFilter, inputs.lights.size(), camera,
+                             "DirectionalOcclusionInputs");
 }
 
 bool filtered(const DirectionalOcclusionSettings& s) { return filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
@@ -62,6 +76,40 @@ struct DirectionalOcclusion::Impl {
     ContextImpl& ctx;
     ScreenIntegrator direct, bounce;
     Buffer params;
+    LightRecords lights;
+    SizedTexture lit;
+
+    // Pass "ssdo.lights": the environment term plus the lights, at the G-buffer's resolution.
+    TextureView addLights(const GBufferView& view, const DirectionalOcclusionInputs& in,
+                          const DirectionalOcclusionSettings& s, GLuint environmentTerm) {
+        PassScope pass(ctx, "ssdo.lights");
+        const bool shadowed = lights.bindShadows(ctx, in.lights, view.camera, in.shadows, in.shadowFilter);
+        lights.upload(ctx, in.lights, glm::dmat4(view.camera.view), "ssdo.lights");
+        current.lightCount = static_cast<int>(in.lights.size());
+        current.shadowCorrection = s.shadowCorrection;
+        current.contactThickness = in.shadowFilter.contactThickness;
+        current.contactSteps = in.shadowFilter.contactSteps;
+        uploadUniformBlock(ctx, params, current, SSDO_PARAMS_UBO_BINDING, "ssdo.params");
+        std::vector<std::string> defines;
+        if (std::any_of(in.lights.begin(), in.lights.end(), [](const Light& l) { return l.type == LightType::Rect; }))
+            defines.push_back("RECT_LIGHTS");
+        if (shadowed) {
+            defines.insert(defines.end(), {"SHADOWS", shadowFilterDefine(in.shadowFilter.filter)});
+            if (s.shadowCorrection > 0.0f) {
+                defines.push_back("CORRECTION");
+                const auto screen = screenMarchDefines(s.march == ScreenMarch::HiZ ? ScreenMarch::Texture : s.march, s.thicknessMode);
+                defines.insert(defines.end(), screen.begin(), screen.end());
+            }
+        }
+        ctx.gl.UseProgram(ctx.shaders->program({"ssdo/ssdo_lights.comp.glsl"}, defines));
+        bindNearest(ctx, SSDO_ENVIRONMENT_TERM_UNIT, environmentTerm);
+        bindNearest(ctx, SSDO_ALBEDO_UNIT, view.albedo.name);
+        const GLuint out = lit.ensure(ctx, GL_RGBA16F, view.width, view.height, "ssdo.direct_lit");
+        ctx.state.bindImage(ctx, SSDO_OUT_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchCompute2D(ctx, view.width, view.height, SSDO_WORKGROUP);
+        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        return {out, GL_RGBA16F, view.width, view.height};
+    }
 
 
     void uploadParams(const GBufferView& g, const DirectionalOcclusionSettings& s, glm::ivec2 size, int scale) {
@@ -94,6 +142,7 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
     auto& d = *impl_;
     auto& ctx = d.ctx;
     analyzeProjection(g.camera);
+    validateLights(inputs, g.camera);
     if (!g.albedo)
         throw Error(ErrorCode::InvalidArgument, "SSDO multiplies by the G-buffer's albedo: render the G-buffer with "
                                                 "GBuffer::render, or give HostGBuffer::albedo to GBuffer::adopt");
@@ -105,6 +154,7 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
     IntegratorShape bounceShape = shapeOf(s, SSDO_PASS_BOUNCE, {view.width, view.height});
     directShape.modulate = bounceShape.modulate = g.albedo.name;
     std::vector<GLuint> written = d.direct.written(directShape);
+    if (!inputs.lights.empty()) written.push_back(d.lit.get());
     if (s.bounce) {
         const auto more = d.bounce.written(bounceShape);
         written.insert(written.end(), more.begin(), more.end());
@@ -135,13 +185,15 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
         ctx, view, directShape, images, [&](const char* v) { return integratorProgram(ctx, s, SSDO_PASS_DIRECT, v); },
         [] {});
     DirectionalOcclusionView out{direct.value, {}, view.width, view.height};
+    if (!inputs.lights.empty()) out.direct = d.addLights(view, inputs, s, direct.value.name);
+    else d.lit.release(); // not asked for: not kept
     if (!s.bounce) {
         d.bounce.resetHistory();
         return out;
     }
     d.bounce.begin(ctx, view, peeled, s.frameIndex, bounceShape);
     bindNearest(ctx, SSDO_ALBEDO_UNIT, g.albedo.name);
-    bindNearest(ctx, SSDO_SENDER_UNIT, direct.value.name);
+    bindNearest(ctx, SSDO_SENDER_UNIT, out.direct.name);
     if (g.directRadiance) bindNearest(ctx, SSDO_LIGHT_UNIT, g.directRadiance.name);
     ctx.state.bindUniformBuffer(ctx, SSDO_PARAMS_UBO_BINDING, d.params.get());
     const IntegratorResult bounce = d.bounce.run(
@@ -170,7 +222,8 @@ void DirectionalOcclusion::resetHistory() {
 
 std::size_t DirectionalOcclusion::memoryBytes() const {
     const auto& d = *impl_;
-    return d.direct.memoryBytes() + d.bounce.memoryBytes() + (d.params ? sizeof(shader::SsdoParams) : 0);
+    return d.direct.memoryBytes() + d.bounce.memoryBytes() + d.lights.memoryBytes() + d.lit.bytes() +
+           (d.params ? sizeof(shader::SsdoParams) : 0);
 }
 
 } // namespace obscura

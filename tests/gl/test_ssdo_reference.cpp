@@ -122,3 +122,64 @@ TEST_CASE("SSDO tints a floor's shadow by the environment colour its occluder bl
     }
     std::filesystem::remove(exr);
 }
+
+TEST_CASE("SSDO's shadow correction recovers the contact shadow a large shadow bias removes", "[ssdo][reference]") {
+    // test_shadow_maps.cpp's contact-shadow scene: a thin upright wall on a floor, a spot light
+    // on its +x side, a constant bias longer than the wall is thick (peter-panning).
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {3.0f, 2.5f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(-3.5f, -2.5f, 0.0f));
+    spot.outerAngle = 1.0f;
+    Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
+                                   {{glm::dvec3(0, 0, -1), {0, 0, 1}, {0, 1, 1}, {0, 1, -1}}}},
+                                  glm::vec3(1.0f));
+    scene.lights = {spot};
+    constexpr int W = 96, H = 72;
+    const Camera camera =
+        Camera::perspective({{-3.0f, 2.5f, 2.0f}, {-0.5f, 0.2f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f);
+    test::GlFixture gl;
+    Context ctx(gl.desc());
+    GBuffer gbuffer(ctx);
+    ShadowMaps shadows(ctx);
+    DirectionalOcclusion ssdo(ctx);
+    GBufferSettings g{W, H, false, {}};
+    g.directLighting = false; // SSDO lights the pixels
+    const GBufferView view = gbuffer.render(scene, camera, g);
+    const Image positions = readTexture(ctx, gbuffer.positions(view));
+    const reference::RayScene rays(scene);
+    const reference::ShadingPoints points = reference::fromGBuffer(rays, camera, positions, readTexture(ctx, view.normal));
+    reference::RenderSettings rs;
+    rs.samplesPerPixel = 2; // a hard light: one sample is exact
+    const reference::Reference truth = reference::render(rays, points, reference::Shadow{0}, rs);
+    const ShadowMapSet& set = shadows.render(scene, camera, {1024, 1, 0.5f});
+    EnvironmentMap black(ctx, Image{4, 2, 3, std::vector<float>(24, 0.0f)}, EnvironmentSettings{8, 1, 8, 0.0f, 0.0f});
+    DirectionalOcclusionInputs in{&black, scene.lights, nullptr, {}};
+    DirectionalOcclusionSettings s;
+    s.rays = 1;
+    s.steps = 32;
+    // Unshadowed: the light's own term, against which the shadowed runs' lit fraction is read.
+    const Image open = readTexture(ctx, ssdo.run(view, in, s).direct);
+    in.shadows = &set;
+    in.shadowFilter.filter = ShadowFilter::Hard;
+    in.shadowFilter.constantBias = 0.2f;
+    const auto misclassified = [&](float correction) {
+        s.shadowCorrection = correction;
+        const Image lit = readTexture(ctx, ssdo.run(view, in, s).direct);
+        glm::ivec2 wrong(0); // false shadow, false light
+        for (std::size_t i = 0; i < std::size_t(W) * H; ++i) {
+            if (truth.value.pixels[2 * i + 1] == 0.0f || positions.pixels[4 * i + 3] == 0.0f || !(open.pixels[4 * i + 1] > 0.0f))
+                continue;
+            const bool isLit = lit.pixels[4 * i + 1] >= 0.5f * open.pixels[4 * i + 1];
+            const bool truthLit = truth.value.pixels[2 * i] >= 0.5f;
+            wrong += glm::ivec2(truthLit && !isLit ? 1 : 0, !truthLit && isLit ? 1 : 0);
+        }
+        return wrong;
+    };
+    const glm::ivec2 without = misclassified(0.0f), with = misclassified(2.0f);
+    INFO("false shadow / false light: " << without.x << " / " << without.y << " without the correction, " << with.x
+                                        << " / " << with.y << " with");
+    CHECK(without.y > 20);
+    CHECK(with.y * 2 < without.y);
+    CHECK(with.x + with.y < without.x + without.y);
+}

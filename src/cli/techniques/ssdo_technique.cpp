@@ -52,13 +52,17 @@ public:
         settings_.radius = static_cast<float>(radius_ ? *radius_ : defaultRadius(scene));
         GBufferSettings g{frame.width, frame.height, true, {}};
         g.depthLayers = depthLayersFor(settings_.thicknessMode);
-        view_ = lit_.render(frame, g);
+        // SSDO lights the pixels with the scene's lights itself (their shadow maps corrected in
+        // screen space): the G-buffer keeps only emission.
+        view_ = lit_.renderUnlit(frame, g);
         settings_.frameIndex = firstFrame_ + (settings_.temporal.enabled ? framesRun_++ : 0u);
-        result_ = ssdo_.run(view_, {environment_.get()}, settings_);
+        DirectionalOcclusionInputs inputs{environment_.get(), scene.lights, lit_.shadowMaps(), lit_.shadowFilter()};
+        result_ = ssdo_.run(view_, inputs, settings_);
     }
 
     std::string ignoredSetting(const std::string& key) const override {
         if (key == "bounce_strength" && !settings_.bounce) return "only with bounce=1";
+        if (key == "shadow_correction" && !lit_.shadowed()) return "only with shadows=1";
         const std::string why = ignoredIntegratorSetting(key, settings_.resolution, settings_.blurRadius, std::nullopt);
         return why.empty() ? lit_.ignoredSetting(key) : why;
     }
@@ -92,12 +96,15 @@ public:
 
     std::vector<Measurement> measurements() override {
         // "direct": against image-based light with every occluder (SSDO sees those within
-        // r_max only, and on screen); "direct_r": with occluders within r_max, the method's
-        // own error. "indirect": the bounce of the environment's and the lights' light.
+        // r_max only, and on screen) plus the lights' shadowed direct light; "direct_r": the
+        // environment's occluders within r_max, the method's own error. "indirect": the bounce
+        // of the environment's and the lights' light.
         const Image direct = rgbOf(readTexture(ctx_, result_.direct));
-        reference::ImageBasedLight within;
+        reference::ImageBasedLight all;
+        all.lights = true;
+        reference::ImageBasedLight within = all;
         within.radius = settings_.radius;
-        std::vector<Measurement> out = {{"direct", direct, reference::ImageBasedLight{}}, {"direct_r", direct, within}};
+        std::vector<Measurement> out = {{"direct", direct, all}, {"direct_r", direct, within}};
         if (result_.indirect) {
             reference::IndirectLight bounce{settings_.radius};
             bounce.environment = true;
