@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt, ssdo_overhead_section,  # noqa: E402
+from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt, ssdo_options_section, ssdo_overhead_section,  # noqa: E402
                            lanes_section, march_section, own_ms, quarter_section, refine_section, resolution_rows,
                            resolution_section, thickness_section, tiles_section)
 
@@ -270,7 +270,7 @@ def shown(path):
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
                  lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=(),
-                 refine_rows=(), ssdo_rows=()):
+                 refine_rows=(), ssdo_rows=(), ssdo_option_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -337,6 +337,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += thickness_section(list(thickness_rows))
     lines += falloff_section(list(falloff_rows))
     lines += ssdo_overhead_section(list(ssdo_rows))
+    lines += ssdo_options_section(list(ssdo_option_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
@@ -366,6 +367,9 @@ def main():
     parser.add_argument("--ssdo-overhead-study", action="append", default=[],
                         help="bench.json of ao.raymarch and ssdo (with --variant bounce=1) at the same rays and steps "
                              "(SSDO overhead table only)")
+    parser.add_argument("--ssdo-options-study", action="append", default=[],
+                        help="bench.json of ssdo with --variant extra_views=2 and thickness_mode=depth_peeling "
+                             "(SSDO options table only)")
     parser.add_argument("--lanes-study", action="append", default=[],
                         help="bench.json of presets X and X_half at several ray_lanes (--set, --variant; ray-lanes table only)")
     parser.add_argument("--tiles-study", action="append", default=[],
@@ -395,6 +399,7 @@ def main():
     lanes_rows = study(args.lanes_study, "lanes study")
     tiles_rows = study(args.tiles_study, "tiles study")
     ssdo_rows = study(args.ssdo_overhead_study, "SSDO overhead study")
+    ssdo_option_rows = study(args.ssdo_options_study, "SSDO options study")
     gpu_rows = study(args.gpu, "GPU")
     gpu_study_rows = study(args.gpu_study, "GPU study")
     provenance = []
@@ -404,7 +409,7 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows, ssdo_rows)
+                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows, ssdo_rows, ssdo_option_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

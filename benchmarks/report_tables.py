@@ -493,3 +493,34 @@ def ssdo_overhead_section(rows):
             "",
             "| scene | size | N | steps | AO ms | SSDO ms | over AO | SSDO + bounce ms | over AO |",
             "|---|---|---|---|---|---|---|---|---|"] + lines + [""]
+
+
+SSDO_OPTIONS = ("", "extra_views=2", "thickness_mode=depth_peeling")
+
+
+def ssdo_options_section(rows):
+    """SSDO with each option on and off: the same preset, timed in turn (--variant)."""
+    table = defaultdict(dict)
+    for r in rows:
+        if r["technique"] != "ssdo" or r["quantity"] not in ("direct", "direct_r"):
+            continue
+        key = (os.path.basename(r["scene"]), f'{r["width"]}x{r["height"]}', r["preset"])
+        table[key][(r.get("variant", ""), r["quantity"])] = r
+    lines = []
+    for key, runs in sorted(table.items()):
+        if any((v, "direct_r") not in runs for v in SSDO_OPTIONS):
+            continue
+        cells = []
+        for v in SSDO_OPTIONS:
+            cells += [fmt(own_ms(runs[(v, "direct_r")])), fmt(runs[(v, "direct_r")]["rmse"]), fmt(runs[(v, "direct")]["rmse"])]
+        lines.append(f"| {' | '.join(key)} | " + " | ".join(cells) + " |")
+    if not lines:
+        return []
+    return ["## SSDO options", "",
+            "`ssdo` with two extra views (`extra_views=2`: eyes moved right and left by a quarter of the scene's radius, "
+            "at half resolution) and with depth peeling (`thickness_mode=depth_peeling`), against the preset alone, "
+            "timed in turn (`scripts/report.sh`, `--variant`). `direct_r` is the method's own error (occluders of the "
+            "environment within r_max), `direct` the error against full visibility.", "",
+            "| scene | size | preset | own ms | RMSE direct_r | RMSE direct | own ms: 2 views | direct_r | direct | "
+            "own ms: peeling | direct_r | direct |",
+            "|" + "---|" * 12] + lines + [""]

@@ -131,6 +131,16 @@ for size in 128x128 256x256 512x512; do
     ssdo+=(--ssdo-overhead-study "$dir/ao/bench.json" --ssdo-overhead-study "$dir/ssdo/bench.json")
   done
 done
+# SSDO's options on and off, timed in turn: two extra views, depth peeling (the study's
+# sources lit by the same two environments as the main run).
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene cornell --scene "$models/PLY/Wuson.ply" \
+  --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
+  --environment "$worlds/forest.exr" --environment "$worlds/courtyard.exr" \
+  --techniques ssdo --presets medium --size 128x128 --frames 20 --spp 1024 \
+  --variant extra_views=2 --variant thickness_mode=depth_peeling \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/ssdo_options"
+ssdo+=(--ssdo-options-study "$out/ssdo_options/bench.json")
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
 # the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()

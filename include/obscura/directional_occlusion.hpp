@@ -30,6 +30,15 @@
 // light over `shadowCorrection` times that segment finds it (ShadowMaskSettings::contactSteps
 // samples, as thin as its contactThickness; its contactLength is ShadowMaps::mask's only).
 //
+// Extra views (`extraViews`, 1 to 4): cameras with the main one's projection, their eyes
+// moved right, left, up and down by `extraViewOffset` times the scene's bounding radius,
+// looking at the point of the main view axis nearest the scene's centre, rendered at
+// `extraViewScale` of the G-buffer's size (pass "ssdo.views"). A sample is occluded when some
+// view sees it hidden and none sees it in front of its surface (a view it lies outside of has
+// no vote): occluders off screen or seen edge-on by the main camera are found, and gaps
+// behind a front surface that another view sees into stay open. With extra views the march
+// takes view-space samples (`march` is ignored).
+//
 // Depth peeling: `thicknessMode` DepthPeeling (GBufferSettings::depthLayers = 2) classifies
 // samples against the second depth layer, so gaps behind thin objects stay open.
 //
@@ -67,6 +76,10 @@ struct DirectionalOcclusionSettings {
     bool bounce = false;
     float bounceStrength = 1.0f;
     float shadowCorrection = 2.0f;
+    //! Needs DirectionalOcclusionInputs::scene: a host's G-buffer has none to render them from.
+    int extraViews = 0;
+    float extraViewScale = 0.5f;
+    float extraViewOffset = 0.25f;
     AoResolution resolution = AoResolution::Full;
     int blurRadius = 0;
     float blurDepthSigma = 0.05f;
@@ -95,6 +108,11 @@ inline const SettingsTable<DirectionalOcclusionSettings>& DirectionalOcclusionSe
             flag("prefilter", &S::prefilter, "read the environment at the level whose texels subtend 2 pi / rays (false: level 0)"),
             flag("bounce", &S::bounce, "also compute `indirect`, the occluders' light (pass ssdo.bounce)"),
             number("bounceStrength", &S::bounceStrength, "", "[0, inf)", "scales the bounce (1: the estimate)"),
+            number("extraViews", &S::extraViews, "views", "[0, 4]",
+                   "more cameras whose depth classifies the samples too (scene mode; 0: off)"),
+            number("extraViewScale", &S::extraViewScale, "", "(0, 1]", "extra views' resolution, relative to the G-buffer's"),
+            number("extraViewOffset", &S::extraViewOffset, "scene radii", "(0, 16]",
+                   "how far each extra eye moves from the camera's, right, left, up, down"),
             number("shadowCorrection", &S::shadowCorrection, "biased segments", "[0, inf)",
                    "lights: the screen march toward each shadowed light covers this multiple of the segment the "
                    "shadow biases skip (0: off)"),
@@ -118,6 +136,10 @@ struct DirectionalOcclusionInputs {
     //! segment the biases skip (DirectionalOcclusionSettings::shadowCorrection). Null: unshadowed.
     const ShadowMapSet* shadows = nullptr;
     ShadowMaskSettings shadowFilter{};
+    //! The scene the G-buffer shows (its CPU meshes), for `extraViews`: each extra view is a
+    //! G-buffer of it rendered by the module. A host G-buffer (GBuffer::adopt) has no scene:
+    //! leave it null and extraViews 0. Must outlive the call.
+    const Scene* scene = nullptr;
 };
 
 struct DirectionalOcclusionView {

@@ -20,6 +20,9 @@
 //! variant: PASS=0 SCREEN_MARCH=2
 //! variant: PASS=0 SCREEN_MARCH=2 SCREEN_PEELED
 //! variant: PASS=0 SCREEN_MARCH=2 SCREEN_PEELED SCREEN_PEELED_OR_CONSTANT
+//! variant: PASS=0 SCREEN_MARCH=0 EXTRA_VIEWS
+//! variant: PASS=1 SCREEN_MARCH=0 SCREEN_PEELED EXTRA_VIEWS
+//! variant: PASS=0 SCREEN_MARCH=0 EXTRA_VIEWS TILES
 //! variant: PASS=0 SCREEN_MARCH=0 TILES
 //! variant: PASS=0 SCREEN_MARCH=0 REFINE
 //! variant: PASS=0 SCREEN_MARCH=0 RAY_LANES=16
@@ -52,6 +55,60 @@ layout(std140, binding = SSDO_PARAMS_UBO_BINDING) uniform SsdoBlock {
     SsdoParams ssdo;
 };
 layout(binding = SSDO_SENDER_UNIT) uniform sampler2D senderRadiance;
+#ifdef EXTRA_VIEWS
+layout(std140, binding = SSDO_VIEWS_UBO_BINDING) uniform SsdoViewsBlock {
+    SsdoViews views;
+};
+layout(binding = SSDO_EXTRA_DEPTH_UNIT) uniform sampler2DArray extraDepth;
+layout(binding = SSDO_EXTRA_NORMAL_UNIT) uniform sampler2DArray extraNormal;
+
+// Extra view k's verdict on main-view point s: 1 hidden (behind its surface, within
+// `thickness`), -1 visible (in front of it, or nothing there), 0 no vote (outside the view,
+// within its tolerance of the surface, or deeper than `thickness`).
+int ssdoExtraVerdict(int k, vec3 s) {
+    const vec3 sk = (views.mainToView[k] * vec4(s, 1.0)).xyz;
+    const vec4 clip = frame.projection * vec4(sk, 1.0);
+    if (!(clip.w > 0.0)) return 0;
+    const vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (!(all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))) return 0;
+    const ivec2 q = min(ivec2(uv * vec2(views.size)), views.size - 1);
+    const float depth = texelFetch(extraDepth, ivec3(q, k), 0).r;
+    if (isBackground(depth)) return -1;
+    const vec3 o = viewPositionFromDepth((vec2(q) + 0.5) / vec2(views.size), depth);
+    const float behind = -dot(sk - o, texelFetch(extraNormal, ivec3(q, k), 0).xyz);
+    // The depth's reconstruction error and a thousandth of the radius (unit-free): a sample
+    // on a surface seen at another pixel size is neither side of it.
+    const float tolerance = 2.0 * depthReconstructionError(o, depth) + 1e-3 * ssdo.radius;
+    if (behind > tolerance) return behind <= ssdo.thickness ? 1 : 0;
+    return behind < -tolerance ? -1 : 0;
+}
+
+// The march over the main view and the extra ones: a sample is occluded when some view sees
+// it hidden and none sees it in front of its surface (the main view: hidden behind the depth
+// buffer within `thickness`, or visible; outside the image it has no vote). So an occluder off
+// screen or seen edge-on by the main camera is found through another view, and a gap behind a
+// front surface that another view sees into stays open. View-space samples (the march
+// setting is the main view's only). The distance of the first occluded sample, or -1.
+float ssdoMarch(vec3 p, vec3 normal, float normalError, vec3 w, float jitter) {
+    const ScreenRayStart from = ScreenRayStart(p, normal, normalError);
+    float hitT = -1.0;
+    for (int j = 0; j < ssdo.stepCount; ++j) {
+        const float t = ssdo.radius * screenSampleT(j, ssdo.stepCount, jitter);
+        const vec3 s = p + w * t;
+        ivec2 q;
+        const bool onScreen = screenPixelOf(s, q);
+        const bool hiddenMain = onScreen && screenHiddenAt(q, s, from, ssdo.thickness);
+        bool hidden = hiddenMain, visible = onScreen && !hiddenMain;
+        for (int k = 0; k < views.count; ++k) {
+            const int verdict = ssdoExtraVerdict(k, s);
+            hidden = hidden || verdict > 0;
+            visible = visible || verdict < 0;
+        }
+        if (hitT < 0.0 && hidden && !visible) hitT = t;
+    }
+    return hitT;
+}
+#endif
 layout(binding = SSDO_ALBEDO_UNIT) uniform sampler2D albedoTexture;
 layout(binding = SSDO_LIGHT_UNIT) uniform sampler2D lightRadiance;
 layout(binding = SSDO_OUT_IMAGE, rgba16f) writeonly uniform image2D integratorOut;
@@ -90,7 +147,11 @@ vec3 ssdoSum(vec3 p, vec3 normal, float normalError, ivec2 pixel) {
     vec3 sum = vec3(0.0);
     for (uint i = rayBatchFirst(); i < rayBatchEnd(); i += uint(RAY_LANES)) {
         const vec3 w = toFrame(cosineHemisphere(rotateSample(hammersley(i, n), rotation)), normal);
+#ifdef EXTRA_VIEWS
+        const float t = ssdoMarch(p, normal, normalError, w, jitter);
+#else
         const float t = screenMarch(ScreenRayStart(p, normal, normalError), w, ssdo.radius, ssdo.stepCount, jitter, ssdo.thickness);
+#endif
 #if PASS == SSDO_PASS_DIRECT
         if (t < 0.0) sum += environmentRadiance(toWorld * w, ssdo.environmentLevel);
 #else

@@ -21,6 +21,11 @@ OBSCURA_SHADER_BEGIN
 
 #define SSDO_ENVIRONMENT_TERM_UNIT 10 // lights pass: the direct pass's result, the G-buffer's size
 
+#define SSDO_VIEWS_UBO_BINDING 9
+#define SSDO_EXTRA_DEPTH_UNIT 1  // EXTRA_VIEWS: the extra views' depth, a layer each
+#define SSDO_EXTRA_NORMAL_UNIT 2 // EXTRA_VIEWS: their view-space geometric normals
+#define SSDO_MAX_EXTRA_VIEWS 4
+
 #define SSDO_WORKGROUP 8
 
 struct SsdoParams {
@@ -46,7 +51,17 @@ struct SsdoParams {
     mat4 viewToWorld; // rotation only (directions)
 };
 
+// The extra views (EXTRA_VIEWS): each with the main camera's projection, seen from its own
+// eye; their G-buffers at `size`.
+struct SsdoViews {
+    mat4 mainToView[SSDO_MAX_EXTRA_VIEWS]; // main view space -> the extra view's
+    ivec2 size;                            // pixels
+    int count;
+    int pad0;
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(SsdoViews) == 4 * 64 + 16, "SsdoViews must match std140");
 static_assert(sizeof(SsdoParams) == 5 * 16 + 64, "SsdoParams must match std140");
 #endif
 

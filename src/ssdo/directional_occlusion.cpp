@@ -12,9 +12,14 @@
 #include "filters/screen_integrator.hpp"
 #include "visibility/screen_inputs.hpp"
 #include "obscura/context.hpp"
+#include "obscura/gbuffer.hpp"
 #include "shaders/ssdo/ssdo_bindings.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <span>
 #include <cmath>
 #include <numbers>
@@ -30,9 +35,35 @@ constexpr double kPi = std::numbers::pi;
 
 void validate(const DirectionalOcclusionSettings& s, const DirectionalOcclusionInputs& inputs) {
     validateSettings(DirectionalOcclusionSettings::table(), s, "DirectionalOcclusionSettings");
+    if (s.extraViews > 0 && !inputs.scene)
+        throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionSettings::extraViews needs "
+                                                "DirectionalOcclusionInputs::scene (scene mode): a host G-buffer has no "
+                                                "scene to render the views from");
     if (!inputs.environment)
         throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionInputs::environment is required: SSDO lights the "
                                                 "pixels with an EnvironmentMap");
+}
+
+// The extra views' cameras: the main camera's projection, eyes moved along its right and up
+// axes by `offset` scene radii, looking at the point of its view axis nearest the scene's
+// centre (or a radius ahead when the centre lies behind the eye).
+std::vector<Camera> extraCameras(const Camera& main, const Bounds& bounds, int count, double offset) {
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(main.view));
+    const glm::dvec3 eye(toWorld[3]), right = glm::normalize(glm::dvec3(toWorld[0]));
+    const glm::dvec3 up = glm::normalize(glm::dvec3(toWorld[1])), forward = -glm::normalize(glm::dvec3(toWorld[2]));
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(bounds.min) + glm::dvec3(bounds.max));
+    const double radius = 0.5 * glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    double focus = glm::dot(centre - eye, forward);
+    if (!(focus > 1e-3 * radius)) focus = radius;
+    const glm::dvec3 target = eye + forward * focus;
+    const std::array<glm::dvec3, 4> directions = {right, -right, up, -up};
+    std::vector<Camera> cameras;
+    for (int k = 0; k < count; ++k) {
+        Camera c = main;
+        c.view = glm::mat4(glm::lookAt(eye + directions[std::size_t(k)] * (offset * radius), target, up));
+        cameras.push_back(c);
+    }
+    return cameras;
 }
 
 void validateLights(const DirectionalOcclusionInputs& inputs, const Camera& camera) {
@@ -50,6 +81,7 @@ GLuint integratorProgram(ContextImpl& ctx, const DirectionalOcclusionSettings& s
     std::vector<std::string> defines = {"PASS=" + std::to_string(pass)};
     const auto screen = screenMarchDefines(s.march, s.thicknessMode);
     defines.insert(defines.end(), screen.begin(), screen.end());
+    if (s.extraViews > 0) defines.push_back("EXTRA_VIEWS");
     addRayLaneDefine(defines, s.rayLanes);
     if (variant) defines.push_back(variant);
     return ctx.shaders->program({"ssdo/ssdo.comp.glsl"}, defines);
@@ -62,8 +94,10 @@ IntegratorShape shapeOf(const DirectionalOcclusionSettings& s, int pass, glm::iv
                                             SSDO_WORKGROUP, false, 0.0f);
     shape.rgb = true;
     shape.batchItems = s.rays;
-    shape.iterationsPerItem = screenRayIterations(s.march, s.steps, fullSize) + (direct ? 0 : 4);
-    shape.hiz = direct && s.march == ScreenMarch::HiZ; // the bounce reuses the direct pass's pyramid
+    shape.iterationsPerItem = s.extraViews > 0 ? std::int64_t(s.steps) * (1 + s.extraViews) + (direct ? 0 : 4)
+                                               : screenRayIterations(s.march, s.steps, fullSize) + (direct ? 0 : 4);
+    // The bounce reuses the direct pass's pyramid; extra views march in view space.
+    shape.hiz = direct && s.march == ScreenMarch::HiZ && s.extraViews == 0;
     shape.hizMode = s.thicknessMode;
     return shape;
 }
@@ -74,10 +108,65 @@ struct DirectionalOcclusion::Impl {
     explicit Impl(ContextImpl& c) : ctx(c) {}
 
     ContextImpl& ctx;
+    Context* context = nullptr;
     ScreenIntegrator direct, bounce;
-    Buffer params;
+    Buffer params, viewsBlock;
     LightRecords lights;
     SizedTexture lit;
+    std::unique_ptr<GBuffer> views; // the extra views' G-buffers, one after another
+    Texture viewDepth, viewNormal;  // their depth and normals, a layer each
+    glm::ivec3 viewArraySize{0};
+    shader::SsdoViews viewData{};
+
+    // Pass "ssdo.views": renders the extra views (GBuffer::render, whose StateScope nests in
+    // the run's) and copies each into the layer arrays.
+    void renderViews(const GBufferView& g, const Scene& scene, const DirectionalOcclusionSettings& s) {
+        const Bounds bounds = sceneBounds(scene);
+        if (bounds.empty)
+            throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionSettings::extraViews: the scene has no CPU "
+                                                    "meshes to place the views around");
+        if (!views) views = std::make_unique<GBuffer>(*context);
+        const int w = std::max(1, int(std::ceil(g.width * double(s.extraViewScale))));
+        const int h = std::max(1, int(std::ceil(g.height * double(s.extraViewScale))));
+        const std::vector<Camera> cameras = extraCameras(g.camera, bounds, s.extraViews, s.extraViewOffset);
+        GBufferSettings settings;
+        settings.width = w;
+        settings.height = h;
+        settings.directLighting = false;
+        const glm::dmat4 mainToWorld = glm::inverse(glm::dmat4(g.camera.view));
+        viewData = {};
+        for (int k = 0; k < s.extraViews; ++k) {
+            const GBufferView v = views->render(scene, cameras[std::size_t(k)], settings);
+            ensureViewArrays(w, h, s.extraViews);
+            ctx.gl.CopyImageSubData(v.depth.name, GL_TEXTURE_2D, 0, 0, 0, 0, viewDepth.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, k,
+                                    w, h, 1);
+            ctx.gl.CopyImageSubData(v.normal.name, GL_TEXTURE_2D, 0, 0, 0, 0, viewNormal.get(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                                    k, w, h, 1);
+            viewData.mainToView[k] = glm::mat4(glm::dmat4(cameras[std::size_t(k)].view) * mainToWorld);
+        }
+        viewData.size = {w, h};
+        viewData.count = s.extraViews;
+    }
+
+    void ensureViewArrays(int w, int h, int layers) {
+        if (viewDepth && viewArraySize == glm::ivec3(w, h, layers)) return;
+        viewDepth = createTexture2DArray(ctx, GL_DEPTH_COMPONENT32F, w, h, layers, "ssdo.view_depth");
+        viewNormal = createTexture2DArray(ctx, GL_RGBA16F, w, h, layers, "ssdo.view_normal");
+        viewArraySize = {w, h, layers};
+    }
+
+    void bindViews() {
+        uploadUniformBlock(ctx, viewsBlock, viewData, SSDO_VIEWS_UBO_BINDING, "ssdo.views");
+        bindNearest(ctx, SSDO_EXTRA_DEPTH_UNIT, viewDepth.get());
+        bindNearest(ctx, SSDO_EXTRA_NORMAL_UNIT, viewNormal.get());
+    }
+
+    void releaseViews() {
+        views.reset();
+        viewDepth.reset();
+        viewNormal.reset();
+        viewArraySize = glm::ivec3(0);
+    }
 
     // Pass "ssdo.lights": the environment term plus the lights, at the G-buffer's resolution.
     TextureView addLights(const GBufferView& view, const DirectionalOcclusionInputs& in,
@@ -133,7 +222,9 @@ struct DirectionalOcclusion::Impl {
     shader::SsdoParams current{};
 };
 
-DirectionalOcclusion::DirectionalOcclusion(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+DirectionalOcclusion::DirectionalOcclusion(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {
+    impl_->context = &context;
+}
 DirectionalOcclusion::~DirectionalOcclusion() = default;
 
 DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const DirectionalOcclusionInputs& inputs,
@@ -166,7 +257,13 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
                          {"GBufferView::directRadiance", g.directRadiance.name}},
                         written, "DirectionalOcclusion");
 
-    StateScope scope(ctx);
+    StateScope scope(ctx); // nests GBuffer::render's own for the extra views
+    if (s.extraViews > 0) {
+        PassScope pass(ctx, "ssdo.views");
+        d.renderViews(view, *inputs.scene, s);
+    } else {
+        d.releaseViews(); // not asked for: not kept
+    }
     const glm::ivec2 size = ScreenIntegrator::reducedSize(view, directShape.scale);
     d.uploadParams(g, s, size, directShape.scale);
     const EnvironmentView env = inputs.environment->view();
@@ -179,6 +276,7 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
     uploadUniformBlock(ctx, d.params, d.current, SSDO_PARAMS_UBO_BINDING, "ssdo.params");
     d.direct.begin(ctx, view, peeled, s.frameIndex, directShape);
     EnvironmentBinding::bind(ctx, *inputs.environment);
+    if (s.extraViews > 0) d.bindViews();
     bindNearest(ctx, SSDO_ALBEDO_UNIT, g.albedo.name);
     const IntegratorImages images{SSDO_OUT_IMAGE, SSDO_OUT_IMAGE, SSDO_GUIDE_OUT_IMAGE};
     const IntegratorResult direct = d.direct.run(
@@ -192,6 +290,7 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
         return out;
     }
     d.bounce.begin(ctx, view, peeled, s.frameIndex, bounceShape);
+    if (s.extraViews > 0) d.bindViews();
     bindNearest(ctx, SSDO_ALBEDO_UNIT, g.albedo.name);
     bindNearest(ctx, SSDO_SENDER_UNIT, out.direct.name);
     if (g.directRadiance) bindNearest(ctx, SSDO_LIGHT_UNIT, g.directRadiance.name);
@@ -222,7 +321,10 @@ void DirectionalOcclusion::resetHistory() {
 
 std::size_t DirectionalOcclusion::memoryBytes() const {
     const auto& d = *impl_;
+    const std::size_t viewTexels = std::size_t(d.viewArraySize.x) * std::size_t(d.viewArraySize.y) * std::size_t(d.viewArraySize.z);
     return d.direct.memoryBytes() + d.bounce.memoryBytes() + d.lights.memoryBytes() + d.lit.bytes() +
+           (d.views ? d.views->memoryBytes() : 0) + viewTexels * (bytesPerTexel(GL_DEPTH_COMPONENT32F) + bytesPerTexel(GL_RGBA16F)) +
+           (d.viewsBlock ? sizeof(shader::SsdoViews) : 0) +
            (d.params ? sizeof(shader::SsdoParams) : 0);
 }
 

@@ -230,3 +230,61 @@ TEST_CASE("SSDO refuses a missing environment and settings out of range", "[ssdo
     s.bounceStrength = -1.0f;
     CHECK_THROWS_AS(f.ssdo.run(f.view, {&env}, s), Error);
 }
+
+TEST_CASE("SSDO's extra views find an occluder outside the image: the floor beside it matches rho L AO_r", "[ssdo]") {
+    // A box (x in [-3, 3], y in [0, 2], z in [-3, -1]) on a floor, and a camera looking down
+    // at the floor in front of it with the box just beyond the image's top edge. Within r =
+    // 1.5 of its face z = -1 (rays never climb past 1.5 < 2, and |x| stays 1.8 > r from its
+    // ends) the box is an infinite wall: the floor's open share is 1 - wallShare(D, r).
+    constexpr int W = 96, H = 72, rays = 64, steps = 16;
+    constexpr double radius = 1.5;
+    Scene scene = whiteScene(test::floorScene(4.0));
+    Mesh box;
+    box.data = test::cubeMesh();
+    box.model = glm::translate(glm::mat4(1.0f), glm::vec3(-3, 0, -3)) * glm::scale(glm::mat4(1.0f), glm::vec3(6, 2, 2));
+    scene.meshes.push_back(box);
+    SsdoFixture f;
+    const Camera camera = Camera::perspective({{0, 2.5f, 1.0f}, {0, 0, 1.0f}, {0, 0, -1}}, glm::radians(50.0f), float(W) / H,
+                                              0.05f, 50.0f);
+    f.render(scene, camera, W, H);
+    EnvironmentMap env(f.ctx, constantImage(32, 16, glm::vec3(1.0f)), smallEnvironment());
+    DirectionalOcclusionSettings s;
+    s.radius = float(radius);
+    s.rays = rays;
+    s.steps = steps;
+    int checked = 0;
+    const auto meanError = [&](int views, double& window) {
+        s.extraViews = views;
+        DirectionalOcclusionInputs in;
+        in.environment = &env;
+        in.scene = &scene;
+        const Image direct = readTexture(f.ctx, f.ssdo.run(f.view, in, s).direct);
+        double error = 0.0;
+        window = 0.0;
+        checked = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (!f.geometry(x, y)) continue;
+                const glm::dvec3 p = f.world(x, y);
+                const double distance = p.z + 1.0;
+                if (std::abs(p.y) > 1e-3 || !(distance > 0.0) || distance >= radius || std::abs(p.x) > 1.2) continue;
+                const double lo = 1.0 - wallShare(distance, radius), hi = 1.0 - wallShare(distance, radius * (1.0 - 1.0 / steps));
+                error += direct.at(x, y, 1) - 0.5 * (lo + hi);
+                window += 0.5 * (hi - lo);
+                ++checked;
+            }
+        REQUIRE(checked > 300);
+        window /= checked;
+        return error / checked;
+    };
+    double window = 0.0;
+    const double without = meanError(0, window);
+    const double with = meanError(4, window);
+    INFO("mean error of the open share near the box: " << without << " without extra views, " << with
+                                                         << " with 4; the march's window +-" << window);
+    // Unseen, the box occludes nothing: the error is the mean of wallShare over these pixels.
+    CHECK(without > 0.03);
+    // Seen by the extra views, the error falls within the march's window and 5 sigma of a mean
+    // of rays x pixels samples (sigma <= 1/2 each), and the half float's rounding.
+    CHECK(std::abs(with) <= window + 5.0 * 0.5 / std::sqrt(double(rays) * checked) + 0x1p-11);
+}

@@ -56,13 +56,16 @@ public:
         // screen space): the G-buffer keeps only emission.
         view_ = lit_.renderUnlit(frame, g);
         settings_.frameIndex = firstFrame_ + (settings_.temporal.enabled ? framesRun_++ : 0u);
-        DirectionalOcclusionInputs inputs{environment_.get(), scene.lights, lit_.shadowMaps(), lit_.shadowFilter()};
+        DirectionalOcclusionInputs inputs{environment_.get(), scene.lights, lit_.shadowMaps(), lit_.shadowFilter(), &scene};
         result_ = ssdo_.run(view_, inputs, settings_);
     }
 
     std::string ignoredSetting(const std::string& key) const override {
         if (key == "bounce_strength" && !settings_.bounce) return "only with bounce=1";
         if (key == "shadow_correction" && !lit_.shadowed()) return "only with shadows=1";
+        if ((key == "extra_view_scale" || key == "extra_view_offset") && settings_.extraViews == 0)
+            return "only with extra_views > 0";
+        if (key == "march" && settings_.extraViews > 0) return "extra views march in view space";
         const std::string why = ignoredIntegratorSetting(key, settings_.resolution, settings_.blurRadius, std::nullopt);
         return why.empty() ? lit_.ignoredSetting(key) : why;
     }
