@@ -163,7 +163,10 @@ public:
     DirectionalOcclusionView run(const GBufferView& gbuffer, const DirectionalOcclusionInputs& inputs,
                                  const DirectionalOcclusionSettings& settings);
 
-    //! Compiles every shader program run() takes for these settings (as AmbientOcclusion::prepare).
+    //! Compiles the programs run() takes for these settings (as AmbientOcclusion::prepare): the
+    //! direct pass and, with `bounce`, the bounce, with their filters. The lights pass's
+    //! program depends on the inputs (rect lights, shadow maps and their filter): it compiles
+    //! on the first run with lights.
     void prepare(const DirectionalOcclusionSettings& settings);
 
     //! Forgets the temporal history of both outputs.

@@ -76,25 +76,31 @@ void checkAllocation(ContextImpl& ctx, std::string_view what) {
                 std::string(glErrorName(first)) + " while creating " + std::string(what) + " (a bug in Obscura)");
 }
 
-Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
-                        std::string_view name) {
+namespace {
+
+// A texture of `target` with 2D storage (a 2D texture, or a cube map's six faces).
+Texture createTexture2DStorage(ContextImpl& ctx, GLenum target, GLenum internalFormat, int width, int height, int levels,
+                               std::string_view name, const std::string& extent) {
     drainGlErrors(ctx);
     GLuint t = 0;
-    ctx.gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
+    ctx.gl.CreateTextures(target, 1, &t);
     Texture tex = track<ObjectKind::Texture>(ctx, t, name);
     ctx.gl.TextureStorage2D(t, levels, internalFormat, width, height);
-    checkAllocation(ctx, std::string(name) + " (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    checkAllocation(ctx, std::string(name) + " (" + extent + ")");
     return tex;
 }
 
+} // namespace
+
+Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int levels,
+                        std::string_view name) {
+    return createTexture2DStorage(ctx, GL_TEXTURE_2D, internalFormat, width, height, levels, name,
+                                  std::to_string(width) + "x" + std::to_string(height));
+}
+
 Texture createTextureCube(ContextImpl& ctx, GLenum internalFormat, int size, int levels, std::string_view name) {
-    drainGlErrors(ctx);
-    GLuint t = 0;
-    ctx.gl.CreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t);
-    Texture tex = track<ObjectKind::Texture>(ctx, t, name);
-    ctx.gl.TextureStorage2D(t, levels, internalFormat, size, size);
-    checkAllocation(ctx, std::string(name) + " (6x" + std::to_string(size) + "x" + std::to_string(size) + ")");
-    return tex;
+    return createTexture2DStorage(ctx, GL_TEXTURE_CUBE_MAP, internalFormat, size, size, levels, name,
+                                  "6x" + std::to_string(size) + "x" + std::to_string(size));
 }
 
 Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,

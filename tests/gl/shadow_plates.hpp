@@ -48,6 +48,25 @@ inline double squareEdgeDistance(double x, double z, glm::dvec2 c, double a) {
     return outside > 0.0 ? outside : -std::max(q.x, q.y);
 }
 
+// A thin upright wall (x = 0, |z| <= 1, y in [0, 1]) on a floor, a spot light on its +x side:
+// with a constant bias longer than the wall is thick, receivers just behind its base are
+// carried through it (peter-panning). The contact-shadow tests' scene, and their camera.
+inline Scene contactWallScene(glm::vec3 albedo = glm::vec3(0.5f)) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {3.0f, 2.5f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(-3.5f, -2.5f, 0.0f));
+    spot.outerAngle = 1.0f;
+    Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
+                                   {{glm::dvec3(0, 0, -1), {0, 0, 1}, {0, 1, 1}, {0, 1, -1}}}},
+                                  albedo);
+    scene.lights = {spot};
+    return scene;
+}
+inline Camera contactWallCamera(int w, int h) {
+    return Camera::perspective({{-3.0f, 2.5f, 2.0f}, {-0.5f, 0.2f, 0}, {0, 1, 0}}, 0.9f, float(w) / float(h), 0.05f, 100.0f);
+}
+
 struct ShadowFixture {
     test::GlFixture gl;
     Context ctx{gl.desc()};

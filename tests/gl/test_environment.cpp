@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <vector>
 
 using namespace obscura;
@@ -42,6 +43,18 @@ std::vector<glm::vec3> sphereDirections(int n) {
         out.emplace_back(float(r * std::cos(phi)), float(z), float(r * std::sin(phi)));
     }
     return out;
+}
+
+// One of blender-data's HDR environments (scripts/setup-debian.sh installs them), precomputed.
+std::unique_ptr<EnvironmentMap> blenderWorld(Context& ctx, const char* name, int cubeSize, int irradianceSize,
+                                             int convolutionWidth) {
+    const std::filesystem::path path = std::filesystem::path(kBlenderWorld) / name;
+    if (!std::filesystem::exists(path)) FAIL("missing " << path << " (scripts/setup-debian.sh installs blender-data)");
+    EnvironmentSettings s;
+    s.cubeSize = cubeSize;
+    s.irradianceSize = irradianceSize;
+    s.convolutionWidth = convolutionWidth;
+    return std::make_unique<EnvironmentMap>(ctx, assets::readImage(path), s);
 }
 
 // The luminance of an RGB triple (the weights the module uses).
@@ -118,14 +131,8 @@ TEST_CASE("SH irradiance of real HDR environments stays within the order-2 kerne
     test::GlFixture gl;
     Context ctx(gl.desc());
     for (const char* name : {"forest.exr", "city.exr", "sunset.exr"}) {
-        const std::filesystem::path path = std::filesystem::path(kBlenderWorld) / name;
-        if (!std::filesystem::exists(path)) FAIL("missing " << path << " (scripts/setup-debian.sh installs blender-data)");
-        const Image img = assets::readImage(path);
-        EnvironmentSettings s;
-        s.cubeSize = 32;
-        s.irradianceSize = 8;
-        s.convolutionWidth = 256;
-        EnvironmentMap env(ctx, img, s);
+        const auto map = blenderWorld(ctx, name, 32, 8, 256);
+        const EnvironmentMap& env = *map;
         // E_sh(n) - E(n) = Integral L(w) (k2(n.w) - max(0, n.w)) dw with k2 the order-2 Legendre
         // truncation of the clamped cosine, 1/4 + x/2 + (15 x^2 - 5)/32, which differs from it
         // by at most 3/32 (at x = 0). So |E_sh - E| <= 3/32 Integral L dw = 3/32 4 pi L_00 / sqrt(4 pi).
@@ -205,12 +212,8 @@ TEST_CASE("Rotation applies at lookup: a rotated environment's irradiance is the
           "[environment]") {
     test::GlFixture gl;
     Context ctx(gl.desc());
-    const Image img = assets::readImage(std::filesystem::path(kBlenderWorld) / "courtyard.exr");
-    EnvironmentSettings s;
-    s.cubeSize = 16;
-    s.irradianceSize = 4;
-    s.convolutionWidth = 64;
-    EnvironmentMap env(ctx, img, s);
+    const auto map = blenderWorld(ctx, "courtyard.exr", 16, 4, 64);
+    EnvironmentMap& env = *map;
     const auto coefficients = env.shCoefficients();
     const float angle = 0.7f;
     for (const glm::vec3& n : sphereDirections(50)) {

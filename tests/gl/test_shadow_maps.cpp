@@ -112,19 +112,10 @@ TEST_CASE("A rect light flush with its ceiling shadows like a point light at its
 }
 
 TEST_CASE("Contact shadows recover the shadow next to an occluder's base that a large bias removes", "[shadows][reference]") {
-    // A thin upright wall on the floor, a spot light on its +x side; a constant bias longer
-    // than the wall is thick carries receivers just behind its base through it (peter-panning).
-    Light spot;
-    spot.type = LightType::Spot;
-    spot.position = {3.0f, 2.5f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(-3.5f, -2.5f, 0.0f));
-    spot.outerAngle = 1.0f;
-    const Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
-                                         {{glm::dvec3(0, 0, -1), {0, 0, 1}, {0, 1, 1}, {0, 1, -1}}}});
-    Scene lit = scene;
-    lit.lights = {spot};
+    // contactWallScene: a constant bias longer than the wall is thick (peter-panning).
+    const Scene lit = contactWallScene();
     constexpr int W = 96, H = 72;
-    ShadowFixture f(Camera::perspective({{-3.0f, 2.5f, 2.0f}, {-0.5f, 0.2f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f), W, H);
+    ShadowFixture f(contactWallCamera(W, H), W, H);
     f.render(lit);
     const reference::Reference truth = f.truth(lit);
     const ShadowMapSet& set = f.shadows.render(lit, f.camera, {1024, 1, 0.5f});

@@ -5,6 +5,7 @@
 #include "ao_fixture.hpp"
 #include "gl_fixture.hpp"
 #include "scene_builders.hpp"
+#include "shadow_plates.hpp"
 
 #include "obscura/assets.hpp"
 #include "obscura/obscura.hpp"
@@ -124,20 +125,11 @@ TEST_CASE("SSDO tints a floor's shadow by the environment colour its occluder bl
 }
 
 TEST_CASE("SSDO's shadow correction recovers the contact shadow a large shadow bias removes", "[ssdo][reference]") {
-    // test_shadow_maps.cpp's contact-shadow scene: a thin upright wall on a floor, a spot light
-    // on its +x side, a constant bias longer than the wall is thick (peter-panning).
-    Light spot;
-    spot.type = LightType::Spot;
-    spot.position = {3.0f, 2.5f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(-3.5f, -2.5f, 0.0f));
-    spot.outerAngle = 1.0f;
-    Scene scene = test::quadScene({{{glm::dvec3(-20, 0, -20), {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}}},
-                                   {{glm::dvec3(0, 0, -1), {0, 0, 1}, {0, 1, 1}, {0, 1, -1}}}},
-                                  glm::vec3(1.0f));
-    scene.lights = {spot};
+    // The contact-shadow tests' scene (shadow_plates.hpp): a thin wall, a spot light, a
+    // constant bias longer than the wall is thick (peter-panning). Albedo 1: decoded exactly.
+    const Scene scene = test::contactWallScene(glm::vec3(1.0f));
     constexpr int W = 96, H = 72;
-    const Camera camera =
-        Camera::perspective({{-3.0f, 2.5f, 2.0f}, {-0.5f, 0.2f, 0}, {0, 1, 0}}, 0.9f, float(W) / H, 0.05f, 100.0f);
+    const Camera camera = test::contactWallCamera(W, H);
     test::GlFixture gl;
     Context ctx(gl.desc());
     GBuffer gbuffer(ctx);
