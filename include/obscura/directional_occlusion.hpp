@@ -8,8 +8,9 @@
 // direction with no hidden sample is open and brings the environment's radiance:
 //   L_dir(x) = (rho/pi) Integral L_env(w) V(x, w) (n.w) dw ~ rho * mean over the directions of
 //   L_env(w) V(w),
-// the environment read from its cube at the level whose texels subtend 2 pi / rays (a
-// sample stands for that much of the hemisphere; `prefilter` false: level 0). This estimates
+// the environment read from its cube at the whole mip level nearest the one whose texels
+// subtend 2 pi / rays (a sample stands for that much of the hemisphere; `prefilter` false:
+// level 0). This estimates
 // obscura::reference::ImageBasedLight with visibility limited to r_max; what the screen
 // cannot see counts as open (AmbientOcclusion's border and thickness rules).
 //
@@ -34,9 +35,10 @@
 // moved right, left, up and down by `extraViewOffset` times the scene's bounding radius,
 // looking at the point of the main view axis nearest the scene's centre, rendered at
 // `extraViewScale` of the G-buffer's size (pass "ssdo.views"). A sample is occluded when some
-// view sees it hidden and none sees it in front of its surface (a view it lies outside of has
-// no vote): occluders off screen or seen edge-on by the main camera are found, and gaps
-// behind a front surface that another view sees into stay open. With extra views the march
+// view sees it hidden and none sees it in front of its surface (a view it lies outside of, or
+// sees it behind a surface deeper than `thickness`, has no vote): occluders off screen or
+// behind others in the main view are found, and gaps behind a front surface that another view
+// sees into stay open. A thin occluder that any view sees past (one seen edge-on) is missed. With extra views the march
 // takes view-space samples (`march` is ignored).
 //
 // Depth peeling: `thicknessMode` DepthPeeling (GBufferSettings::depthLayers = 2) classifies
@@ -165,9 +167,13 @@ public:
 
     //! Compiles the programs run() takes for these settings (as AmbientOcclusion::prepare): the
     //! direct pass and, with `bounce`, the bounce, with their filters. The lights pass's
-    //! program depends on the inputs (rect lights, shadow maps and their filter): it compiles
-    //! on the first run with lights.
+    //! program depends on the inputs (rect lights, shadow maps and their filter), and the extra
+    //! views' G-buffer programs on the scene: they compile on the first run that takes them.
     void prepare(const DirectionalOcclusionSettings& settings);
+
+    //! The last run's refinement (RefinementCount, ambient_occlusion.hpp), the direct pass's
+    //! and the bounce's added; zeros at full resolution. Waits for the run: not for every frame.
+    RefinementCount lastRefinement() const;
 
     //! Forgets the temporal history of both outputs.
     void resetHistory();

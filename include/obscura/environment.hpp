@@ -21,15 +21,15 @@
 //       averages), with the discrete cosine weights normalized to integrate to pi: a constant
 //       environment again gives pi L exactly, and no ringing.
 //   - an importance table: the probability of each texel of that reduced image in proportion
-//     to its luminance times its solid angle, with a floor of 1e-6 of the largest weight so
+//     to its luminance times its solid angle, the luminance floored at 1e-6 of the largest so
 //     that every direction keeps a non-zero density (as the reference's sampler).
 //   - a sun: with `sunThreshold` > 0, the texels brighter than sunThreshold times the mean
 //     luminance are taken out of all the above and returned by sun() as one directional light
 //     (its travel direction the luminance-weighted mean; its intensity the irradiance the
 //     texels give a surface facing them). The SH projection of a sharp light rings: its
-//     irradiance kernel falls to -0.0396 of its peak 1.0625 at cos = -8/15 (order 2, no
-//     window), i.e. a sun of irradiance E_s lowers the irradiance by up to 0.037 E_s on the
-//     far side. With the sun split out, the ringing is that of the remainder, whose brightest
+//     irradiance kernel 1/4 + x/2 + (15 x^2 - 5)/32 peaks at 1.0625 and falls to -0.0396 at
+//     x = cos = -8/15 (order 2, no window), i.e. a sun of irradiance E_s raises the lit side by
+//     up to 0.0625 E_s and lowers the far side by up to 0.0396 E_s. With the sun split out, the ringing is that of the remainder, whose brightest
 //     texel is sunThreshold times the mean. `shWindow` lambda further damps bands 1 and 2 by
 //     1 / (1 + lambda l^2 (l + 1)^2) (Sloan 2008, "Stupid spherical harmonics tricks":
 //     the least-squares fit with a curvature penalty); band 0 is never changed, so a constant

@@ -1,6 +1,6 @@
 // Lookups into an environment (EnvironmentMap): radiance from the cube map, irradiance from
 // the SH projection or the convolved cube. Directions are world-space; the module binds the
-// block and both cubes (EnvironmentMap's bindForLookup).
+// block and both cubes (EnvironmentBinding::bind).
 #include "environment_bindings.h"
 
 layout(std140, binding = ENV_PARAMS_UBO_BINDING) uniform EnvironmentBlock {

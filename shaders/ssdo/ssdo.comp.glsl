@@ -83,11 +83,23 @@ int ssdoExtraVerdict(int k, vec3 s) {
     return behind < -tolerance ? -1 : 0;
 }
 
+// The main view's verdict on s (projecting to pixel q), as ssdoExtraVerdict's: hidden as
+// screenHiddenAt says; visible in front of the pixel's surface by more than the tolerance; no
+// vote behind it deeper than `thickness` or within the tolerance.
+int ssdoMainVerdict(vec3 s, ivec2 q, ScreenRayStart from) {
+    if (screenHiddenAt(q, s, from, ssdo.thickness)) return 1;
+    const float depth = texelFetch(visDepth, q, 0).r;
+    if (isBackground(depth)) return -1;
+    const vec3 o = viewPositionFromDepth(pixelCenterUv(q), depth);
+    const float behind = -dot(s - o, texelFetch(visNormal, q, 0).xyz);
+    return behind < -(2.0 * depthReconstructionError(o, depth) + 1e-3 * ssdo.radius) ? -1 : 0;
+}
+
 // The march over the main view and the extra ones: a sample is occluded when some view sees
-// it hidden and none sees it in front of its surface (the main view: hidden behind the depth
-// buffer within `thickness`, or visible; outside the image it has no vote). So an occluder off
-// screen or seen edge-on by the main camera is found through another view, and a gap behind a
-// front surface that another view sees into stays open. View-space samples (the march
+// it hidden and none sees it in front of its surface (a view it lies outside of, or behind a
+// surface deeper than `thickness`, has no vote). So an occluder off screen, or behind another
+// one in the main view, is found through another view, and a gap behind a front surface that
+// another view sees into stays open. A thin occluder that some view sees past is missed. View-space samples (the march
 // setting is the main view's only). The distance of the first occluded sample, or -1.
 float ssdoMarch(vec3 p, vec3 normal, float normalError, vec3 w, float jitter) {
     const ScreenRayStart from = ScreenRayStart(p, normal, normalError);
@@ -96,9 +108,8 @@ float ssdoMarch(vec3 p, vec3 normal, float normalError, vec3 w, float jitter) {
         const float t = ssdo.radius * screenSampleT(j, ssdo.stepCount, jitter);
         const vec3 s = p + w * t;
         ivec2 q;
-        const bool onScreen = screenPixelOf(s, q);
-        const bool hiddenMain = onScreen && screenHiddenAt(q, s, from, ssdo.thickness);
-        bool hidden = hiddenMain, visible = onScreen && !hiddenMain;
+        const int main = screenPixelOf(s, q) ? ssdoMainVerdict(s, q, from) : 0;
+        bool hidden = main > 0, visible = main < 0;
         for (int k = 0; k < views.count; ++k) {
             const int verdict = ssdoExtraVerdict(k, s);
             hidden = hidden || verdict > 0;

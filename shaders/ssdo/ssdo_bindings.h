@@ -12,7 +12,8 @@ OBSCURA_SHADER_BEGIN
 #define SSDO_PARAMS_UBO_BINDING 8
 #define SSDO_SENDER_UNIT 10     // bounce: the direct pass's result, the G-buffer's size
 #define SSDO_ALBEDO_UNIT 11     // the G-buffer's albedo
-#define SSDO_LIGHT_UNIT 12      // bounce: the G-buffer's direct radiance (its lights), when it has one
+// Not 12: the filters' modulation (FILTER_MODULATE_UNIT) stays bound there when REFINE runs.
+#define SSDO_LIGHT_UNIT 4       // bounce: the G-buffer's direct radiance (its lights), when it has one
 #define SSDO_OUT_IMAGE 0        // rgba16f, at the integrator's resolution
 #define SSDO_GUIDE_OUT_IMAGE 2  // rgba32f: view normal xyz, view z (0 = background), for the filters
 

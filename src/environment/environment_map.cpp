@@ -83,7 +83,9 @@ struct EnvironmentMap::Impl {
         gl.ProgramUniform1i(program, 0, cubeSize);
         const GLuint groups = GLuint((cubeSize + ENV_WORKGROUP - 1) / ENV_WORKGROUP);
         gl.DispatchCompute(groups, groups, 6);
-        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        // Mipmap generation reads level 0 through a path no single barrier bit names: all of them
+        // (once per environment).
+        gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
         gl.GenerateTextureMipmap(cube.get());
     }
 

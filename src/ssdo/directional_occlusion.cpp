@@ -196,7 +196,7 @@ struct DirectionalOcclusion::Impl {
         const GLuint out = lit.ensure(ctx, GL_RGBA16F, view.width, view.height, "ssdo.direct_lit");
         ctx.state.bindImage(ctx, SSDO_OUT_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatchCompute2D(ctx, view.width, view.height, SSDO_WORKGROUP);
-        ctx.gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        barrierForReaders(ctx); // the bounce's senders, or the host: `direct` as returned
         return {out, GL_RGBA16F, view.width, view.height};
     }
 
@@ -312,6 +312,11 @@ void DirectionalOcclusion::prepare(const DirectionalOcclusionSettings& s) {
         shape.modulate = 1; // the albedo: only that there is one matters here
         ScreenIntegrator::prepare(ctx, shape, [&](const char* v) { return integratorProgram(ctx, s, pass, v); });
     }
+}
+
+RefinementCount DirectionalOcclusion::lastRefinement() const {
+    const RefinementCount a = impl_->direct.lastRefinement(impl_->ctx), b = impl_->bounce.lastRefinement(impl_->ctx);
+    return {a.asked + b.asked, a.refined + b.refined};
 }
 
 void DirectionalOcclusion::resetHistory() {

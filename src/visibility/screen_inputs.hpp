@@ -21,10 +21,10 @@ GBufferView checkScreenInputs(ContextImpl& ctx, const GBufferView& view, bool ne
 //! (requireReadableAs) and has the size of the checked view (from checkScreenInputs).
 void requireViewInput(ContextImpl& ctx, const TextureView& texture, const GBufferView& checked, const std::string& what,
                       SampledAs kind);
-//! Binds depth, normal (and the back layer for SCREEN_PEELED shaders) with nearest sampling.
 //! Binds `texture` at `unit` with the nearest, clamped sampler (what texelFetch readers take).
 void bindNearest(ContextImpl& ctx, int unit, GLuint texture);
 
+//! Binds depth, normal (and the back layer for SCREEN_PEELED shaders) with nearest sampling.
 void bindScreenInputs(ContextImpl& ctx, const GBufferView& view, bool peeled);
 //! The defines that make screen_march.glsl march with `march` and `thickness`.
 std::vector<std::string> screenMarchDefines(ScreenMarch march, ScreenThickness thickness);

@@ -176,7 +176,7 @@ TEST_CASE("A split-out sun carries the bright texels' irradiance and leaves the 
     plain.irradianceSize = 4;
     plain.convolutionWidth = 128;
     EnvironmentSettings split = plain;
-    split.sunThreshold = 100.0f; // the sky is ~0.1, its mean with the sun ~0.2: the sun only
+    split.sunThreshold = 100.0f; // mean luminance ~1.2 with the sun: a limit ~118, the sun's texels only
     EnvironmentMap whole(ctx, img, plain), parted(ctx, img, split);
     REQUIRE_FALSE(whole.sun());
     REQUIRE(parted.sun());
@@ -219,7 +219,7 @@ TEST_CASE("Rotation applies at lookup: a rotated environment's irradiance is the
     for (const glm::vec3& n : sphereDirections(50)) {
         env.setLookup(2.0f, 0.0f);
         // Rotating the environment by +angle about y moves what was at azimuth a to a + angle;
-        // the normal turned by -angle sees in the rotated one what n saw in the original.
+        // the normal turned by +angle sees in the rotated one what n saw in the original.
         const float c = std::cos(angle), sn = std::sin(angle);
         const glm::vec3 turned(n.x * c - n.z * sn, n.y, n.z * c + n.x * sn);
         const glm::vec3 original = env.shIrradiance(n);
