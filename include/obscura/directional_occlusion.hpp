@@ -31,6 +31,14 @@
 // light over `shadowCorrection` times that segment finds it (ShadowMaskSettings::contactSteps
 // samples, as thin as its contactThickness; its contactLength is ShadowMaps::mask's only).
 //
+// Instant radiosity (`vplGrid` > 0, pass "ssdo.vpls", full resolution): virtual point lights
+// from the reflective shadow maps of the spot and directional lights (ShadowMapSettings::
+// reflective; a directional light's widest cascade), one per cell of a vplGrid x vplGrid grid
+// over each map with the cell's flux, each tested with the shadow correction's screen-space
+// march along the whole segment to it; the irradiance of a VPL is bounded by its cell's
+// exitance (d^2 >= area / pi). Added to `indirect`; the bounce's senders then carry the
+// environment's light only (the VPLs are the lights' bounce).
+//
 // Extra views (`extraViews`, 1 to 4): cameras with the main one's projection, their eyes
 // moved right, left, up and down by `extraViewOffset` times the scene's bounding radius,
 // looking at the point of the main view axis nearest the scene's centre, rendered at
@@ -78,6 +86,8 @@ struct DirectionalOcclusionSettings {
     bool bounce = false;
     float bounceStrength = 1.0f;
     float shadowCorrection = 2.0f;
+    //! Needs reflective shadow maps in DirectionalOcclusionInputs::shadows.
+    int vplGrid = 0;
     //! Needs DirectionalOcclusionInputs::scene: a host's G-buffer has none to render them from.
     int extraViews = 0;
     float extraViewScale = 0.5f;
@@ -110,6 +120,8 @@ inline const SettingsTable<DirectionalOcclusionSettings>& DirectionalOcclusionSe
             flag("prefilter", &S::prefilter, "read the environment at the level whose texels subtend 2 pi / rays (false: level 0)"),
             flag("bounce", &S::bounce, "also compute `indirect`, the occluders' light (pass ssdo.bounce)"),
             number("bounceStrength", &S::bounceStrength, "", "[0, inf)", "scales the bounce (1: the estimate)"),
+            number("vplGrid", &S::vplGrid, "cells per side", "[0, 64]",
+                   "instant radiosity: a VPL per cell of this grid over each reflective shadow map (0: off)"),
             number("extraViews", &S::extraViews, "views", "[0, 4]",
                    "more cameras whose depth classifies the samples too (scene mode; 0: off)"),
             number("extraViewScale", &S::extraViewScale, "", "(0, 1]", "extra views' resolution, relative to the G-buffer's"),
@@ -146,7 +158,7 @@ struct DirectionalOcclusionInputs {
 
 struct DirectionalOcclusionView {
     TextureView direct;   //!< GL_RGBA16F, W/(sr m^2)
-    TextureView indirect; //!< GL_RGBA16F, W/(sr m^2); empty unless settings.bounce
+    TextureView indirect; //!< GL_RGBA16F, W/(sr m^2); empty unless settings.bounce or vplGrid
     int width = 0, height = 0;
 };
 

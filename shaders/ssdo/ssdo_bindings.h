@@ -27,6 +27,15 @@ OBSCURA_SHADER_BEGIN
 #define SSDO_EXTRA_NORMAL_UNIT 2 // EXTRA_VIEWS: their view-space geometric normals
 #define SSDO_MAX_EXTRA_VIEWS 4
 
+// Instant radiosity (pass ssdo.vpls): the reflective shadow maps' flux, world normal and
+// world position, and the indirect light it adds to.
+#define SSDO_RSM_FLUX_UNIT 1
+#define SSDO_RSM_NORMAL_UNIT 2
+#define SSDO_RSM_POSITION_UNIT 3
+#define SSDO_INDIRECT_TERM_UNIT 10 // with BOUNCE: the bounce's result, the G-buffer's size
+#define SSDO_VPLS_UBO_BINDING 9
+#define SSDO_MAX_VPL_LAYERS 8
+
 #define SSDO_WORKGROUP 8
 
 struct SsdoParams {
@@ -61,7 +70,18 @@ struct SsdoViews {
     int pad0;
 };
 
+// The reflective shadow maps the VPLs come from: a grid of grid x grid cells in each listed
+// layer, one VPL at each cell's centre texel standing for the whole cell.
+struct SsdoVpls {
+    ivec4 layers[SSDO_MAX_VPL_LAYERS / 4]; // RSM layers, 4 a row
+    int layerCount;
+    int grid;       // cells per side
+    int resolution; // RSM texels per side
+    int pad0;
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(SsdoVpls) == 2 * 16 + 16, "SsdoVpls must match std140");
 static_assert(sizeof(SsdoViews) == 4 * 64 + 16, "SsdoViews must match std140");
 static_assert(sizeof(SsdoParams) == 5 * 16 + 64, "SsdoParams must match std140");
 #endif

@@ -32,6 +32,8 @@ public:
     //! (shadowMaps() returns them, or null), and a G-buffer without direct light.
     const GBufferView& renderUnlit(const FrameSetup& frame, GBufferSettings settings);
     const ShadowMapSet* shadowMaps() const { return maps_used_; }
+    //! Whether the maps include reflective shadow maps (ShadowMapSettings::reflective).
+    void setReflective(bool reflective) { maps_.reflective = reflective; }
     const ShadowMaskSettings& shadowFilter() const { return filter_; }
 
     GBuffer& gbuffer() { return gbuffer_; }

@@ -39,6 +39,10 @@ void validate(const DirectionalOcclusionSettings& s, const DirectionalOcclusionI
         throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionSettings::extraViews needs "
                                                 "DirectionalOcclusionInputs::scene (scene mode): a host G-buffer has no "
                                                 "scene to render the views from");
+    if (s.vplGrid > 0 && !(inputs.shadows && inputs.shadows->flux))
+        throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionSettings::vplGrid needs reflective shadow maps: "
+                                                "DirectionalOcclusionInputs::shadows rendered with "
+                                                "ShadowMapSettings::reflective");
     if (!inputs.environment)
         throw Error(ErrorCode::InvalidArgument, "DirectionalOcclusionInputs::environment is required: SSDO lights the "
                                                 "pixels with an EnvironmentMap");
@@ -112,7 +116,45 @@ struct DirectionalOcclusion::Impl {
     ScreenIntegrator direct, bounce;
     Buffer params, viewsBlock;
     LightRecords lights;
-    SizedTexture lit;
+    SizedTexture lit, radiosity;
+    Buffer vplsBlock;
+
+    // Pass "ssdo.vpls": instant radiosity from the reflective maps, added to `bounce` (or
+    // alone), at the G-buffer's resolution.
+    TextureView addVpls(const GBufferView& view, const DirectionalOcclusionInputs& in, const DirectionalOcclusionSettings& s,
+                        GLuint bounceTerm) {
+        PassScope pass(ctx, "ssdo.vpls");
+        const ShadowMapSet& maps = *in.shadows;
+        shader::SsdoVpls v{};
+        for (const ShadowMapInfo& m : maps.maps) {
+            if (m.type != LightType::Spot && m.type != LightType::Directional) continue; // no reflective maps
+            if (v.layerCount == SSDO_MAX_VPL_LAYERS) break;
+            const int layer = m.type == LightType::Directional ? m.firstLayer + m.layers - 1 : m.firstLayer; // widest cascade
+            v.layers[v.layerCount / 4][v.layerCount % 4] = layer;
+            ++v.layerCount;
+        }
+        v.grid = std::min(s.vplGrid, maps.resolution);
+        v.resolution = maps.resolution;
+        uploadUniformBlock(ctx, vplsBlock, v, SSDO_VPLS_UBO_BINDING, "ssdo.vpls");
+        current.contactThickness = in.shadowFilter.contactThickness;
+        current.contactSteps = in.shadowFilter.contactSteps;
+        uploadUniformBlock(ctx, params, current, SSDO_PARAMS_UBO_BINDING, "ssdo.params");
+        std::vector<std::string> defines;
+        if (bounceTerm) defines.push_back("BOUNCE");
+        const auto screen = screenMarchDefines(s.march == ScreenMarch::HiZ ? ScreenMarch::Texture : s.march, s.thicknessMode);
+        defines.insert(defines.end(), screen.begin(), screen.end());
+        ctx.gl.UseProgram(ctx.shaders->program({"ssdo/ssdo_vpls.comp.glsl"}, defines));
+        bindNearest(ctx, SSDO_RSM_FLUX_UNIT, maps.flux);
+        bindNearest(ctx, SSDO_RSM_NORMAL_UNIT, maps.normal);
+        bindNearest(ctx, SSDO_RSM_POSITION_UNIT, maps.position);
+        if (bounceTerm) bindNearest(ctx, SSDO_INDIRECT_TERM_UNIT, bounceTerm);
+        bindNearest(ctx, SSDO_ALBEDO_UNIT, view.albedo.name);
+        const GLuint out = radiosity.ensure(ctx, GL_RGBA16F, view.width, view.height, "ssdo.indirect_vpl");
+        ctx.state.bindImage(ctx, SSDO_OUT_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchCompute2D(ctx, view.width, view.height, SSDO_WORKGROUP);
+        barrierForReaders(ctx);
+        return {out, GL_RGBA16F, view.width, view.height};
+    }
     std::unique_ptr<GBuffer> views; // the extra views' G-buffers, one after another
     Texture viewDepth, viewNormal;  // their depth and normals, a layer each
     glm::ivec3 viewArraySize{0};
@@ -246,6 +288,7 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
     directShape.modulate = bounceShape.modulate = g.albedo.name;
     std::vector<GLuint> written = d.direct.written(directShape);
     if (!inputs.lights.empty()) written.push_back(d.lit.get());
+    if (s.vplGrid > 0) written.push_back(d.radiosity.get());
     if (s.bounce) {
         const auto more = d.bounce.written(bounceShape);
         written.insert(written.end(), more.begin(), more.end());
@@ -285,20 +328,22 @@ DirectionalOcclusionView DirectionalOcclusion::run(const GBufferView& g, const D
     DirectionalOcclusionView out{direct.value, {}, view.width, view.height};
     if (!inputs.lights.empty()) out.direct = d.addLights(view, inputs, s, direct.value.name);
     else d.lit.release(); // not asked for: not kept
-    if (!s.bounce) {
+    if (s.bounce) {
+        d.bounce.begin(ctx, view, peeled, s.frameIndex, bounceShape);
+        if (s.extraViews > 0) d.bindViews();
+        bindNearest(ctx, SSDO_ALBEDO_UNIT, g.albedo.name);
+        // With VPLs the lights' bounce is theirs: the senders carry the environment's light.
+        bindNearest(ctx, SSDO_SENDER_UNIT, s.vplGrid > 0 ? direct.value.name : out.direct.name);
+        if (g.directRadiance) bindNearest(ctx, SSDO_LIGHT_UNIT, g.directRadiance.name);
+        ctx.state.bindUniformBuffer(ctx, SSDO_PARAMS_UBO_BINDING, d.params.get());
+        out.indirect = d.bounce.run(ctx, view, bounceShape, images,
+                                    [&](const char* v) { return integratorProgram(ctx, s, SSDO_PASS_BOUNCE, v); }, [] {})
+                           .value;
+    } else {
         d.bounce.resetHistory();
-        return out;
     }
-    d.bounce.begin(ctx, view, peeled, s.frameIndex, bounceShape);
-    if (s.extraViews > 0) d.bindViews();
-    bindNearest(ctx, SSDO_ALBEDO_UNIT, g.albedo.name);
-    bindNearest(ctx, SSDO_SENDER_UNIT, out.direct.name);
-    if (g.directRadiance) bindNearest(ctx, SSDO_LIGHT_UNIT, g.directRadiance.name);
-    ctx.state.bindUniformBuffer(ctx, SSDO_PARAMS_UBO_BINDING, d.params.get());
-    const IntegratorResult bounce = d.bounce.run(
-        ctx, view, bounceShape, images, [&](const char* v) { return integratorProgram(ctx, s, SSDO_PASS_BOUNCE, v); },
-        [] {});
-    out.indirect = bounce.value;
+    if (s.vplGrid > 0) out.indirect = d.addVpls(view, inputs, s, out.indirect.name);
+    else d.radiosity.release(); // not asked for: not kept
     return out;
 }
 
@@ -327,7 +372,8 @@ void DirectionalOcclusion::resetHistory() {
 std::size_t DirectionalOcclusion::memoryBytes() const {
     const auto& d = *impl_;
     const std::size_t viewTexels = std::size_t(d.viewArraySize.x) * std::size_t(d.viewArraySize.y) * std::size_t(d.viewArraySize.z);
-    return d.direct.memoryBytes() + d.bounce.memoryBytes() + d.lights.memoryBytes() + d.lit.bytes() +
+    return d.direct.memoryBytes() + d.bounce.memoryBytes() + d.lights.memoryBytes() + d.lit.bytes() + d.radiosity.bytes() +
+           (d.vplsBlock ? sizeof(shader::SsdoVpls) : 0) +
            (d.views ? d.views->memoryBytes() : 0) + viewTexels * (bytesPerTexel(GL_DEPTH_COMPONENT32F) + bytesPerTexel(GL_RGBA16F)) +
            (d.viewsBlock ? sizeof(shader::SsdoViews) : 0) +
            (d.params ? sizeof(shader::SsdoParams) : 0);

@@ -54,6 +54,7 @@ public:
         g.depthLayers = depthLayersFor(settings_.thicknessMode);
         // SSDO lights the pixels with the scene's lights itself (their shadow maps corrected in
         // screen space): the G-buffer keeps only emission.
+        lit_.setReflective(settings_.vplGrid > 0);
         view_ = lit_.renderUnlit(frame, g);
         settings_.frameIndex = firstFrame_ + (settings_.temporal.enabled ? framesRun_++ : 0u);
         DirectionalOcclusionInputs inputs{environment_.get(), scene.lights, lit_.shadowMaps(), lit_.shadowFilter(), &scene};
@@ -62,7 +63,7 @@ public:
 
     std::string ignoredSetting(const std::string& key) const override {
         if (key == "bounce_strength" && !settings_.bounce) return "only with bounce=1";
-        if (key == "shadow_correction" && !lit_.shadowed()) return "only with shadows=1";
+        if ((key == "shadow_correction" || key == "vpl_grid") && !lit_.shadowed()) return "only with shadows=1";
         if ((key == "extra_view_scale" || key == "extra_view_offset") && settings_.extraViews == 0)
             return "only with extra_views > 0";
         if (key == "march" && settings_.extraViews > 0) return "extra views march in view space";
@@ -79,14 +80,14 @@ public:
             if (name != "direct" && name != "indirect")
                 throw Error(ErrorCode::InvalidArgument, "ssdo has no output \"" + name + "\" (outputs: direct, indirect)");
             if (name == "indirect" && !result_.indirect)
-                throw Error(ErrorCode::InvalidArgument, "ssdo: output \"indirect\" needs --set bounce=1");
+                throw Error(ErrorCode::InvalidArgument, "ssdo: output \"indirect\" needs --set bounce=1 or vpl_grid > 0");
             const TextureView& t = name == "direct" ? result_.direct : result_.indirect;
             out.push_back(plainOutput(name, rgbOf(readTexture(ctx_, t)), assets::PngEncoding::Srgb));
         }
         return out;
     }
     std::string missingOutput(const std::string& name) const override {
-        return name == "indirect" && !settings_.bounce ? "needs bounce=1" : "";
+        return name == "indirect" && !settings_.bounce && settings_.vplGrid == 0 ? "needs bounce=1 or vpl_grid > 0" : "";
     }
 
     GBufferSamples samples() override { return readSamples(ctx_, gbuffer_, view_); }
@@ -109,8 +110,9 @@ public:
         within.radius = settings_.radius;
         std::vector<Measurement> out = {{"direct", direct, all}, {"direct_r", direct, within}};
         if (result_.indirect) {
-            reference::IndirectLight bounce{settings_.radius};
-            bounce.environment = true;
+            // The bounce gathers within r_max; the VPLs' light comes from any distance.
+            reference::IndirectLight bounce{settings_.vplGrid > 0 ? reference::kInfinity : double(settings_.radius)};
+            bounce.environment = settings_.bounce;
             out.push_back({"indirect", rgbOf(readTexture(ctx_, result_.indirect)), bounce});
         }
         return out;
