@@ -76,6 +76,12 @@ void checkAllocation(ContextImpl& ctx, std::string_view what) {
                 std::string(glErrorName(first)) + " while creating " + std::string(what) + " (a bug in Obscura)");
 }
 
+int fullMipLevels(int size) {
+    int levels = 1;
+    while ((size >> levels) > 0) ++levels;
+    return levels;
+}
+
 namespace {
 
 // A texture of `target` with 2D storage (a 2D texture, or a cube map's six faces).

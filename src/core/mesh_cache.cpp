@@ -263,8 +263,7 @@ GLuint MeshCache::albedoTexture(const std::shared_ptr<const TextureImage>& image
                                                         std::to_string(img.height) + " with " +
                                                         std::to_string(img.rgba.size()) + " bytes (need w*h*4)");
         requireImageSize(img.width, img.height, ctx_.info.maxTextureSize, "Material::albedoImage");
-        int levels = 1;
-        while ((std::max(img.width, img.height) >> levels) > 0) ++levels;
+        const int levels = fullMipLevels(std::max(img.width, img.height));
         GpuImage g;
         g.source = image;
         g.texture = createTexture2D(ctx_, GL_SRGB8_ALPHA8, img.width, img.height, levels, "gbuffer.albedo_image");

@@ -63,8 +63,7 @@ struct EnvironmentMap::Impl {
     void buildCube(const Equirect& env) {
         PassScope pass(*ctx, "environment.cube");
         auto& gl = ctx->gl;
-        int sourceLevels = 1;
-        while ((std::max(env.width, env.height) >> sourceLevels) > 0) ++sourceLevels;
+        const int sourceLevels = fullMipLevels(std::max(env.width, env.height));
         Texture source = createTexture2D(*ctx, GL_RGBA32F, env.width, env.height, sourceLevels, "environment.source");
         std::vector<float> rgba(env.texels.size() * 4);
         for (std::size_t i = 0; i < env.texels.size(); ++i)
@@ -114,8 +113,7 @@ EnvironmentMap::EnvironmentMap(Context& context, const Image& image, const Envir
     d.importance = importanceTable(reduced);
 
     d.cubeSize = s.cubeSize;
-    d.cubeLevels = 1;
-    while ((s.cubeSize >> d.cubeLevels) > 0) ++d.cubeLevels;
+    d.cubeLevels = fullMipLevels(s.cubeSize);
     d.irradianceSize = s.irradianceSize;
     StateScope scope(ctx);
     d.cube = createTextureCube(ctx, GL_RGBA16F, d.cubeSize, d.cubeLevels, "environment.cube");

@@ -124,43 +124,54 @@ TEST_CASE("SSDO tints a floor's shadow by the environment colour its occluder bl
     std::filesystem::remove(exr);
 }
 
-TEST_CASE("SSDO's shadow correction recovers the contact shadow a large shadow bias removes", "[ssdo][reference]") {
-    // The contact-shadow tests' scene (shadow_plates.hpp): a thin wall, a spot light, a
-    // constant bias longer than the wall is thick (peter-panning). Albedo 1: decoded exactly.
-    const Scene scene = test::contactWallScene(glm::vec3(1.0f));
-    constexpr int W = 96, H = 72;
-    const Camera camera = test::contactWallCamera(W, H);
+// The contact-shadow tests' scene (shadow_plates.hpp: a thin wall, a spot light) with albedo 1
+// (decoded exactly), its G-buffer without direct light (SSDO lights the pixels), and the
+// reference's samples of it.
+struct ContactWallFrame {
+    static constexpr int W = 96, H = 72;
+    Scene scene = test::contactWallScene(glm::vec3(1.0f));
+    Camera camera = test::contactWallCamera(W, H);
     test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    ShadowMaps shadows(ctx);
-    DirectionalOcclusion ssdo(ctx);
-    GBufferSettings g{W, H, false, {}};
-    g.directLighting = false; // SSDO lights the pixels
-    const GBufferView view = gbuffer.render(scene, camera, g);
-    const Image positions = readTexture(ctx, gbuffer.positions(view));
-    const reference::RayScene rays(scene);
-    const reference::ShadingPoints points = reference::fromGBuffer(rays, camera, positions, readTexture(ctx, view.normal));
+    Context ctx{gl.desc()};
+    GBuffer gbuffer{ctx};
+    ShadowMaps shadows{ctx};
+    DirectionalOcclusion ssdo{ctx};
+    GBufferView view = gbuffer.render(scene, camera, unlit());
+    Image positions = readTexture(ctx, gbuffer.positions(view));
+    reference::RayScene rays{scene};
+    reference::ShadingPoints points = reference::fromGBuffer(rays, camera, positions, readTexture(ctx, view.normal));
+
+    static GBufferSettings unlit() {
+        GBufferSettings g{W, H, false, {}};
+        g.directLighting = false;
+        return g;
+    }
+};
+
+TEST_CASE("SSDO's shadow correction recovers the contact shadow a large shadow bias removes", "[ssdo][reference]") {
+    // A constant bias longer than the wall is thick (peter-panning).
+    ContactWallFrame f;
+    constexpr int W = ContactWallFrame::W, H = ContactWallFrame::H;
     reference::RenderSettings rs;
     rs.samplesPerPixel = 2; // a hard light: one sample is exact
-    const reference::Reference truth = reference::render(rays, points, reference::Shadow{0}, rs);
-    const ShadowMapSet& set = shadows.render(scene, camera, {1024, 1, 0.5f});
-    EnvironmentMap black(ctx, Image{4, 2, 3, std::vector<float>(24, 0.0f)}, EnvironmentSettings{8, 1, 8, 0.0f, 0.0f});
-    DirectionalOcclusionInputs in{&black, scene.lights, nullptr, {}};
+    const reference::Reference truth = reference::render(f.rays, f.points, reference::Shadow{0}, rs);
+    const ShadowMapSet& set = f.shadows.render(f.scene, f.camera, {1024, 1, 0.5f});
+    EnvironmentMap black(f.ctx, Image{4, 2, 3, std::vector<float>(24, 0.0f)}, EnvironmentSettings{8, 1, 8, 0.0f, 0.0f});
+    DirectionalOcclusionInputs in{&black, f.scene.lights, nullptr, {}};
     DirectionalOcclusionSettings s;
     s.rays = 1;
     s.steps = 32;
     // Unshadowed: the light's own term, against which the shadowed runs' lit fraction is read.
-    const Image open = readTexture(ctx, ssdo.run(view, in, s).direct);
+    const Image open = readTexture(f.ctx, f.ssdo.run(f.view, in, s).direct);
     in.shadows = &set;
     in.shadowFilter.filter = ShadowFilter::Hard;
     in.shadowFilter.constantBias = 0.2f;
     const auto misclassified = [&](float correction) {
         s.shadowCorrection = correction;
-        const Image lit = readTexture(ctx, ssdo.run(view, in, s).direct);
+        const Image lit = readTexture(f.ctx, f.ssdo.run(f.view, in, s).direct);
         glm::ivec2 wrong(0); // false shadow, false light
         for (std::size_t i = 0; i < std::size_t(W) * H; ++i) {
-            if (truth.value.pixels[2 * i + 1] == 0.0f || positions.pixels[4 * i + 3] == 0.0f || !(open.pixels[4 * i + 1] > 0.0f))
+            if (truth.value.pixels[2 * i + 1] == 0.0f || f.positions.pixels[4 * i + 3] == 0.0f || !(open.pixels[4 * i + 1] > 0.0f))
                 continue;
             const bool isLit = lit.pixels[4 * i + 1] >= 0.5f * open.pixels[4 * i + 1];
             const bool truthLit = truth.value.pixels[2 * i] >= 0.5f;
@@ -177,32 +188,20 @@ TEST_CASE("SSDO's shadow correction recovers the contact shadow a large shadow b
 }
 
 TEST_CASE("SSDO's instant radiosity from reflective shadow maps approaches the reference's one bounce", "[ssdo][reference]") {
-    // The contact-wall scene lit by its spot light only (a black environment): the floor's
+    // The contact-wall f.scene lit by its spot light only (a black environment): the floor's
     // light bounces onto the wall and back. The reference's IndirectLight (every distance,
     // shadowed hits) against the VPLs of the spot's reflective map, each seen through the
     // screen-space test.
-    const Scene scene = test::contactWallScene(glm::vec3(1.0f));
-    constexpr int W = 96, H = 72;
-    const Camera camera = test::contactWallCamera(W, H);
-    test::GlFixture gl;
-    Context ctx(gl.desc());
-    GBuffer gbuffer(ctx);
-    ShadowMaps shadows(ctx);
-    DirectionalOcclusion ssdo(ctx);
-    GBufferSettings g{W, H, false, {}};
-    g.directLighting = false;
-    const GBufferView view = gbuffer.render(scene, camera, g);
-    const Image positions = readTexture(ctx, gbuffer.positions(view));
-    const reference::RayScene rays(scene);
-    const reference::ShadingPoints points = reference::fromGBuffer(rays, camera, positions, readTexture(ctx, view.normal));
+    ContactWallFrame f;
+    constexpr int W = ContactWallFrame::W, H = ContactWallFrame::H;
     reference::RenderSettings rs;
     rs.samplesPerPixel = 256;
-    const reference::Reference truth = reference::render(rays, points, reference::IndirectLight{}, rs);
+    const reference::Reference truth = reference::render(f.rays, f.points, reference::IndirectLight{}, rs);
     ShadowMapSettings maps{1024, 1, 0.5f};
     maps.reflective = true;
-    const ShadowMapSet& set = shadows.render(scene, camera, maps);
-    EnvironmentMap black(ctx, Image{4, 2, 3, std::vector<float>(24, 0.0f)}, EnvironmentSettings{8, 1, 8, 0.0f, 0.0f});
-    DirectionalOcclusionInputs in{&black, scene.lights, &set, {}};
+    const ShadowMapSet& set = f.shadows.render(f.scene, f.camera, maps);
+    EnvironmentMap black(f.ctx, Image{4, 2, 3, std::vector<float>(24, 0.0f)}, EnvironmentSettings{8, 1, 8, 0.0f, 0.0f});
+    DirectionalOcclusionInputs in{&black, f.scene.lights, &set, {}};
     in.shadowFilter.filter = ShadowFilter::Pcf;
     DirectionalOcclusionSettings s;
     s.rays = 1;
@@ -213,7 +212,7 @@ TEST_CASE("SSDO's instant radiosity from reflective shadow maps approaches the r
     double truthSquares = 0.0, truthSum = 0.0;
     int count = 0;
     for (std::size_t i = 0; i < std::size_t(W) * H; ++i) {
-        if (positions.pixels[4 * i + 3] == 0.0f) continue;
+        if (f.positions.pixels[4 * i + 3] == 0.0f) continue;
         truthSquares += double(truth.value.pixels[3 * i + 1]) * truth.value.pixels[3 * i + 1];
         truthSum += truth.value.pixels[3 * i + 1];
         ++count;
@@ -221,10 +220,10 @@ TEST_CASE("SSDO's instant radiosity from reflective shadow maps approaches the r
     const double rmsTruth = std::sqrt(truthSquares / count), meanTruth = truthSum / count;
     const auto measure = [&](int grid) {
         s.vplGrid = grid;
-        const Image indirect = readTexture(ctx, ssdo.run(view, in, s).indirect);
+        const Image indirect = readTexture(f.ctx, f.ssdo.run(f.view, in, s).indirect);
         double squares = 0.0, sum = 0.0;
         for (std::size_t i = 0; i < std::size_t(W) * H; ++i) {
-            if (positions.pixels[4 * i + 3] == 0.0f) continue;
+            if (f.positions.pixels[4 * i + 3] == 0.0f) continue;
             const double v = indirect.pixels[4 * i + 1];
             squares += (v - truth.value.pixels[3 * i + 1]) * (v - truth.value.pixels[3 * i + 1]);
             sum += v;
@@ -237,7 +236,7 @@ TEST_CASE("SSDO's instant radiosity from reflective shadow maps approaches the r
                                  << fine.mean << ", RMSE " << fine.rmse);
     // Measured, not derived: each VPL's cell bound (d^2 >= area / pi) cuts the light of the
     // near field, which finer cells give back (the mean rose from 0.68 to 1.03 of the
-    // reference's when this was written); the bench reports the error per scene.
+    // reference's when this was written); the bench reports the error per f.scene.
     CHECK(fine.rmse < coarse.rmse);
     CHECK(fine.rmse < 0.5 * rmsTruth);
     CHECK(std::abs(fine.mean - meanTruth) < 0.1 * meanTruth);
