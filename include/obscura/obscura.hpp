@@ -10,6 +10,7 @@
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
+#include "obscura/media.hpp"
 #include "obscura/metrics.hpp"
 #include "obscura/profiler.hpp"
 #include "obscura/scene.hpp"

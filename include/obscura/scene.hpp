@@ -127,6 +127,10 @@ enum class PhaseFunction {
     Isotropic,         //!< 1/(4 pi)
     HenyeyGreenstein,  //!< (1 - g²) / (4 pi (1 + g² - 2 g cos)^(3/2)), g = Medium::anisotropy
     Rayleigh,          //!< 3 (1 + cos²) / (16 pi)
+    //! Schlick's fit of Henyey-Greenstein: (1 - k²) / (4 pi (1 - k cos)²), k = 1.55 g - 0.55 g³
+    //! with |k| at most 1 - (1 - |g|)² (the cubic exceeds 1 for g in about (0.94, 0.999),
+    //! which would make the phase negative; the bound changes k only there, by < 0.5 %).
+    Schlick,
 };
 
 //! A homogeneous medium in an axis-aligned box (for the participating-media module and
@@ -136,9 +140,11 @@ struct Medium {
     glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
     glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
     PhaseFunction phase = PhaseFunction::HenyeyGreenstein;
-    float anisotropy = 0.0f;              //!< Henyey-Greenstein g, (-1, 1)
+    float anisotropy = 0.0f;              //!< Henyey-Greenstein's and Schlick's g, (-1, 1)
 };
 
+//! Schlick's k for anisotropy g (PhaseFunction::Schlick), in (-1, 1) for g in (-1, 1).
+OBSCURA_API double schlickK(double g);
 //! The phase function value for the cosine of the scattering angle (1/sr).
 OBSCURA_API double phaseFunction(PhaseFunction phase, double anisotropy, double cosTheta);
 

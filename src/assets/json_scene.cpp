@@ -245,7 +245,8 @@ private:
             if (phase == "isotropic") m.phase = PhaseFunction::Isotropic;
             else if (phase == "henyey_greenstein") m.phase = PhaseFunction::HenyeyGreenstein;
             else if (phase == "rayleigh") m.phase = PhaseFunction::Rayleigh;
-            else fail(where + ".phase", "expected \"isotropic\", \"henyey_greenstein\" or \"rayleigh\"");
+            else if (phase == "schlick") m.phase = PhaseFunction::Schlick;
+            else fail(where + ".phase", "expected \"isotropic\", \"henyey_greenstein\", \"rayleigh\" or \"schlick\"");
         }
         if (!(m.anisotropy > -1.0f && m.anisotropy < 1.0f)) fail(where + ".anisotropy", "must be in (-1, 1)");
         return m;

@@ -109,16 +109,30 @@ Texture createTextureCube(ContextImpl& ctx, GLenum internalFormat, int size, int
                                   "6x" + std::to_string(size) + "x" + std::to_string(size));
 }
 
-Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
-                             std::string_view name) {
+namespace {
+
+// A texture of `target` with 3D storage and one level (a 2D array's layers, or depth slices).
+Texture createTexture3DStorage(ContextImpl& ctx, GLenum target, GLenum internalFormat, int width, int height, int depth,
+                               std::string_view name) {
     drainGlErrors(ctx);
     GLuint t = 0;
-    ctx.gl.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+    ctx.gl.CreateTextures(target, 1, &t);
     Texture tex = track<ObjectKind::Texture>(ctx, t, name);
-    ctx.gl.TextureStorage3D(t, 1, internalFormat, width, height, layers);
+    ctx.gl.TextureStorage3D(t, 1, internalFormat, width, height, depth);
     checkAllocation(ctx, std::string(name) + " (" + std::to_string(width) + "x" + std::to_string(height) + "x" +
-                             std::to_string(layers) + ")");
+                             std::to_string(depth) + ")");
     return tex;
+}
+
+} // namespace
+
+Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
+                             std::string_view name) {
+    return createTexture3DStorage(ctx, GL_TEXTURE_2D_ARRAY, internalFormat, width, height, layers, name);
+}
+
+Texture createTexture3D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int depth, std::string_view name) {
+    return createTexture3DStorage(ctx, GL_TEXTURE_3D, internalFormat, width, height, depth, name);
 }
 
 Buffer createBuffer(ContextImpl& ctx, GLsizeiptr bytes, const void* data, GLbitfield flags, std::string_view name) {

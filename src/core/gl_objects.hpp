@@ -59,6 +59,8 @@ Texture createTexture2D(ContextImpl& ctx, GLenum internalFormat, int width, int 
 //! A GL_TEXTURE_2D_ARRAY with one level.
 Texture createTexture2DArray(ContextImpl& ctx, GLenum internalFormat, int width, int height, int layers,
                              std::string_view label);
+//! A GL_TEXTURE_3D with one level.
+Texture createTexture3D(ContextImpl& ctx, GLenum internalFormat, int width, int height, int depth, std::string_view label);
 //! Levels of a full mip chain for a texture whose larger side is `size` texels (1 for size 1).
 int fullMipLevels(int size);
 //! A GL_TEXTURE_CUBE_MAP of `size` x `size` faces and `levels` levels.

@@ -102,7 +102,8 @@ void validateMedium(const Medium& m, std::size_t i) {
         throw Error(ErrorCode::InvalidArgument, what + ".boxMax must be >= boxMin on every axis");
     if (glm::any(glm::lessThan(m.scattering, glm::vec3(0.0f))) || glm::any(glm::lessThan(m.absorption, glm::vec3(0.0f))))
         throw Error(ErrorCode::InvalidArgument, what + ": scattering and absorption must be >= 0 per channel (1/world unit)");
-    requireEnumerator(m.phase, {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh},
+    requireEnumerator(m.phase, {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh,
+                                PhaseFunction::Schlick},
                       what + ".phase");
     if (!(std::abs(m.anisotropy) < 1.0f))
         throw Error(ErrorCode::InvalidArgument, what + ".anisotropy must be in (-1, 1), got " + shortNumber(m.anisotropy));
@@ -135,6 +136,11 @@ void validateScene(const Scene& scene) {
 }
 
 
+double schlickK(double g) {
+    const double bound = 1.0 - (1.0 - std::abs(g)) * (1.0 - std::abs(g));
+    return std::copysign(std::min(std::abs(1.55 * g - 0.55 * g * g * g), bound), g);
+}
+
 double phaseFunction(PhaseFunction phase, double g, double c) {
     constexpr double pi = 3.14159265358979323846;
     switch (phase) {
@@ -143,6 +149,10 @@ double phaseFunction(PhaseFunction phase, double g, double c) {
     case PhaseFunction::HenyeyGreenstein: {
         const double d = 1.0 + g * g - 2.0 * g * c;
         return (1.0 - g * g) / (4.0 * pi * d * std::sqrt(d));
+    }
+    case PhaseFunction::Schlick: {
+        const double k = schlickK(g), d = 1.0 - k * c;
+        return (1.0 - k * k) / (4.0 * pi * d * d);
     }
     }
     return 0.0;

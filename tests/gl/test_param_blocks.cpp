@@ -22,6 +22,7 @@ const std::set<std::string> kStorageRecords = {"LightData", "ShadowCascade", "Sh
 std::string resourceName(const std::string& field) {
     if (field == "cascades") return "p.cascades[0].viewToLight";
     if (field == "poisson") return "p.poisson[0]";
+    if (field == "media") return "p.media[0].boxMin";
     return "p." + field;
 }
 

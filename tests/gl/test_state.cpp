@@ -337,6 +337,22 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         ssdo->prepare(d);
         ssdo->run(view, {environment.get(), s.scene.lights}, d);
     });
+    auto media = std::make_unique<Media>(*ctx);
+    check("Media::prepare, run (each method) and apply", [&] {
+        Medium fog;
+        fog.boxMin = glm::vec3(-5.0f);
+        fog.boxMax = glm::vec3(5.0f);
+        fog.scattering = glm::vec3(0.1f);
+        const std::vector<Medium> fogs{fog};
+        for (MediaMethod method : {MediaMethod::RayMarch, MediaMethod::Analytic, MediaMethod::Froxel}) {
+            MediaSettings m;
+            m.method = method;
+            m.steps = 8;
+            media->prepare(m);
+            const MediaView out = media->run(view, {fogs, s.scene.lights}, m);
+            media->apply(out, out.scattering);
+        }
+    });
     check("GBuffer::render (two depth layers)", [&] {
         GBufferSettings two{40, 32, true, {}};
         two.depthLayers = 2;
@@ -404,6 +420,7 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
     check("IndirectLight::~IndirectLight", [&] { gi.reset(); });
     check("DirectionalOcclusion::~DirectionalOcclusion", [&] { ssdo.reset(); });
     check("EnvironmentMap::~EnvironmentMap", [&] { environment.reset(); });
+    check("Media::~Media", [&] { media.reset(); });
     check("Composer::~Composer", [&] { composer.reset(); });
     check("Voxelizer::~Voxelizer", [&] { voxelizer.reset(); });
     check("GBuffer::~GBuffer", [&] { gbuffer.reset(); });
@@ -469,7 +486,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 50);
+    CHECK(checked == 52);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

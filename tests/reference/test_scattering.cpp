@@ -1,5 +1,6 @@
 // Single scattering against double-precision adaptive quadrature of the airlight integral,
 // and the phase functions against hand-computed values.
+#include "quadrature.hpp"
 #include "reference_helpers.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,34 +13,7 @@ using test::kPi;
 
 namespace {
 
-// Adaptive Simpson quadrature to an absolute tolerance.
-double simpson(const std::function<double(double)>& f, double a, double b, double fa, double fm, double fb, double whole,
-               double tol, int depth) {
-    const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
-    const double flm = f(lm), frm = f(rm);
-    const double left = (m - a) / 6 * (fa + 4 * flm + fm), right = (b - m) / 6 * (fm + 4 * frm + fb);
-    // Also stop where the difference is at the level of double rounding: a tolerance below it
-    // could never be met and would only split further.
-    const double delta = std::abs(left + right - whole);
-    if (depth <= 0 || delta <= 15 * tol || delta <= 1e-14 * std::abs(left + right))
-        return left + right + (left + right - whole) / 15;
-    return simpson(f, a, m, fa, flm, fm, left, tol / 2, depth - 1) + simpson(f, m, b, fm, frm, fb, right, tol / 2, depth - 1);
-}
-// To a relative tolerance of the integral (estimated by a first pass), over pieces so that
-// sharp features (a light next to the ray, a dense channel's fast decay) are not missed.
-double integrate(const std::function<double(double)>& f, double a, double b, double relativeTolerance) {
-    const int pieces = 256;
-    double rough = 0.0;
-    for (int i = 0; i < pieces; ++i) rough += std::abs(f(a + (b - a) * (i + 0.5) / pieces)) * (b - a) / pieces;
-    const double tol = relativeTolerance * rough + 1e-300;
-    double sum = 0.0;
-    for (int i = 0; i < pieces; ++i) {
-        const double lo = a + (b - a) * i / pieces, hi = a + (b - a) * (i + 1) / pieces;
-        const double flo = f(lo), fhi = f(hi), fm = f(0.5 * (lo + hi));
-        sum += simpson(f, lo, hi, flo, fm, fhi, (hi - lo) / 6 * (flo + 4 * fm + fhi), tol / pieces, 30);
-    }
-    return sum;
-}
+using test::integrate;
 
 // Length of the segment from p toward unit w (length `len`) inside the box [lo, hi].
 double inside(glm::dvec3 p, glm::dvec3 w, double len, glm::dvec3 lo, glm::dvec3 hi) {
@@ -61,6 +35,11 @@ double inside(glm::dvec3 p, glm::dvec3 w, double len, glm::dvec3 lo, glm::dvec3 
 double phaseByHand(PhaseFunction f, double g, double c) {
     if (f == PhaseFunction::Isotropic) return 1 / (4 * kPi);
     if (f == PhaseFunction::Rayleigh) return 3 / (16 * kPi) * (1 + c * c);
+    if (f == PhaseFunction::Schlick) {
+        const double cubic = 1.55 * g - 0.55 * g * g * g, bound = 1 - (1 - std::abs(g)) * (1 - std::abs(g));
+        const double k = std::abs(cubic) < bound ? cubic : std::copysign(bound, g);
+        return (1 - k * k) / (4 * kPi * (1 - k * c) * (1 - k * c));
+    }
     return (1 - g * g) / (4 * kPi * std::pow(1 + g * g - 2 * g * c, 1.5));
 }
 
@@ -153,17 +132,27 @@ TEST_CASE("Phase functions match hand-computed values and integrate to 1", "[ref
     CHECK(phaseFunction(PhaseFunction::Rayleigh, 0, 1.0) == Approx(6.0 / (16 * kPi)));
     // HG with g = 0.5 straight ahead: (1 - 0.25) / (4 pi (0.25)^1.5) = 0.75 / (4 pi 0.125) = 1.5 / pi.
     CHECK(phaseFunction(PhaseFunction::HenyeyGreenstein, 0.5, 1.0) == Approx(1.5 / kPi));
-    for (auto f : {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh}) {
+    // Schlick, g = 0.5: k = 0.775 - 0.06875 = 0.70625; straight ahead (1 + k) / (4 pi (1 - k)).
+    CHECK(phaseFunction(PhaseFunction::Schlick, 0.5, 1.0) == Approx(1.70625 / (4 * kPi * 0.29375)));
+    for (auto f : {PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh, PhaseFunction::Schlick}) {
         // Integral over the sphere = 2 pi Int_{-1}^{1} p(c) dc (midpoint rule, 1e5 steps).
         double sum = 0;
         const int steps = 100000;
         for (int i = 0; i < steps; ++i) sum += phaseFunction(f, 0.7, -1 + 2 * (i + 0.5) / steps) * 2.0 / steps;
         CHECK(2 * kPi * sum == Approx(1.0).epsilon(1e-4));
     }
+    // Schlick's cubic passes 1 near g = 0.97: k stays below 1, the phase positive and finite.
+    for (double g : {0.9, 0.97, 0.999, -0.97}) {
+        CAPTURE(g);
+        CHECK(std::abs(schlickK(g)) < 1.0);
+        CHECK(phaseFunction(PhaseFunction::Schlick, g, -1.0) > 0.0);
+        CHECK(std::isfinite(phaseFunction(PhaseFunction::Schlick, g, 1.0)));
+    }
 }
 
 TEST_CASE("Single scattering matches adaptive quadrature for every phase function", "[reference][media]") {
-    const auto phase = GENERATE(PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh);
+    const auto phase = GENERATE(PhaseFunction::Isotropic, PhaseFunction::HenyeyGreenstein, PhaseFunction::Rayleigh,
+                                PhaseFunction::Schlick);
     // A light inside the box, and one outside it (the light path then leaves the medium).
     const bool lightInside = GENERATE(true, false);
     CAPTURE(static_cast<int>(phase), lightInside);

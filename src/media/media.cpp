@@ -1,0 +1,295 @@
+#include "obscura/media.hpp"
+
+#include "core/compute.hpp"
+#include "core/context_impl.hpp"
+#include "core/frame_uniforms.hpp"
+#include "core/pass_scope.hpp"
+#include "core/shader_library.hpp"
+#include "core/texture_info.hpp"
+#include "core/validate.hpp"
+#include "gbuffer/light_records.hpp"
+#include "media/airlight_table.hpp"
+#include "obscura/context.hpp"
+#include "shaders/media/media_bindings.h"
+#include "visibility/screen_inputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace obscura {
+namespace {
+
+using namespace detail;
+
+void validate(const MediaInputs& in, const MediaSettings& s, const Camera& camera) {
+    validateSettings(MediaSettings::table(), s, "MediaSettings");
+    if (in.media.size() > MEDIA_MAX_MEDIA)
+        throw Error(ErrorCode::InvalidArgument, "MediaInputs::media holds " + std::to_string(in.media.size()) +
+                                                    " media; at most " + std::to_string(MEDIA_MAX_MEDIA) + " are supported");
+    Scene scene; // validateScene's checks of each medium and light
+    scene.media.assign(in.media.begin(), in.media.end());
+    scene.lights.assign(in.lights.begin(), in.lights.end());
+    validateScene(scene);
+    if (in.shadows) validateLightShadows(*in.shadows, ShadowMaskSettings{}, in.lights.size(), camera, "MediaInputs");
+}
+
+int phaseCode(PhaseFunction p) {
+    switch (p) {
+    case PhaseFunction::Isotropic: return MEDIA_PHASE_ISOTROPIC;
+    case PhaseFunction::HenyeyGreenstein: return MEDIA_PHASE_HG;
+    case PhaseFunction::Rayleigh: return MEDIA_PHASE_RAYLEIGH;
+    case PhaseFunction::Schlick: return MEDIA_PHASE_SCHLICK;
+    }
+    return MEDIA_PHASE_ISOTROPIC;
+}
+
+shader::MediumData mediumData(const Medium& m) {
+    shader::MediumData d{};
+    d.boxMin = m.boxMin;
+    d.boxMax = m.boxMax;
+    d.phase = static_cast<float>(phaseCode(m.phase));
+    d.g = m.phase == PhaseFunction::Schlick ? static_cast<float>(schlickK(m.anisotropy)) : m.anisotropy;
+    d.scattering = m.scattering;
+    d.extinction = m.scattering + m.absorption;
+    return d;
+}
+
+// The farthest view distance (-z) of the boxes' corners: where the froxel grid need not go past.
+float farthestMediaDepth(std::span<const Medium> media, const glm::mat4& view) {
+    double farthest = 0.0;
+    for (const Medium& m : media)
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 corner(c & 1 ? m.boxMax.x : m.boxMin.x, c & 2 ? m.boxMax.y : m.boxMin.y,
+                                    c & 4 ? m.boxMax.z : m.boxMin.z);
+            farthest = std::max(farthest, -(glm::dmat4(view) * glm::dvec4(corner, 1.0)).z);
+        }
+    // Boxes all behind the camera: any range will do (the grid holds nothing).
+    return farthest > 0.0 ? static_cast<float>(farthest) : 1.0f;
+}
+
+const char* passName(MediaMethod m) {
+    return m == MediaMethod::RayMarch ? "media.raymarch" : m == MediaMethod::Analytic ? "media.analytic" : "media.froxel";
+}
+
+} // namespace
+
+struct Media::Impl {
+    explicit Impl(ContextImpl& c) : ctx(c) {}
+
+    ContextImpl& ctx;
+    FrameUniforms frame;
+    LightRecords lights;
+    Buffer params;
+    shader::MediaParams current{};
+    SizedTexture scattering, opticalDepth, applied;
+    Texture table;
+    int tableSize = 0;
+    Texture froxelSource, froxelExtinction;
+    glm::ivec3 froxelSize{0};
+
+    void ensureTable(int size) {
+        if (table && tableSize == size) return;
+        const std::vector<float> values = airlightTable(size);
+        table = createTexture2D(ctx, GL_R32F, size, size, 1, "media.analytic_table");
+        ctx.gl.TextureSubImage2D(table.get(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, values.data());
+        tableSize = size;
+    }
+
+    void ensureFroxels(glm::ivec3 size) {
+        if (froxelSource && froxelSize == size) return;
+        froxelSource = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_grid");
+        froxelExtinction = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_extinction");
+        froxelSize = size;
+    }
+
+    void releaseUnused(const MediaSettings& s) {
+        if (s.method != MediaMethod::Analytic || s.integral != AnalyticIntegral::Table) {
+            table.reset();
+            tableSize = 0;
+        }
+        if (s.method != MediaMethod::Froxel) {
+            froxelSource.reset();
+            froxelExtinction.reset();
+            froxelSize = glm::ivec3(0);
+        }
+    }
+
+    void uploadParams(const GBufferView& g, const MediaInputs& in, const MediaSettings& s) {
+        shader::MediaParams p{};
+        for (std::size_t i = 0; i < in.media.size(); ++i) p.media[i] = mediumData(in.media[i]);
+        p.viewToWorld = glm::mat4(glm::inverse(glm::dmat4(g.camera.view)));
+        p.mediumCount = static_cast<int>(in.media.size());
+        p.lightCount = static_cast<int>(in.lights.size());
+        p.steps = s.steps;
+        p.jitter = s.jitter ? 1 : 0;
+        p.size = {g.width, g.height};
+        p.tableSize = {s.tableSize, s.tableSize};
+        p.tableMaxU = static_cast<float>(kAirlightTableMaxU);
+        p.froxels = {(g.width + s.froxelTile - 1) / s.froxelTile, (g.height + s.froxelTile - 1) / s.froxelTile, s.steps};
+        p.froxelRange = s.froxelRange > 0.0f ? s.froxelRange : farthestMediaDepth(in.media, g.camera.view);
+        current = p;
+        uploadUniformBlock(ctx, params, current, MEDIA_PARAMS_UBO_BINDING, "media.params");
+    }
+
+    std::vector<std::string> shadowDefines(bool shadowed) const {
+        return shadowed ? std::vector<std::string>{"SHADOWS"} : std::vector<std::string>{};
+    }
+
+    void bindOutputs(int width, int height) {
+        const GLuint s = scattering.ensure(ctx, GL_RGBA16F, width, height, "media.scattering");
+        const GLuint d = opticalDepth.ensure(ctx, GL_RGBA16F, width, height, "media.optical_depth");
+        ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, s, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, d, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+
+    void runPerPixel(const GBufferView& g, const MediaSettings& s, bool shadowed) {
+        PassScope pass(ctx, passName(s.method));
+        std::vector<std::string> defines;
+        if (s.method == MediaMethod::RayMarch) {
+            defines = shadowDefines(shadowed);
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_march.comp.glsl"}, defines));
+        } else {
+            const bool tabled = s.integral == AnalyticIntegral::Table;
+            if (tabled) {
+                ensureTable(s.tableSize);
+                bindNearest(ctx, MEDIA_TABLE_UNIT, table.get());
+            }
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_analytic.comp.glsl"}, {tabled ? "TABLE" : "QUADRATURE"}));
+        }
+        bindOutputs(g.width, g.height);
+        dispatchCompute2D(ctx, g.width, g.height, MEDIA_WORKGROUP);
+        barrierForReaders(ctx);
+    }
+
+    void runFroxels(const GBufferView& g, bool shadowed) {
+        const glm::ivec3 grid = current.froxels;
+        ensureFroxels({grid.x, grid.y, grid.z + 1});
+        {
+            PassScope pass(ctx, "media.froxel.inject");
+            std::vector<std::string> defines = shadowDefines(shadowed);
+            defines.insert(defines.begin(), "INJECT");
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_froxel.comp.glsl"}, defines));
+            ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, froxelSource.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, froxelExtinction.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            const GLuint n = MEDIA_FROXEL_WORKGROUP;
+            ctx.gl.DispatchCompute((GLuint(grid.x) + n - 1) / n, (GLuint(grid.y) + n - 1) / n, (GLuint(grid.z) + n - 1) / n);
+            ctx.gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        }
+        {
+            PassScope pass(ctx, "media.froxel.integrate");
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_froxel.comp.glsl"}, {"INTEGRATE"}));
+            ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, froxelSource.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+            ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, froxelExtinction.get(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            dispatchCompute2D(ctx, grid.x, grid.y, MEDIA_WORKGROUP);
+            barrierForReaders(ctx);
+        }
+        PassScope pass(ctx, "media.froxel.resolve");
+        ctx.gl.UseProgram(ctx.shaders->program({"media/media_froxel.comp.glsl"}, {"RESOLVE"}));
+        ctx.state.bindTexture(ctx, MEDIA_FROXEL_READ_UNIT, froxelSource.get());
+        ctx.state.bindSampler(ctx, MEDIA_FROXEL_READ_UNIT, ctx.linearClampSampler());
+        bindOutputs(g.width, g.height);
+        dispatchCompute2D(ctx, g.width, g.height, MEDIA_WORKGROUP);
+        barrierForReaders(ctx);
+    }
+
+    void release() {
+        frame = FrameUniforms{};
+        lights = LightRecords{};
+        params.reset();
+        scattering.release();
+        opticalDepth.release();
+        applied.release();
+        table.reset();
+        tableSize = 0;
+        froxelSource.reset();
+        froxelExtinction.reset();
+        froxelSize = glm::ivec3(0);
+    }
+};
+
+Media::Media(Context& context) : impl_(std::make_unique<Impl>(context.impl())) {}
+Media::~Media() = default;
+
+MediaView Media::run(const GBufferView& g, const MediaInputs& in, const MediaSettings& s) {
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    analyzeProjection(g.camera);
+    validate(in, s, g.camera);
+    const TextureInfo depth = queryTexture2D(ctx, g.depth.name, "GBufferView::depth");
+    requireReadableAs(ctx, g.depth.name, depth, "GBufferView::depth", SampledAs::Depth);
+    requireNotOwnOutput({{"GBufferView::depth", g.depth.name}},
+                        {d.scattering.get(), d.opticalDepth.get(), d.applied.get()}, "Media");
+    if (in.media.empty()) {
+        d.release(); // no media: no pass, no memory
+        return {};
+    }
+    GBufferView view = g;
+    view.width = depth.width;
+    view.height = depth.height;
+
+    StateScope scope(ctx);
+    d.releaseUnused(s);
+    d.frame.bind(ctx, g.camera, view.width, view.height, depthStepOf(ctx, g.depth.name), 0.0f, s.frameIndex);
+    ctx.bindNoiseTexture();
+    // The analytic form has no shadows: it takes no maps.
+    const ShadowMapSet* maps = s.method != MediaMethod::Analytic && s.shadows ? in.shadows : nullptr;
+    const bool shadowed = d.lights.bindShadows(ctx, in.lights, g.camera, maps, ShadowMaskSettings{});
+    d.lights.upload(ctx, in.lights, glm::dmat4(g.camera.view), "media.lights");
+    d.uploadParams(view, in, s);
+    bindNearest(ctx, MEDIA_DEPTH_UNIT, g.depth.name);
+    if (s.method == MediaMethod::Froxel) d.runFroxels(view, shadowed);
+    else d.runPerPixel(view, s, shadowed);
+    return {{d.scattering.get(), GL_RGBA16F, view.width, view.height},
+            {d.opticalDepth.get(), GL_RGBA16F, view.width, view.height},
+            view.width,
+            view.height};
+}
+
+TextureView Media::apply(const MediaView& view, const TextureView& lit) {
+    auto& d = *impl_;
+    auto& ctx = d.ctx;
+    if (!view.scattering) return lit; // no media: the frame as it is
+    const TextureInfo info = queryTexture2D(ctx, lit.name, "Media::apply lit");
+    requireReadableAs(ctx, lit.name, info, "Media::apply lit", SampledAs::Rgb);
+    if (info.width != view.width || info.height != view.height)
+        throw Error(ErrorCode::InvalidArgument, "Media::apply: the lit frame (" + std::to_string(info.width) + "x" +
+                                                    std::to_string(info.height) + ") must have the media view's size (" +
+                                                    std::to_string(view.width) + "x" + std::to_string(view.height) + ")");
+    requireNotOwnOutput({{"Media::apply lit", lit.name}}, {d.applied.get()}, "Media");
+    StateScope scope(ctx);
+    PassScope pass(ctx, "media.apply");
+    ctx.gl.UseProgram(ctx.shaders->program({"media/media_apply.comp.glsl"}, {}));
+    ctx.gl.Uniform2i(0, view.width, view.height);
+    bindNearest(ctx, MEDIA_LIT_UNIT, lit.name);
+    bindNearest(ctx, MEDIA_SCATTERING_UNIT, view.scattering.name);
+    bindNearest(ctx, MEDIA_OPTICAL_DEPTH_UNIT, view.opticalDepth.name);
+    const GLuint out = d.applied.ensure(ctx, GL_RGBA16F, view.width, view.height, "media.applied");
+    ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatchCompute2D(ctx, view.width, view.height, MEDIA_WORKGROUP);
+    barrierForReaders(ctx);
+    return {out, GL_RGBA16F, view.width, view.height};
+}
+
+void Media::prepare(const MediaSettings& s) {
+    validateSettings(MediaSettings::table(), s, "MediaSettings");
+    auto& ctx = impl_->ctx;
+    StateScope scope(ctx);
+    if (s.method == MediaMethod::RayMarch) ctx.shaders->program({"media/media_march.comp.glsl"}, {});
+    if (s.method == MediaMethod::Analytic)
+        ctx.shaders->program({"media/media_analytic.comp.glsl"}, {s.integral == AnalyticIntegral::Table ? "TABLE" : "QUADRATURE"});
+    if (s.method == MediaMethod::Froxel)
+        for (const char* pass : {"INJECT", "INTEGRATE", "RESOLVE"}) ctx.shaders->program({"media/media_froxel.comp.glsl"}, {pass});
+    ctx.shaders->program({"media/media_apply.comp.glsl"}, {});
+}
+
+std::size_t Media::memoryBytes() const {
+    const auto& d = *impl_;
+    const std::size_t froxels = std::size_t(d.froxelSize.x) * std::size_t(d.froxelSize.y) * std::size_t(d.froxelSize.z);
+    return d.scattering.bytes() + d.opticalDepth.bytes() + d.applied.bytes() + d.frame.memoryBytes() + d.lights.memoryBytes() +
+           (d.params ? sizeof(shader::MediaParams) : 0) + std::size_t(d.tableSize) * std::size_t(d.tableSize) * 4 +
+           froxels * 2 * bytesPerTexel(GL_RGBA16F);
+}
+
+} // namespace obscura
