@@ -67,7 +67,6 @@ struct MediaSettings {
     MediaMethod method = MediaMethod::RayMarch;
     int steps = 64;
     bool jitter = true;
-    bool shadows = true;
     AnalyticIntegral integral = AnalyticIntegral::Quadrature;
     int tableSize = 128;
     int froxelTile = 8;
@@ -87,7 +86,6 @@ inline const SettingsTable<MediaSettings>& MediaSettings::table() {
         number("steps", &S::steps, "", "[1, 1024]",
                "raymarch: samples per view ray; analytic quadrature: nodes; froxel: depth slices"),
         flag("jitter", &S::jitter, "raymarch: offset each pixel's samples within their steps (else at the steps' centres)"),
-        flag("shadows", &S::shadows, "raymarch, froxel: the lights' shadow maps (MediaInputs::shadows)"),
         choice("integral", &S::integral, {{"quadrature", AnalyticIntegral::Quadrature}, {"table", AnalyticIntegral::Table}},
                "analytic: nodes in the shader, or the tabulated integral"),
         number("tableSize", &S::tableSize, "texels per side", "[16, 1024]", "analytic table: its resolution"),
@@ -107,7 +105,8 @@ struct MediaInputs {
     //! Point, spot and directional lights (others are left out), in Scene::lights' units.
     std::span<const Light> lights{};
     //! Maps of some of `lights` (ShadowMaps::render with the same lights, in order), tested
-    //! with one hard comparison per sample. Null: unshadowed.
+    //! with one hard comparison per sample by RayMarch and Froxel (Analytic has no shadows).
+    //! Null: unshadowed.
     const ShadowMapSet* shadows = nullptr;
 };
 

@@ -125,11 +125,14 @@ vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 
     // pi/2 - xi = (pi/2 - phi) / 2 = atan(h, x') / 2: no cancellation near pi/2.
     const float eA = 0.5 * atan(hh, a), eB = 0.5 * atan(hh, b);
     const float dA = length(vec2(a, hh)), dB = length(vec2(b, hh));
+    // A grey medium (the same sigma_t in every channel) takes one channel's lookups.
+    const bool grey = sigmaT.r == sigmaT.g && sigmaT.g == sigmaT.b;
     vec3 sum;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < (grey ? 1 : 3); ++c) {
         const float u = sigmaT[c] * hh;
         sum[c] = exp(-sigmaT[c] * dA) * analyticG(u, eA) - exp(-sigmaT[c] * ((b - a) + dB)) * analyticG(u, eB);
     }
+    if (grey) sum = vec3(sum.r);
     return max(sum, vec3(0.0)) * (2.0 / hh) * nearFactor;
 #else
     // Intervals equal in phi: each has Integral dx'/d^2 = dphi / h exactly.

@@ -142,6 +142,60 @@ LoadedScene cornellRect() {
     return s;
 }
 
+// The Cornell box filled with fog (0.8 per metre scattering, 0.2 absorption, isotropic), seen
+// from outside it: the media techniques' closed room.
+LoadedScene cornellFog() {
+    LoadedScene s = cornell();
+    s.name = "cornell_fog";
+    Medium fog;
+    fog.boxMin = {0.0f, 0.0f, 0.0f};
+    fog.boxMax = {556.0f, 548.8f, 559.2f};
+    fog.scattering = glm::vec3(0.0008f); // per mm
+    fog.absorption = glm::vec3(0.0002f);
+    fog.phase = PhaseFunction::Isotropic;
+    s.scene.media.push_back(fog);
+    return s;
+}
+
+// God rays (the volumetric-lighting thesis's test): a spot light above a lattice of bars
+// shining through its holes into forward-scattering fog over a floor, seen from outside the
+// fog. Metres.
+LoadedScene godRays() {
+    LoadedScene s;
+    s.name = "god_rays";
+    s.unitsPerMetre = 1.0f;
+    s.scene.materials = {material("grey", glm::vec3(0.5f))};
+    MeshBuilder b;
+    b.quad({{{-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10}}});
+    for (int i = -2; i <= 2; ++i) {
+        const float at = float(i);
+        b.box({-2.5f, 3.0f, at - 0.15f}, {2.5f, 3.1f, at + 0.15f}, false);
+        b.box({at - 0.15f, 3.0f, -2.5f}, {at + 0.15f, 3.1f, 2.5f}, false);
+    }
+    s.scene.meshes.push_back(b.build(0, "god_rays"));
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 5.5f, 0.0f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.innerAngle = 0.45f;
+    spot.outerAngle = 0.6f;
+    spot.intensity = 60.0f;
+    s.scene.lights.push_back(spot);
+    Medium fog;
+    fog.boxMin = {-5.0f, 0.0f, -5.0f};
+    fog.boxMax = {5.0f, 6.0f, 5.0f};
+    fog.scattering = glm::vec3(0.12f);
+    fog.absorption = glm::vec3(0.02f);
+    fog.phase = PhaseFunction::HenyeyGreenstein;
+    fog.anisotropy = 0.5f;
+    s.scene.media.push_back(fog);
+    s.camera.lookAt = {{0.0f, 1.2f, 8.5f}, {0.0f, 2.6f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    s.camera.fovyDegrees = 50.0f;
+    s.camera.nearPlane = 0.05f;
+    s.camera.farPlane = 100.0f;
+    return s;
+}
+
 // Analytic scenes, in metres: a 20 m floor at y = 0 centred on the origin, plus walls.
 constexpr float kHalf = 10.0f;
 constexpr float kWallHeight = 5.0f;
@@ -180,6 +234,8 @@ const std::map<std::string, std::function<LoadedScene()>>& registry() {
         {"cornell", cornell},
         {"cornell_sphere", cornellSphere},
         {"cornell_rect", cornellRect},
+        {"cornell_fog", cornellFog},
+        {"god_rays", godRays},
         {"plane", [] { return analytic("plane", [](MeshBuilder& b) { b.quad(floorQuad()); }, view({0, 3, 6}, {0, 0, 0})); }},
         {"wall", [] {
              return analytic("wall", [](MeshBuilder& b) { b.quad(floorQuad()).quad(backWall()); },

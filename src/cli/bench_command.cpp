@@ -82,6 +82,16 @@ Image shadowReference(const Image& shadow, Image& mask) {
     return lit;
 }
 
+// The channels `channels` of `image`, in that order (Measurement::referenceChannels).
+Image channelsOf(const Image& image, const std::vector<int>& channels) {
+    Image out{image.width, image.height, int(channels.size()), {}};
+    out.pixels.resize(std::size_t(image.width) * std::size_t(image.height) * channels.size());
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (std::size_t c = 0; c < channels.size(); ++c) out.at(x, y, int(c)) = image.at(x, y, channels[c]);
+    return out;
+}
+
 // Fractions of the masked pixels that a hard mask gets wrong.
 struct Misclassified {
     double falseShadow = 0.0, falseLight = 0.0;
@@ -476,6 +486,7 @@ private:
                 noise = ref.noiseMse;
                 spp = ref.samplesPerPixel;
                 if (m.shadowMask) expected = shadowReference(ref.value, mask);
+                if (!m.referenceChannels.empty()) expected = channelsOf(expected, m.referenceChannels);
             }
             metrics::Options mo;
             mo.mask = &mask;

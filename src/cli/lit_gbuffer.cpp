@@ -37,6 +37,7 @@ const GBufferView& LitGBuffer::render(const FrameSetup& frame, GBufferSettings s
         settings.shadows = &shadows_.render(frame.scene.scene, frame.camera, maps_);
         settings.shadowFilter = filter_;
     }
+    maps_used_ = settings.shadows;
     view_ = gbuffer_.render(frame.scene.scene, frame.camera, settings);
     return view_;
 }

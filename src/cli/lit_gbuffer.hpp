@@ -28,8 +28,8 @@ public:
     //! and the G-buffer; `settings` gives everything but the shadows.
     const GBufferView& render(const FrameSetup& frame, GBufferSettings settings);
 
-    //! For a technique that lights the pixels itself (ssdo): the shadow maps as render() would
-    //! (shadowMaps() returns them, or null), and a G-buffer without direct light.
+    //! For a technique that lights the pixels itself (ssdo): the shadow maps as render() would,
+    //! and a G-buffer without direct light. shadowMaps() returns either's maps, or null.
     const GBufferView& renderUnlit(const FrameSetup& frame, GBufferSettings settings);
     const ShadowMapSet* shadowMaps() const { return maps_used_; }
     //! Whether the maps include reflective shadow maps (ShadowMapSettings::reflective).

@@ -113,6 +113,9 @@ struct Measurement {
     //! With shadowMask: also count the pixels the technique classifies wrongly (value < 0.5
     //! against a lit reference: false shadow; >= 0.5 against a shadowed one: false light).
     bool classify = false;
+    //! The reference's channels to compare `value` with, in order (empty: all of them), e.g.
+    //! SingleScattering's radiance {0, 1, 2} or its transmittance {3}.
+    std::vector<int> referenceChannels{};
     //! Cascaded shadows: the mean absolute change of the mask at fixed receivers when the
     //! camera moves by fractions of a texel (see shadow_technique.cpp); empty otherwise.
     std::optional<double> shimmer{};

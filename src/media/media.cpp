@@ -234,7 +234,7 @@ MediaView Media::run(const GBufferView& g, const MediaInputs& in, const MediaSet
     d.frame.bind(ctx, g.camera, view.width, view.height, depthStepOf(ctx, g.depth.name), 0.0f, s.frameIndex);
     ctx.bindNoiseTexture();
     // The analytic form has no shadows: it takes no maps.
-    const ShadowMapSet* maps = s.method != MediaMethod::Analytic && s.shadows ? in.shadows : nullptr;
+    const ShadowMapSet* maps = s.method != MediaMethod::Analytic ? in.shadows : nullptr;
     const bool shadowed = d.lights.bindShadows(ctx, in.lights, g.camera, maps, ShadowMaskSettings{});
     d.lights.upload(ctx, in.lights, glm::dmat4(g.camera.view), "media.lights");
     d.uploadParams(view, in, s);
