@@ -1,6 +1,7 @@
 #pragma once
 // Participating media: single scattering of the scene's point, spot and directional lights in
-// homogeneous media boxes (Scene::media), seen along each pixel's view ray up to its surface
+// media boxes (Scene::media: homogeneous, exponential height fog, or a density grid sampled
+// trilinearly), seen along each pixel's view ray up to its surface
 // (or through the whole box on background pixels):
 //   L_s = Integral_0^t_s T(0,t) Sum_lights sigma_s p(theta) L_i(t) T(t, light) V(t) dt
 // with L_i = I / max(d^2, r^2) (times a spot's cone) for point and spot lights, E for
@@ -34,8 +35,9 @@
 //
 // Outputs, the G-buffer's size, GL_RGBA16F:
 //   scattering    L_s, RGB W/(sr m^2) (alpha 1);
-//   opticalDepth  tau = -ln T of the view ray up to its surface, per channel, exact for the
-//                 boxes whatever the method (a half float keeps 3 significant digits of tau,
+//   opticalDepth  tau = -ln T of the view ray up to its surface, per channel, exact for
+//                 constant and height-fog boxes whatever the method (a grid's: densitySteps
+//                 midpoint samples) (a half float keeps 3 significant digits of tau,
 //                 where T itself would round to 1 for tau < 5e-4); 65504 stands for opaque.
 // apply() composes them onto a lit frame (ours or the host's): L = L_lit exp(-tau) + L_s.
 //
@@ -71,6 +73,7 @@ struct MediaSettings {
     int tableSize = 128;
     int froxelTile = 8;
     float froxelRange = 0.0f;
+    int densitySteps = 16;
     std::uint32_t frameIndex = 0;
 
     static const SettingsTable<MediaSettings>& table(); //!< units and ranges (settings_table.hpp)
@@ -92,6 +95,8 @@ inline const SettingsTable<MediaSettings>& MediaSettings::table() {
         number("froxelTile", &S::froxelTile, "pixels", "[1, 64]", "froxel: the grid's tile side"),
         number("froxelRange", &S::froxelRange, "world units", "[0, inf)",
                "froxel: view depth the last slice ends at (0: the media boxes' farthest corner)"),
+        number("densitySteps", &S::densitySteps, "", "[1, 256]",
+               "raymarch, froxel: midpoint steps of a density grid's optical depth along each segment"),
         number("frameIndex", &S::frameIndex, "", "[0, 4294967295]", "raymarch: shifts the jitter per frame"),
     };
     return rows;
@@ -99,8 +104,9 @@ inline const SettingsTable<MediaSettings>& MediaSettings::table() {
 
 //! What the media are and what lights them.
 struct MediaInputs {
-    //! Homogeneous boxes (Scene::media's units), at most 8. Empty: nothing to do (the
-    //! outputs are 0 and no memory is kept). The span must outlive the call.
+    //! Media boxes (Scene::media's units), at most 8, of which at most one a density grid.
+    //! Analytic takes Constant densities only. Empty: nothing to do (run() returns an empty
+    //! view and no memory is kept). The span must outlive the call.
     std::span<const Medium> media{};
     //! Point, spot and directional lights (others are left out), in Scene::lights' units.
     std::span<const Light> lights{};

@@ -133,15 +133,43 @@ enum class PhaseFunction {
     Schlick,
 };
 
-//! A homogeneous medium in an axis-aligned box (for the participating-media module and
-//! its reference). Phase angles are between the light's travel direction and the view ray's.
+//! How a medium's density varies inside its box: it multiplies scattering and absorption.
+enum class MediumDensity {
+    Constant, //!< 1: a homogeneous medium
+    Height,   //!< exponential height fog: exp(-heightFalloff (y - boxMin.y))
+    Grid,     //!< Medium::grid, trilinear over the box
+};
+
+//! A density grid: size.x * size.y * size.z values, x fastest, at the centres of equal cells
+//! that tile the medium's box; finite and >= 0 (any scale: sigma multiplies them).
+struct DensityGrid {
+    glm::ivec3 size{0}; //!< cells per axis, each [1, 1024]
+    std::vector<float> values;
+};
+
+//! A medium in an axis-aligned box (for the participating-media module and its reference):
+//! sigma_s(x) = density(x) scattering, sigma_a(x) = density(x) absorption inside the box, 0
+//! outside. Phase angles are between the light's travel direction and the view ray's.
 struct Medium {
     glm::vec3 boxMin{0.0f}, boxMax{0.0f}; //!< world units, finite, boxMin <= boxMax per axis
-    glm::vec3 scattering{0.0f};           //!< sigma_s, 1/world unit, [0, inf)
-    glm::vec3 absorption{0.0f};           //!< sigma_a, 1/world unit, [0, inf)
+    glm::vec3 scattering{0.0f};           //!< sigma_s at density 1, 1/world unit, [0, inf)
+    glm::vec3 absorption{0.0f};           //!< sigma_a at density 1, 1/world unit, [0, inf)
     PhaseFunction phase = PhaseFunction::HenyeyGreenstein;
     float anisotropy = 0.0f;              //!< Henyey-Greenstein's and Schlick's g, (-1, 1)
+    MediumDensity density = MediumDensity::Constant;
+    float heightFalloff = 0.0f;           //!< Height: 1/world unit, [0, inf) (0: constant)
+    std::shared_ptr<const DensityGrid> grid; //!< Grid: the values (shared between copies)
 };
+
+//! The density of `medium` at world point p: 0 outside its box (boundary included inside).
+OBSCURA_API double mediumDensity(const Medium& medium, const glm::dvec3& p);
+//! Its largest density anywhere in the box (the majorant's factor).
+OBSCURA_API double mediumMaxDensity(const Medium& medium);
+//! A procedural density grid: the sum of `octaves` octaves of smooth value noise (a lattice of
+//! random values from `seed`, trilinear with smoothstep weights, each octave twice the
+//! frequency and half the amplitude of the last, the first with 4 lattice cells per axis), each
+//! value of the sum mapped by max(0, 2 v - 0.5) to make clumps and clear gaps; in [0, 1.5].
+OBSCURA_API DensityGrid noiseDensityGrid(glm::ivec3 size, std::uint32_t seed, int octaves = 3);
 
 //! Schlick's k for anisotropy g (PhaseFunction::Schlick), in (-1, 1) for g in (-1, 1).
 OBSCURA_API double schlickK(double g);

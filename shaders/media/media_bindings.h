@@ -22,6 +22,11 @@ OBSCURA_SHADER_BEGIN
 #define MEDIA_WORKGROUP 8
 #define MEDIA_FROXEL_WORKGROUP 4
 
+#define MEDIA_DENSITY_CONSTANT 0
+#define MEDIA_DENSITY_HEIGHT 1
+#define MEDIA_DENSITY_GRID 2 // the grid at MEDIA_GRID_UNIT (one per run)
+#define MEDIA_GRID_UNIT 6
+
 #define MEDIA_PHASE_ISOTROPIC 0
 #define MEDIA_PHASE_HG 1
 #define MEDIA_PHASE_RAYLEIGH 2
@@ -34,10 +39,10 @@ struct MediumData {
     float phase;     // MEDIA_PHASE_*
     vec3 boxMax;     // world units
     float g;         // HG g, or Schlick's k
-    vec3 scattering; // sigma_s, 1/world unit
-    float pad0;
-    vec3 extinction; // sigma_t = sigma_s + sigma_a, 1/world unit
-    float pad1;
+    vec3 scattering; // sigma_s at density 1, 1/world unit
+    float density;   // MEDIA_DENSITY_*
+    vec3 extinction; // sigma_t = sigma_s + sigma_a at density 1, 1/world unit
+    float heightFalloff; // MEDIA_DENSITY_HEIGHT: 1/world unit
 };
 
 struct MediaParams {
@@ -51,8 +56,8 @@ struct MediaParams {
     ivec2 tableSize;   // TABLE: texels along u and v
     ivec3 froxels;     // froxel grid: tiles x, y and slices
     float froxelRange; // froxel: view distance the last slice ends at, world units
-    float tableMaxU;   // TABLE: u of its last column (u = tableMaxU t^2, t in [0, 1] over the columns)
-    float pad2;
+    float tableMaxU;   // TABLE: u of its last column
+    int densitySteps;  // midpoint steps of a grid medium's optical depth along a segment
     float pad3;
     float pad4;
 };

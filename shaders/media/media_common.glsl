@@ -7,11 +7,13 @@ layout(std140, binding = MEDIA_PARAMS_UBO_BINDING) uniform MediaBlock {
     MediaParams media;
 };
 
+layout(binding = MEDIA_GRID_UNIT) uniform sampler3D densityGrid;
+
 // (1 - exp(-x)) / x for x >= 0, the mean transmittance over a step of optical depth x:
 // its Taylor series below 1/8 (1 - x/2 + x^2/6 - x^3/24, error < x^4/120 < 2.1e-6 relative),
 // where 1 - exp(-x) would cancel; no epsilon.
 float oneMinusExpOverX(float x) {
-    if (x < 0.125) return 1.0 - x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0)));
+    if (abs(x) < 0.125) return 1.0 - x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0)));
     return (1.0 - exp(-x)) / x;
 }
 vec3 oneMinusExpOverX(vec3 x) { return vec3(oneMinusExpOverX(x.x), oneMinusExpOverX(x.y), oneMinusExpOverX(x.z)); }
@@ -50,13 +52,50 @@ vec2 mediaBoxInterval(int m, vec3 o, vec3 w, float tEnd) {
     return vec2(t0, t1);
 }
 
-// Optical depth per channel of the world segment from o toward unit w over `length` (Inf:
-// to infinity), through every medium: sigma_t times the length inside each box.
+// Medium m's density at world point x inside its box (MediumDensity): 1, exp(-k (y - y0)),
+// or the grid, trilinear (the sampler's weights).
+float mediaDensityAt(int m, vec3 x) {
+    const int kind = int(media.media[m].density);
+    if (kind == MEDIA_DENSITY_HEIGHT) return exp(-media.media[m].heightFalloff * max(x.y - media.media[m].boxMin.y, 0.0));
+    if (kind == MEDIA_DENSITY_GRID) {
+        const vec3 extent = media.media[m].boxMax - media.media[m].boxMin;
+        return texture(densityGrid, clamp((x - media.media[m].boxMin) / max(extent, vec3(1e-30)), 0.0, 1.0)).r;
+    }
+    return 1.0;
+}
+
+bool mediaHolds(int m, vec3 x) {
+    return all(greaterThanEqual(x, media.media[m].boxMin)) && all(lessThanEqual(x, media.media[m].boxMax));
+}
+
+// Integral of medium m's density over [t.x, t.y] of world ray o + s w (inside its box):
+// exact for Constant and Height (the exponential's value at the segment's lower end times the
+// mean of exp over its rise, no overflow whichever way the ray climbs), `densitySteps`
+// midpoint samples for a grid.
+float mediaDensityIntegral(int m, vec3 o, vec3 w, vec2 t) {
+    const float length = t.y - t.x;
+    const int kind = int(media.media[m].density);
+    if (kind == MEDIA_DENSITY_HEIGHT) {
+        const float k = media.media[m].heightFalloff, y0 = media.media[m].boxMin.y;
+        const float ya = o.y + t.x * w.y - y0, yb = o.y + t.y * w.y - y0;
+        return exp(-k * max(min(ya, yb), 0.0)) * length * oneMinusExpOverX(k * abs(yb - ya));
+    }
+    if (kind == MEDIA_DENSITY_GRID) {
+        const float dt = length / float(media.densitySteps);
+        float sum = 0.0;
+        for (int i = 0; i < media.densitySteps; ++i) sum += mediaDensityAt(m, o + (t.x + (float(i) + 0.5) * dt) * w);
+        return sum * dt;
+    }
+    return length;
+}
+
+// Optical depth per channel of the world segment from o toward unit w over `length`
+// (kFloatMax: to infinity), through every medium.
 vec3 mediaOpticalDepth(vec3 o, vec3 w, float length) {
     vec3 tau = vec3(0.0);
     for (int m = 0; m < media.mediumCount; ++m) {
         const vec2 t = mediaBoxInterval(m, o, w, length);
-        if (t.y > t.x) tau += media.media[m].extinction * (t.y - t.x);
+        if (t.y > t.x) tau += media.media[m].extinction * mediaDensityIntegral(m, o, w, t);
     }
     return tau;
 }
@@ -66,10 +105,10 @@ void mediaCoefficientsAt(vec3 x, out vec3 scattering, out vec3 extinction) {
     scattering = vec3(0.0);
     extinction = vec3(0.0);
     for (int m = 0; m < media.mediumCount; ++m) {
-        if (all(greaterThanEqual(x, media.media[m].boxMin)) && all(lessThanEqual(x, media.media[m].boxMax))) {
-            scattering += media.media[m].scattering;
-            extinction += media.media[m].extinction;
-        }
+        if (!mediaHolds(m, x)) continue;
+        const float density = mediaDensityAt(m, x);
+        scattering += media.media[m].scattering * density;
+        extinction += media.media[m].extinction * density;
     }
 }
 
@@ -77,8 +116,8 @@ void mediaCoefficientsAt(vec3 x, out vec3 scattering, out vec3 extinction) {
 vec3 mediaScatteringPhase(vec3 x, float c) {
     vec3 s = vec3(0.0);
     for (int m = 0; m < media.mediumCount; ++m) {
-        if (all(greaterThanEqual(x, media.media[m].boxMin)) && all(lessThanEqual(x, media.media[m].boxMax)))
-            s += media.media[m].scattering * mediaPhase(int(media.media[m].phase), media.media[m].g, c);
+        if (mediaHolds(m, x))
+            s += media.media[m].scattering * (mediaDensityAt(m, x) * mediaPhase(int(media.media[m].phase), media.media[m].g, c));
     }
     return s;
 }

@@ -157,6 +157,20 @@ LoadedScene cornellFog() {
     return s;
 }
 
+// The Cornell box filled with smoke: a noise density grid (noiseDensityGrid, 32^3, seed 3:
+// clumps up to 1.5 and clear gaps) at twice the fog's coefficients, isotropic. The
+// heterogeneous case of the media techniques.
+LoadedScene cornellSmoke() {
+    LoadedScene s = cornellFog();
+    s.name = "cornell_smoke";
+    Medium& smoke = s.scene.media.at(0);
+    smoke.scattering *= 2.0f;
+    smoke.absorption *= 2.0f;
+    smoke.density = MediumDensity::Grid;
+    smoke.grid = std::make_shared<DensityGrid>(noiseDensityGrid({32, 32, 32}, 3));
+    return s;
+}
+
 // God rays (the volumetric-lighting thesis's test): a spot light above a lattice of bars
 // shining through its holes into forward-scattering fog over a floor, seen from outside the
 // fog. Metres.
@@ -235,6 +249,7 @@ const std::map<std::string, std::function<LoadedScene()>>& registry() {
         {"cornell_sphere", cornellSphere},
         {"cornell_rect", cornellRect},
         {"cornell_fog", cornellFog},
+        {"cornell_smoke", cornellSmoke},
         {"god_rays", godRays},
         {"plane", [] { return analytic("plane", [](MeshBuilder& b) { b.quad(floorQuad()); }, view({0, 3, 6}, {0, 0, 0})); }},
         {"wall", [] {

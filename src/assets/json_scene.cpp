@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -249,7 +250,43 @@ private:
             else fail(where + ".phase", "expected \"isotropic\", \"henyey_greenstein\", \"rayleigh\" or \"schlick\"");
         }
         if (!(m.anisotropy > -1.0f && m.anisotropy < 1.0f)) fail(where + ".anisotropy", "must be in (-1, 1)");
+        if (j.contains("density")) density(j["density"], where + ".density", m);
         return m;
+    }
+
+    // "density": {"type": "height", "falloff": k} | {"type": "grid", "size": [x, y, z],
+    // "file": raw little-endian float32, x fastest} | {"type": "noise", "size": [x, y, z],
+    // "seed": n, "octaves": o}.
+    void density(const json& j, const std::string& where, Medium& m) const {
+        if (!j.is_object() || !j.contains("type") || !j["type"].is_string()) fail(where, "expected {\"type\": ...}");
+        const std::string type = j["type"].get<std::string>();
+        if (type == "height") {
+            m.density = MediumDensity::Height;
+            m.heightFalloff = number(j.at("falloff"), where + ".falloff");
+            if (m.heightFalloff < 0.0f) fail(where + ".falloff", "must be >= 0 (1/world unit)");
+            return;
+        }
+        if (type != "grid" && type != "noise") fail(where + ".type", "expected \"height\", \"grid\" or \"noise\"");
+        const glm::vec3 size = vec3(j.at("size"), where + ".size");
+        const glm::ivec3 n(size);
+        if (glm::any(glm::notEqual(glm::vec3(n), size)) || glm::any(glm::lessThan(n, glm::ivec3(1))) ||
+            glm::any(glm::greaterThan(n, glm::ivec3(1024))))
+            fail(where + ".size", "expected three whole numbers in [1, 1024]");
+        m.density = MediumDensity::Grid;
+        if (type == "noise") {
+            const std::uint32_t seed = j.contains("seed") ? j["seed"].get<std::uint32_t>() : 1u;
+            const int octaves = j.contains("octaves") ? int(number(j["octaves"], where + ".octaves")) : 3;
+            m.grid = std::make_shared<DensityGrid>(noiseDensityGrid(n, seed, std::clamp(octaves, 1, 8)));
+            return;
+        }
+        const std::filesystem::path path = dir_ / j.at("file").get<std::string>();
+        std::ifstream in(path, std::ios::binary);
+        if (!in) fail(where + ".file", "cannot open " + path.string());
+        DensityGrid g{n, std::vector<float>(std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z))};
+        in.read(reinterpret_cast<char*>(g.values.data()), std::streamsize(g.values.size() * sizeof(float)));
+        if (in.gcount() != std::streamsize(g.values.size() * sizeof(float)))
+            fail(where + ".file", path.string() + " holds fewer than size.x * size.y * size.z float32 values");
+        m.grid = std::make_shared<DensityGrid>(std::move(g));
     }
 
     CameraSpec camera(const json& j, CameraSpec c) const {

@@ -107,6 +107,49 @@ void validateMedium(const Medium& m, std::size_t i) {
                       what + ".phase");
     if (!(std::abs(m.anisotropy) < 1.0f))
         throw Error(ErrorCode::InvalidArgument, what + ".anisotropy must be in (-1, 1), got " + shortNumber(m.anisotropy));
+    requireEnumerator(m.density, {MediumDensity::Constant, MediumDensity::Height, MediumDensity::Grid}, what + ".density");
+    if (!(m.heightFalloff >= 0.0f && std::isfinite(m.heightFalloff)))
+        throw Error(ErrorCode::InvalidArgument, what + ".heightFalloff must be finite and >= 0 (1/world unit), got " +
+                                                    shortNumber(m.heightFalloff));
+    if (m.density == MediumDensity::Grid) {
+        if (!m.grid) throw Error(ErrorCode::InvalidArgument, what + ".grid is null but density is Grid");
+        const glm::ivec3 n = m.grid->size;
+        if (glm::any(glm::lessThan(n, glm::ivec3(1))) || glm::any(glm::greaterThan(n, glm::ivec3(1024))))
+            throw Error(ErrorCode::InvalidArgument, what + ".grid->size must be in [1, 1024] per axis");
+        if (m.grid->values.size() != std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z))
+            throw Error(ErrorCode::InvalidArgument, what + ".grid->values must hold size.x * size.y * size.z values, has " +
+                                                        std::to_string(m.grid->values.size()));
+        for (float v : m.grid->values)
+            if (!(v >= 0.0f && std::isfinite(v)))
+                throw Error(ErrorCode::InvalidArgument, what + ".grid->values must be finite and >= 0, found " + shortNumber(v));
+    }
+}
+
+// Trilinear interpolation of the grid at box-relative coordinates u in [0, 1]^3 (cell centres
+// at (i + 0.5) / size; clamped at the faces).
+double gridDensity(const DensityGrid& g, const glm::dvec3& u) {
+    const glm::dvec3 at = glm::clamp(u * glm::dvec3(g.size) - 0.5, glm::dvec3(0.0), glm::dvec3(g.size - 1));
+    const glm::ivec3 i0 = glm::min(glm::ivec3(glm::floor(at)), g.size - 1), i1 = glm::min(i0 + 1, g.size - 1);
+    const glm::dvec3 f = at - glm::dvec3(i0);
+    const auto v = [&](int x, int y, int z) {
+        return double(g.values[(std::size_t(z) * std::size_t(g.size.y) + std::size_t(y)) * std::size_t(g.size.x) + std::size_t(x)]);
+    };
+    const double x00 = v(i0.x, i0.y, i0.z) * (1 - f.x) + v(i1.x, i0.y, i0.z) * f.x;
+    const double x10 = v(i0.x, i1.y, i0.z) * (1 - f.x) + v(i1.x, i1.y, i0.z) * f.x;
+    const double x01 = v(i0.x, i0.y, i1.z) * (1 - f.x) + v(i1.x, i0.y, i1.z) * f.x;
+    const double x11 = v(i0.x, i1.y, i1.z) * (1 - f.x) + v(i1.x, i1.y, i1.z) * f.x;
+    return (x00 * (1 - f.y) + x10 * f.y) * (1 - f.z) + (x01 * (1 - f.y) + x11 * f.y) * f.z;
+}
+
+// A hash of three lattice coordinates and a seed to [0, 1) (integer mixing, no state).
+double latticeValue(int x, int y, int z, std::uint32_t seed) {
+    std::uint32_t h = seed * 0x9E3779B9u ^ std::uint32_t(x) * 0x85EBCA6Bu ^ std::uint32_t(y) * 0xC2B2AE35u ^ std::uint32_t(z) * 0x27D4EB2Fu;
+    h ^= h >> 15;
+    h *= 0x2C1B3C6Du;
+    h ^= h >> 12;
+    h *= 0x297A2D39u;
+    h ^= h >> 15;
+    return double(h) / 4294967296.0;
 }
 
 } // namespace
@@ -156,6 +199,59 @@ double phaseFunction(PhaseFunction phase, double g, double c) {
     }
     }
     return 0.0;
+}
+
+double mediumDensity(const Medium& m, const glm::dvec3& p) {
+    const glm::dvec3 lo(m.boxMin), hi(m.boxMax);
+    if (glm::any(glm::lessThan(p, lo)) || glm::any(glm::greaterThan(p, hi))) return 0.0;
+    switch (m.density) {
+    case MediumDensity::Constant: return 1.0;
+    case MediumDensity::Height: return std::exp(-double(m.heightFalloff) * (p.y - lo.y));
+    case MediumDensity::Grid: {
+        const glm::dvec3 extent = hi - lo;
+        const glm::dvec3 u = glm::dvec3(extent.x > 0 ? (p.x - lo.x) / extent.x : 0.5, extent.y > 0 ? (p.y - lo.y) / extent.y : 0.5,
+                                        extent.z > 0 ? (p.z - lo.z) / extent.z : 0.5);
+        return m.grid ? gridDensity(*m.grid, u) : 0.0;
+    }
+    }
+    return 0.0;
+}
+
+double mediumMaxDensity(const Medium& m) {
+    if (m.density == MediumDensity::Grid) {
+        double most = 0.0;
+        if (m.grid)
+            for (float v : m.grid->values) most = std::max(most, double(v));
+        return most;
+    }
+    return 1.0; // Constant, and Height at its floor (boxMin.y)
+}
+
+DensityGrid noiseDensityGrid(glm::ivec3 size, std::uint32_t seed, int octaves) {
+    DensityGrid g{size, std::vector<float>(std::size_t(size.x) * std::size_t(size.y) * std::size_t(size.z))};
+    const auto smooth = [](double t) { return t * t * (3.0 - 2.0 * t); };
+    std::size_t i = 0;
+    for (int z = 0; z < size.z; ++z)
+        for (int y = 0; y < size.y; ++y)
+            for (int x = 0; x < size.x; ++x, ++i) {
+                const glm::dvec3 u = (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(size);
+                double sum = 0.0, amplitude = 0.5, frequency = 4.0;
+                for (int o = 0; o < octaves; ++o, amplitude *= 0.5, frequency *= 2.0) {
+                    const glm::dvec3 p = u * frequency, c = glm::floor(p), f = p - c;
+                    const glm::ivec3 k(c);
+                    double v = 0.0;
+                    for (int corner = 0; corner < 8; ++corner) {
+                        const glm::ivec3 d(corner & 1, (corner >> 1) & 1, corner >> 2);
+                        const double w = (d.x ? smooth(f.x) : 1 - smooth(f.x)) * (d.y ? smooth(f.y) : 1 - smooth(f.y)) *
+                                         (d.z ? smooth(f.z) : 1 - smooth(f.z));
+                        v += w * latticeValue(k.x + d.x, k.y + d.y, k.z + d.z, seed + std::uint32_t(o));
+                    }
+                    sum += amplitude * v;
+                }
+                // sum in [0, 1 - 2^-octaves): clumps and clear gaps.
+                g.values[i] = float(std::max(0.0, 2.0 * sum - 0.5));
+            }
+    return g;
 }
 
 Bounds sceneBounds(const Scene& scene) {

@@ -28,6 +28,16 @@ void validate(const MediaInputs& in, const MediaSettings& s, const Camera& camer
     if (in.media.size() > MEDIA_MAX_MEDIA)
         throw Error(ErrorCode::InvalidArgument, "MediaInputs::media holds " + std::to_string(in.media.size()) +
                                                     " media; at most " + std::to_string(MEDIA_MAX_MEDIA) + " are supported");
+    const auto grids = std::count_if(in.media.begin(), in.media.end(), [](const Medium& m) { return m.density == MediumDensity::Grid; });
+    if (grids > 1)
+        throw Error(ErrorCode::InvalidArgument, "MediaInputs::media holds " + std::to_string(grids) +
+                                                    " density grids; one per run is supported");
+    if (s.method == MediaMethod::Analytic)
+        for (std::size_t i = 0; i < in.media.size(); ++i)
+            if (in.media[i].density != MediumDensity::Constant)
+                throw Error(ErrorCode::InvalidArgument, "MediaSettings::method Analytic takes homogeneous media, but "
+                                                        "MediaInputs::media[" + std::to_string(i) + "].density is not Constant "
+                                                        "(Sun et al.'s closed form needs a constant sigma)");
     Scene scene; // validateScene's checks of each medium and light
     scene.media.assign(in.media.begin(), in.media.end());
     scene.lights.assign(in.lights.begin(), in.lights.end());
@@ -53,6 +63,10 @@ shader::MediumData mediumData(const Medium& m) {
     d.g = m.phase == PhaseFunction::Schlick ? static_cast<float>(schlickK(m.anisotropy)) : m.anisotropy;
     d.scattering = m.scattering;
     d.extinction = m.scattering + m.absorption;
+    d.density = static_cast<float>(m.density == MediumDensity::Height ? MEDIA_DENSITY_HEIGHT
+                                   : m.density == MediumDensity::Grid ? MEDIA_DENSITY_GRID
+                                                                      : MEDIA_DENSITY_CONSTANT);
+    d.heightFalloff = m.heightFalloff;
     return d;
 }
 
@@ -88,6 +102,26 @@ struct Media::Impl {
     int tableSize = 0;
     Texture froxelSource, froxelExtinction;
     glm::ivec3 froxelSize{0};
+    Texture grid;                         // the density grid, R32F
+    std::shared_ptr<const DensityGrid> gridSource; // what `grid` holds (kept alive: compared by address)
+
+    // Uploads the one grid medium's values (once per grid), binds it linear and clamped.
+    void bindGrid(std::span<const Medium> media) {
+        const auto it = std::find_if(media.begin(), media.end(), [](const Medium& m) { return m.density == MediumDensity::Grid; });
+        if (it == media.end()) {
+            grid.reset();
+            gridSource.reset();
+            return;
+        }
+        if (gridSource != it->grid) {
+            const glm::ivec3 n = it->grid->size;
+            grid = createTexture3D(ctx, GL_R32F, n.x, n.y, n.z, "media.density_grid");
+            ctx.gl.TextureSubImage3D(grid.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RED, GL_FLOAT, it->grid->values.data());
+            gridSource = it->grid;
+        }
+        ctx.state.bindTexture(ctx, MEDIA_GRID_UNIT, grid.get());
+        ctx.state.bindSampler(ctx, MEDIA_GRID_UNIT, ctx.linearClampSampler());
+    }
 
     void ensureTable(int size) {
         if (table && tableSize == size) return;
@@ -127,6 +161,7 @@ struct Media::Impl {
         p.size = {g.width, g.height};
         p.tableSize = {s.tableSize, s.tableSize};
         p.tableMaxU = static_cast<float>(kAirlightTableMaxU);
+        p.densitySteps = s.densitySteps;
         p.froxels = {(g.width + s.froxelTile - 1) / s.froxelTile, (g.height + s.froxelTile - 1) / s.froxelTile, s.steps};
         p.froxelRange = s.froxelRange > 0.0f ? s.froxelRange : farthestMediaDepth(in.media, g.camera.view);
         current = p;
@@ -164,8 +199,8 @@ struct Media::Impl {
     }
 
     void runFroxels(const GBufferView& g, bool shadowed) {
-        const glm::ivec3 grid = current.froxels;
-        ensureFroxels({grid.x, grid.y, grid.z + 1});
+        const glm::ivec3 cells = current.froxels;
+        ensureFroxels({cells.x, cells.y, cells.z + 1});
         {
             PassScope pass(ctx, "media.froxel.inject");
             std::vector<std::string> defines = shadowDefines(shadowed);
@@ -174,7 +209,7 @@ struct Media::Impl {
             ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, froxelSource.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, froxelExtinction.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             const GLuint n = MEDIA_FROXEL_WORKGROUP;
-            ctx.gl.DispatchCompute((GLuint(grid.x) + n - 1) / n, (GLuint(grid.y) + n - 1) / n, (GLuint(grid.z) + n - 1) / n);
+            ctx.gl.DispatchCompute((GLuint(cells.x) + n - 1) / n, (GLuint(cells.y) + n - 1) / n, (GLuint(cells.z) + n - 1) / n);
             ctx.gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         {
@@ -182,7 +217,7 @@ struct Media::Impl {
             ctx.gl.UseProgram(ctx.shaders->program({"media/media_froxel.comp.glsl"}, {"INTEGRATE"}));
             ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, froxelSource.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
             ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, froxelExtinction.get(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-            dispatchCompute2D(ctx, grid.x, grid.y, MEDIA_WORKGROUP);
+            dispatchCompute2D(ctx, cells.x, cells.y, MEDIA_WORKGROUP);
             barrierForReaders(ctx);
         }
         PassScope pass(ctx, "media.froxel.resolve");
@@ -206,6 +241,8 @@ struct Media::Impl {
         froxelSource.reset();
         froxelExtinction.reset();
         froxelSize = glm::ivec3(0);
+        grid.reset();
+        gridSource.reset();
     }
 };
 
@@ -239,6 +276,7 @@ MediaView Media::run(const GBufferView& g, const MediaInputs& in, const MediaSet
     d.lights.upload(ctx, in.lights, glm::dmat4(g.camera.view), "media.lights");
     d.uploadParams(view, in, s);
     bindNearest(ctx, MEDIA_DEPTH_UNIT, g.depth.name);
+    d.bindGrid(in.media);
     if (s.method == MediaMethod::Froxel) d.runFroxels(view, shadowed);
     else d.runPerPixel(view, s, shadowed);
     return {{d.scattering.get(), GL_RGBA16F, view.width, view.height},
@@ -289,7 +327,8 @@ std::size_t Media::memoryBytes() const {
     const std::size_t froxels = std::size_t(d.froxelSize.x) * std::size_t(d.froxelSize.y) * std::size_t(d.froxelSize.z);
     return d.scattering.bytes() + d.opticalDepth.bytes() + d.applied.bytes() + d.frame.memoryBytes() + d.lights.memoryBytes() +
            (d.params ? sizeof(shader::MediaParams) : 0) + std::size_t(d.tableSize) * std::size_t(d.tableSize) * 4 +
-           froxels * 2 * bytesPerTexel(GL_RGBA16F);
+           froxels * 2 * bytesPerTexel(GL_RGBA16F) +
+           (d.gridSource ? d.gridSource->values.size() * sizeof(float) : 0);
 }
 
 } // namespace obscura

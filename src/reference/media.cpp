@@ -1,4 +1,5 @@
-// Single scattering in a homogeneous medium box.
+// Single scattering in a medium box: homogeneous, height fog (exact transmittance) or a
+// density grid (ratio tracking).
 #include "obscura/error.hpp"
 #include "reference/estimators.hpp"
 
@@ -25,11 +26,41 @@ bool boxInterval(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo,
     return t0 < t1;
 }
 
-// Length of the segment from p toward unit w, over distance `length`, that lies in the box.
-double lengthInside(const glm::dvec3& p, const glm::dvec3& w, double length, const Medium& m) {
+// (1 - exp(-x)) / x for any x (1 at 0): the mean of exp over a step of exponent x.
+double meanExp(double x) { return x == 0.0 ? 1.0 : -std::expm1(-x) / x; }
+
+// Integral of the density along the segment from p toward unit w over `length` (Constant and
+// Height: exact; the box clips it).
+double densityIntegral(const Medium& m, const glm::dvec3& p, const glm::dvec3& w, double length) {
     double t0, t1;
     if (!boxInterval(p, w, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax), t0, t1)) return 0.0;
-    return std::max(0.0, std::min(t1, length) - t0);
+    t1 = std::min(t1, length);
+    if (!(t1 > t0)) return 0.0;
+    if (m.density == MediumDensity::Constant) return t1 - t0;
+    // exp(-k (y - y0)) along y = p.y + t w.y: its value at t0 times the mean over the segment.
+    const double k = m.heightFalloff, y = p.y + t0 * w.y - m.boxMin.y, dy = w.y * (t1 - t0);
+    return std::exp(-k * y) * (t1 - t0) * meanExp(k * dy);
+}
+
+// Transmittance per channel along the segment: exact for Constant and Height media; for a
+// Grid, ratio tracking (Novak, Selle and Jarosz 2014) against the majorant max sigma_t times
+// the grid's largest density: unbiased, each channel weighted by 1 - sigma_t,c d(x) / majorant.
+glm::dvec3 transmittance(const Medium& m, const glm::dvec3& p, const glm::dvec3& w, double length, PixelSampler& s) {
+    const glm::dvec3 sigmaT = glm::dvec3(m.scattering) + glm::dvec3(m.absorption);
+    if (m.density != MediumDensity::Grid) return glm::exp(-sigmaT * densityIntegral(m, p, w, length));
+    double t0, t1;
+    if (!boxInterval(p, w, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax), t0, t1)) return glm::dvec3(1.0);
+    t1 = std::min(t1, length);
+    const double majorant = std::max({sigmaT.x, sigmaT.y, sigmaT.z}) * mediumMaxDensity(m);
+    if (!(t1 > t0) || !(majorant > 0.0)) return glm::dvec3(1.0);
+    glm::dvec3 t(1.0);
+    for (double at = t0;;) {
+        at -= std::log1p(-s.uniform()) / majorant;
+        if (at >= t1) break;
+        t *= 1.0 - sigmaT * (mediumDensity(m, p + at * w) / majorant);
+        if (t.x == 0.0 && t.y == 0.0 && t.z == 0.0) break;
+    }
+    return t;
 }
 
 // Truncated exponential distribution on [0, L] with rate s (uniform when s L is tiny).
@@ -117,8 +148,8 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
             return glm::dvec4(0, 0, 0, 1);
         t1 = std::min(t1, p.distance);
         if (!(t1 > t0)) return glm::dvec4(0, 0, 0, 1);
-        const double length = t1 - t0;
-        const glm::dvec3 viewT = glm::exp(-sigmaT * length);
+        const glm::dvec3 entry = p.origin + t0 * p.direction;
+        const glm::dvec3 viewT = transmittance(medium, entry, p.direction, t1 - t0, s);
         glm::dvec3 sum(0.0);
         for (const Light& l : scene.scene.lights) {
             if (l.type == LightType::Rect || l.type == LightType::Sphere) continue; // area lights: not in this quantity
@@ -153,9 +184,11 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
                 }
                 // Phase angle: between the light's travel direction (-w) and the direction toward the camera.
                 const double phase = phaseFunction(medium.phase, medium.anisotropy, glm::dot(-w, -p.direction));
-                const glm::dvec3 toLightT = glm::exp(-sigmaT * lengthInside(x, w, distance, medium));
-                const glm::dvec3 viewSideT = glm::exp(-sigmaT * (t - t0));
-                sum += sigmaS * viewSideT * phase * radiance * falloff * toLightT / pdf;
+                const double density = mediumDensity(medium, x);
+                if (density == 0.0) continue;
+                const glm::dvec3 toLightT = transmittance(medium, x, w, distance, s);
+                const glm::dvec3 viewSideT = transmittance(medium, entry, p.direction, t - t0, s);
+                sum += sigmaS * density * viewSideT * phase * radiance * falloff * toLightT / pdf;
             }
         }
         return glm::dvec4(sum / double(n), (viewT.r + viewT.g + viewT.b) / 3.0);

@@ -74,8 +74,14 @@ std::uint64_t hashScene(const Scene& s) {
     for (const Light& l : s.lights)
         h.add(l.type).add(l.color).add(l.intensity).add(l.position).add(l.direction).add(l.tangent).add(l.size)
             .add(l.innerAngle).add(l.outerAngle).add(l.radius);
-    for (const Medium& m : s.media)
+    for (const Medium& m : s.media) {
         h.add(m.boxMin).add(m.boxMax).add(m.scattering).add(m.absorption).add(m.phase).add(m.anisotropy);
+        h.add(m.density).add(m.heightFalloff);
+        if (m.grid) {
+            h.add(m.grid->size);
+            for (float v : m.grid->values) h.add(v);
+        }
+    }
     if (s.environment) h.add(std::string_view(s.environment->path)).add(s.environment->intensity).add(s.environment->rotation);
     return h.value();
 }

@@ -1,5 +1,5 @@
 // The single-scattering integral of obscura/media.hpp in double precision for the media
-// tests: homogeneous boxes, point, spot and directional lights, no occluders, integrated by
+// tests: media boxes of any density, point, spot and directional lights, no occluders, integrated by
 // adaptive quadrature (tests/support/quadrature.hpp) along one world ray.
 #pragma once
 #include "quadrature.hpp"
@@ -31,19 +31,27 @@ inline glm::dvec2 boxSpan(const Medium& m, glm::dvec3 o, glm::dvec3 w, double en
     return {t0, t1};
 }
 
-// Optical depth of channel c from o along w over `length`.
+// Optical depth of channel c from o along w over `length`: exact for constant media, 512
+// midpoint samples of obscura::mediumDensity otherwise.
 inline double opticalDepth(std::span<const Medium> media, glm::dvec3 o, glm::dvec3 w, double length, int c) {
     double tau = 0.0;
     for (const Medium& m : media) {
         const glm::dvec2 t = boxSpan(m, o, w, length);
-        if (t.y > t.x) tau += (double(m.scattering[c]) + m.absorption[c]) * (t.y - t.x);
+        if (!(t.y > t.x)) continue;
+        double integral = t.y - t.x;
+        if (m.density != MediumDensity::Constant) {
+            integral = 0.0;
+            for (int i = 0; i < 512; ++i) integral += mediumDensity(m, o + (t.x + (t.y - t.x) * (i + 0.5) / 512) * w);
+            integral *= (t.y - t.x) / 512;
+        }
+        tau += (double(m.scattering[c]) + m.absorption[c]) * integral;
     }
     return tau;
 }
 
 // In-scattered radiance of channel c along the world ray (unit w) up to `end` (Inf: none).
 inline double airlight(std::span<const Medium> media, std::span<const Light> lights, glm::dvec3 o, glm::dvec3 w, double end,
-                       int c, double relativeTolerance = 1e-7) {
+                       int c, double relativeTolerance = 1e-7, int pieces = 256) {
     double first = std::numeric_limits<double>::infinity(), last = -first;
     for (const Medium& m : media) {
         const glm::dvec2 t = boxSpan(m, o, w, end);
@@ -75,13 +83,13 @@ inline double airlight(std::span<const Medium> media, std::span<const Light> lig
             for (const Medium& m : media) {
                 const bool inside = glm::all(glm::greaterThanEqual(x, glm::dvec3(m.boxMin))) &&
                                     glm::all(glm::lessThanEqual(x, glm::dvec3(m.boxMax)));
-                if (inside) scatter += m.scattering[c] * phaseFunction(m.phase, m.anisotropy, glm::dot(toLight, w));
+                if (inside) scatter += m.scattering[c] * mediumDensity(m, x) * phaseFunction(m.phase, m.anisotropy, glm::dot(toLight, w));
             }
             sum += scatter * double(l.intensity) * l.color[c] * falloff * std::exp(-opticalDepth(media, x, toLight, distance, c));
         }
         return sum * std::exp(-opticalDepth(media, o, w, t, c));
     };
-    return integrate(f, first, last, relativeTolerance);
+    return integrate(f, first, last, relativeTolerance, pieces);
 }
 
 } // namespace obscura::test

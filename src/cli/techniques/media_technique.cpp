@@ -8,6 +8,7 @@
 #include "lit_gbuffer.hpp"
 #include "technique_registry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -57,12 +58,16 @@ public:
     }
 
     std::string unsupported(const Scene& scene) const override {
-        return scene.media.empty() ? "the scene has no media (Scene::media; a JSON scene's \"media\")" : "";
+        if (scene.media.empty()) return "the scene has no media (Scene::media; a JSON scene's \"media\")";
+        const bool heterogeneous = std::any_of(scene.media.begin(), scene.media.end(),
+                                               [](const Medium& m) { return m.density != MediumDensity::Constant; });
+        if (settings_.method == MediaMethod::Analytic && heterogeneous) return "its media are not homogeneous (the closed form's)";
+        return "";
     }
 
     void run(const FrameSetup& frame) override {
         const Scene& scene = frame.scene.scene;
-        if (scene.media.empty()) throw Error(ErrorCode::InvalidArgument, name() + ": " + unsupported(scene));
+        if (const std::string why = unsupported(scene); !why.empty()) throw Error(ErrorCode::InvalidArgument, name() + ": " + why);
         view_ = lit_.render(frame, GBufferSettings{frame.width, frame.height, true, {}});
         result_ = media_.run(view_, {scene.media, scene.lights, lit_.shadowMaps()}, settings_);
     }
