@@ -30,3 +30,13 @@ oiiotool "$work/ssdo_direct.exr" "$work/ssdo_indirect.exr" --add -o "$work/ssdo_
 oiiotool "$work/ssdo_direct.exr" "$work/ssdo_indirect2.exr" "$work/ssdo_sum.exr" --mosaic 3x1 \
   --colorconvert linear sRGB -d uint8 -o "$out/ssdo_cornell.png"
 echo "wrote $out/ssdo_cornell.png"
+# docs/media.md: the god-ray scene through its fog by ray marching (shadow maps at every step),
+# Sun et al.'s closed form (no shadows) and froxels, then the smoke-filled Cornell box by ray
+# marching, the lit frame through the media (Media::apply).
+for method in raymarch analytic froxel; do
+  "$obscura" render --scene god_rays --size 240x180 --technique "media.$method" --set steps=100 --output frame \
+    --out "$work/media_$method.exr" > /dev/null 2>&1
+done
+oiiotool "$work/media_raymarch.exr" "$work/media_analytic.exr" "$work/media_froxel.exr" --mosaic 3x1 \
+  --colorconvert linear sRGB -d uint8 -o "$out/media_god_rays.png"
+echo "wrote $out/media_god_rays.png"

@@ -6,7 +6,7 @@
 # with and without its refinement, the reduced-resolution presets with and without geometry
 # tiles, ray lanes, the screen-space marches (view, texture, Hi-Z), thickness (constant,
 # depth peeling, the deeper of both) and obscurance's falloffs, each study's variants timed in
-# turn in one process, then draws the plots.
+# turn in one process, the participating-media methods, then draws the plots.
 # References are cached in the build directory.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 obscura_setup
@@ -141,6 +141,19 @@ done
   --variant extra_views=2 --variant thickness_mode=depth_peeling \
   --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/ssdo_options"
 ssdo+=(--ssdo-options-study "$out/ssdo_options/bench.json")
+# Participating media: every method's presets against the reference on the god-ray scene (a
+# spot light through a lattice, shadowed), the Cornell box filled with fog and the one filled
+# with smoke (a noise density grid); then the thesis's table, time against steps at two
+# sizes on the fogged box (times only: references of 64 samples).
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene god_rays --scene cornell_fog --scene cornell_smoke --techniques 'media.*' --size 128x128 --frames 20 \
+  --spp 1024 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/media"
+media=()
+for size in 256x256 512x512; do
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene cornell_fog --techniques 'media.*' --size "$size" --frames 20 \
+    --spp 64 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/media_steps/$size"
+  media+=(--media-study "$out/media_steps/$size/bench.json")
+done
 # Runs on a lent GPU machine (benchmarks/gpu/run.sh), kept in the repository: their own section;
 # the lanes and tiles studies' files (lanes*.json, tiles*.json) in its tables of those studies.
 gpu=()
@@ -151,7 +164,7 @@ for f in "$OBSCURA_ROOT"/benchmarks/gpu/*/*.json; do
   *) gpu+=(--gpu "$f") ;;
   esac
 done
-/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" \
+/usr/bin/python3 "$OBSCURA_ROOT/benchmarks/plot_report.py" "$out/bench.json" "$out/soft_shadows/bench.json" "$out/media/bench.json" \
   --resolution-study "$out/resolution/bench.json" \
   --resolution-study "$out/resolution/shadows/bench.json" "${tiles[@]}" "${lanes[@]}" "${marches[@]}" \
-  "${thickness[@]}" "${falloffs[@]}" "${ssdo[@]}" --refine-study "$out/refine/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"
+  "${thickness[@]}" "${falloffs[@]}" "${ssdo[@]}" "${media[@]}" --refine-study "$out/refine/bench.json" "${gpu[@]}" --out "$OBSCURA_ROOT/docs"

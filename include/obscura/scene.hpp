@@ -128,8 +128,8 @@ enum class PhaseFunction {
     HenyeyGreenstein,  //!< (1 - g²) / (4 pi (1 + g² - 2 g cos)^(3/2)), g = Medium::anisotropy
     Rayleigh,          //!< 3 (1 + cos²) / (16 pi)
     //! Schlick's fit of Henyey-Greenstein: (1 - k²) / (4 pi (1 - k cos)²), k = 1.55 g - 0.55 g³
-    //! with |k| at most 1 - (1 - |g|)² (the cubic exceeds 1 for g in about (0.94, 0.999),
-    //! which would make the phase negative; the bound changes k only there, by < 0.5 %).
+    //! with |k| at most 1 - (1 - |g|)²: the cubic exceeds 1 from |g| ~ 0.94 on (the phase
+    //! would turn negative); the bound takes over from |g| ~ 0.83, changing k by < 0.5 %.
     Schlick,
 };
 
@@ -141,7 +141,9 @@ enum class MediumDensity {
 };
 
 //! A density grid: size.x * size.y * size.z values, x fastest, at the centres of equal cells
-//! that tile the medium's box; finite and >= 0 (any scale: sigma multiplies them).
+//! that tile the medium's box; finite and >= 0 (any scale: sigma multiplies them). Immutable
+//! once shared with a Medium (as MeshData is): modules upload a grid object once and do not
+//! see its values change; to animate, share a new grid.
 struct DensityGrid {
     glm::ivec3 size{0}; //!< cells per axis, each [1, 1024]
     std::vector<float> values;

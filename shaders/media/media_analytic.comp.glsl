@@ -71,7 +71,7 @@ vec3 analyticInterval(int m, LightData light, vec3 sigmaT, float a, float h, flo
 vec3 analyticNearLine(int m, LightData light, vec3 sigmaT, float a, float b, float h, vec3 foot, vec3 direction) {
     const float side = b > 0.0 ? 1.0 : -1.0;
     const float sFar = max(abs(a), abs(b));
-    const float sNear = max(min(abs(a), abs(b)), max(light.radius, 1e-30 * sFar));
+    const float sNear = min(max(min(abs(a), abs(b)), max(light.radius, 1e-30 * sFar)), sFar);
     const float w0 = 1.0 / sFar, dw = (1.0 / sNear - w0) / float(media.steps);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < media.steps; ++i) {
@@ -115,7 +115,9 @@ vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 
     const vec3 sigmaT = media.media[m].extinction;
     if (!(a < 0.0 && b > 0.0) && h < kNearLine * min(abs(a), abs(b)))
         return analyticNearLine(m, light, sigmaT, a, b, h, foot, direction);
-    const float hh = max(h, max(light.radius, 1e-30)); // on the line: saturates (radius 0) or the sphere's bound
+    // A light of radius r bounds 1/d^2 by 1/(x'^2 + max(h, r)^2) here (media.hpp); on the line
+    // with radius 0 the result saturates.
+    const float hh = max(h, max(light.radius, 1e-30));
     const float phiA = atan(a, hh), phiB = atan(b, hh);
 #ifdef TABLE
     // The phase and the cone at the segment's point nearest the light (exact for an isotropic
@@ -181,7 +183,9 @@ void main() {
                 const float xp = dot(light.position - r.origin, r.direction);
                 const vec3 foot = r.origin + xp * r.direction;
                 const float h = length(light.position - foot);
-                sum += light.radiance * analyticPointLight(m, light, t.x - xp, t.y - xp, h, foot, r.direction);
+                // Bounded before the products: a singular light (radius 0 on the ray) saturates, and
+                // a channel without scattering stays 0 instead of 0 * Inf.
+                sum += light.radiance * min(analyticPointLight(m, light, t.x - xp, t.y - xp, h, foot, r.direction), vec3(kFloatMax));
             }
         }
         radiance += before * media.media[m].scattering * sum;

@@ -9,9 +9,8 @@ OBSCURA_SHADER_BEGIN
 
 #define MEDIA_PARAMS_UBO_BINDING 8
 #define MEDIA_DEPTH_UNIT 5        // the G-buffer's hardware depth (texelFetch)
-#define MEDIA_TABLE_UNIT 1        // ANALYTIC with TABLE: F(u, v), R32F, texelFetch
-#define MEDIA_FROXEL_READ_UNIT 2  // froxel: the injected (integrate) or integrated (resolve) grid
-#define MEDIA_FROXEL_DEPTH_UNIT 3 // froxel: the grid's optical depth (resolve)
+#define MEDIA_TABLE_UNIT 1        // TABLE: G(u, v) / (e^2 / (e + u)) (src/media/airlight_table.hpp), R32F, texelFetch
+#define MEDIA_FROXEL_READ_UNIT 2  // froxel resolve: the integrated grid (linear)
 #define MEDIA_LIT_UNIT 2          // apply: the lit frame
 #define MEDIA_SCATTERING_UNIT 3   // apply: in-scattered radiance
 #define MEDIA_OPTICAL_DEPTH_UNIT 4 // apply: optical depth

@@ -9,6 +9,7 @@
 #include "obscura/error.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/indirect_light.hpp"
+#include "obscura/media.hpp"
 #include "obscura/screen_visibility.hpp"
 #include "obscura/settings_table.hpp"
 #include "obscura/shadow_maps.hpp"
@@ -53,6 +54,7 @@ std::vector<DocumentedTable> allTables() {
             documented<IndirectLightSettings>("IndirectLightSettings"),
             documented<DirectionalOcclusionSettings>("DirectionalOcclusionSettings"),
             documented<EnvironmentSettings>("EnvironmentSettings"),
+            documented<MediaSettings>("MediaSettings"),
             documented<ComposeSettings>("ComposeSettings"),
             documented<GBufferSettings>("GBufferSettings"),
             documented<ScreenTraceSettings>("ScreenTraceSettings"),

@@ -23,6 +23,13 @@ namespace {
 
 using namespace detail;
 
+// One comparison per sample, with the nearest comparison sampler.
+ShadowMaskSettings hardShadows() {
+    ShadowMaskSettings s;
+    s.filter = ShadowFilter::Hard;
+    return s;
+}
+
 void validate(const MediaInputs& in, const MediaSettings& s, const Camera& camera) {
     validateSettings(MediaSettings::table(), s, "MediaSettings");
     if (in.media.size() > MEDIA_MAX_MEDIA)
@@ -42,7 +49,7 @@ void validate(const MediaInputs& in, const MediaSettings& s, const Camera& camer
     scene.media.assign(in.media.begin(), in.media.end());
     scene.lights.assign(in.lights.begin(), in.lights.end());
     validateScene(scene);
-    if (in.shadows) validateLightShadows(*in.shadows, ShadowMaskSettings{}, in.lights.size(), camera, "MediaInputs");
+    if (in.shadows) validateLightShadows(*in.shadows, hardShadows(), in.lights.size(), camera, "MediaInputs");
 }
 
 int phaseCode(PhaseFunction p) {
@@ -102,8 +109,9 @@ struct Media::Impl {
     int tableSize = 0;
     Texture froxelSource, froxelExtinction;
     glm::ivec3 froxelSize{0};
-    Texture grid;                         // the density grid, R32F
-    std::shared_ptr<const DensityGrid> gridSource; // what `grid` holds (kept alive: compared by address)
+    Texture grid;                               // the density grid, R32F
+    std::weak_ptr<const DensityGrid> gridSource; // what `grid` holds (not kept alive)
+    std::size_t gridBytes = 0;
 
     // Uploads the one grid medium's values (once per grid), binds it linear and clamped.
     void bindGrid(std::span<const Medium> media) {
@@ -111,13 +119,17 @@ struct Media::Impl {
         if (it == media.end()) {
             grid.reset();
             gridSource.reset();
+            gridBytes = 0;
             return;
         }
-        if (gridSource != it->grid) {
+        // The same grid object (DensityGrid is immutable once shared, scene.hpp) is uploaded once.
+        const bool same = !gridSource.expired() && !gridSource.owner_before(it->grid) && !it->grid.owner_before(gridSource);
+        if (!grid || !same) {
             const glm::ivec3 n = it->grid->size;
             grid = createTexture3D(ctx, GL_R32F, n.x, n.y, n.z, "media.density_grid");
             ctx.gl.TextureSubImage3D(grid.get(), 0, 0, 0, 0, n.x, n.y, n.z, GL_RED, GL_FLOAT, it->grid->values.data());
             gridSource = it->grid;
+            gridBytes = it->grid->values.size() * sizeof(float);
         }
         ctx.state.bindTexture(ctx, MEDIA_GRID_UNIT, grid.get());
         ctx.state.bindSampler(ctx, MEDIA_GRID_UNIT, ctx.linearClampSampler());
@@ -133,8 +145,17 @@ struct Media::Impl {
 
     void ensureFroxels(glm::ivec3 size) {
         if (froxelSource && froxelSize == size) return;
-        froxelSource = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_grid");
-        froxelExtinction = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_extinction");
+        GLint most = 0;
+        ctx.gl.GetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &most);
+        if (glm::any(glm::greaterThan(size, glm::ivec3(most))))
+            throw Error(ErrorCode::InvalidArgument,
+                        "MediaSettings: the froxel grid (" + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
+                            std::to_string(size.z) + " with its first boundary) exceeds GL_MAX_3D_TEXTURE_SIZE = " +
+                            std::to_string(most) + ": raise froxelTile or lower steps");
+        Texture source = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_grid");
+        Texture extinction = createTexture3D(ctx, GL_RGBA16F, size.x, size.y, size.z, "media.froxel_extinction");
+        froxelSource = std::move(source);
+        froxelExtinction = std::move(extinction);
         froxelSize = size;
     }
 
@@ -180,6 +201,8 @@ struct Media::Impl {
     }
 
     void runPerPixel(const GBufferView& g, const MediaSettings& s, bool shadowed) {
+        // The table is computed on the CPU once per size, outside the pass's timing.
+        if (s.method == MediaMethod::Analytic && s.integral == AnalyticIntegral::Table) ensureTable(s.tableSize);
         PassScope pass(ctx, passName(s.method));
         std::vector<std::string> defines;
         if (s.method == MediaMethod::RayMarch) {
@@ -187,10 +210,7 @@ struct Media::Impl {
             ctx.gl.UseProgram(ctx.shaders->program({"media/media_march.comp.glsl"}, defines));
         } else {
             const bool tabled = s.integral == AnalyticIntegral::Table;
-            if (tabled) {
-                ensureTable(s.tableSize);
-                bindNearest(ctx, MEDIA_TABLE_UNIT, table.get());
-            }
+            if (tabled) bindNearest(ctx, MEDIA_TABLE_UNIT, table.get());
             ctx.gl.UseProgram(ctx.shaders->program({"media/media_analytic.comp.glsl"}, {tabled ? "TABLE" : "QUADRATURE"}));
         }
         bindOutputs(g.width, g.height);
@@ -243,6 +263,7 @@ struct Media::Impl {
         froxelSize = glm::ivec3(0);
         grid.reset();
         gridSource.reset();
+        gridBytes = 0;
     }
 };
 
@@ -272,7 +293,7 @@ MediaView Media::run(const GBufferView& g, const MediaInputs& in, const MediaSet
     ctx.bindNoiseTexture();
     // The analytic form has no shadows: it takes no maps.
     const ShadowMapSet* maps = s.method != MediaMethod::Analytic ? in.shadows : nullptr;
-    const bool shadowed = d.lights.bindShadows(ctx, in.lights, g.camera, maps, ShadowMaskSettings{});
+    const bool shadowed = d.lights.bindShadows(ctx, in.lights, g.camera, maps, hardShadows());
     d.lights.upload(ctx, in.lights, glm::dmat4(g.camera.view), "media.lights");
     d.uploadParams(view, in, s);
     bindNearest(ctx, MEDIA_DEPTH_UNIT, g.depth.name);
@@ -314,11 +335,18 @@ void Media::prepare(const MediaSettings& s) {
     validateSettings(MediaSettings::table(), s, "MediaSettings");
     auto& ctx = impl_->ctx;
     StateScope scope(ctx);
-    if (s.method == MediaMethod::RayMarch) ctx.shaders->program({"media/media_march.comp.glsl"}, {});
-    if (s.method == MediaMethod::Analytic)
+    // With and without shadow maps: which one run() takes depends on its inputs.
+    if (s.method == MediaMethod::RayMarch)
+        for (const std::vector<std::string>& defines : {std::vector<std::string>{}, std::vector<std::string>{"SHADOWS"}})
+            ctx.shaders->program({"media/media_march.comp.glsl"}, defines);
+    if (s.method == MediaMethod::Analytic) {
         ctx.shaders->program({"media/media_analytic.comp.glsl"}, {s.integral == AnalyticIntegral::Table ? "TABLE" : "QUADRATURE"});
+        if (s.integral == AnalyticIntegral::Table) impl_->ensureTable(s.tableSize);
+    }
     if (s.method == MediaMethod::Froxel)
-        for (const char* pass : {"INJECT", "INTEGRATE", "RESOLVE"}) ctx.shaders->program({"media/media_froxel.comp.glsl"}, {pass});
+        for (const std::vector<std::string>& defines : {std::vector<std::string>{"INJECT"}, std::vector<std::string>{"INJECT", "SHADOWS"},
+                                                         std::vector<std::string>{"INTEGRATE"}, std::vector<std::string>{"RESOLVE"}})
+            ctx.shaders->program({"media/media_froxel.comp.glsl"}, defines);
     ctx.shaders->program({"media/media_apply.comp.glsl"}, {});
 }
 
@@ -328,7 +356,7 @@ std::size_t Media::memoryBytes() const {
     return d.scattering.bytes() + d.opticalDepth.bytes() + d.applied.bytes() + d.frame.memoryBytes() + d.lights.memoryBytes() +
            (d.params ? sizeof(shader::MediaParams) : 0) + std::size_t(d.tableSize) * std::size_t(d.tableSize) * 4 +
            froxels * 2 * bytesPerTexel(GL_RGBA16F) +
-           (d.gridSource ? d.gridSource->values.size() * sizeof(float) : 0);
+           d.gridBytes;
 }
 
 } // namespace obscura

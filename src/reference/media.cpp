@@ -37,9 +37,10 @@ double densityIntegral(const Medium& m, const glm::dvec3& p, const glm::dvec3& w
     t1 = std::min(t1, length);
     if (!(t1 > t0)) return 0.0;
     if (m.density == MediumDensity::Constant) return t1 - t0;
-    // exp(-k (y - y0)) along y = p.y + t w.y: its value at t0 times the mean over the segment.
-    const double k = m.heightFalloff, y = p.y + t0 * w.y - m.boxMin.y, dy = w.y * (t1 - t0);
-    return std::exp(-k * y) * (t1 - t0) * meanExp(k * dy);
+    // exp(-k (y - y0)) along y = p.y + t w.y: its value at the segment's lower end times the
+    // mean over its rise (no overflow whichever way the ray climbs).
+    const double k = m.heightFalloff, ya = p.y + t0 * w.y - m.boxMin.y, yb = p.y + t1 * w.y - m.boxMin.y;
+    return std::exp(-k * std::max(std::min(ya, yb), 0.0)) * (t1 - t0) * meanExp(k * std::abs(yb - ya));
 }
 
 // Transmittance per channel along the segment: exact for Constant and Height media; for a

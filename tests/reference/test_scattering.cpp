@@ -310,3 +310,24 @@ TEST_CASE("Height fog and density grids match quadrature (closed-form densities)
         checkAgainstQuadrature(makeCase(l, m), 256);
     }
 }
+
+TEST_CASE("Height fog taller than exp's range keeps a finite transmittance", "[reference][media][stability]") {
+    // A ray down through 2000 units of fog with falloff 1: the density climbs by e^2000 along
+    // it; the transmittance is exp(-sigma_t (1 - e^-1990) / 1) below the top 10 units.
+    Medium m = unitBox(glm::vec3(0.01f), glm::vec3(0.0f), PhaseFunction::Isotropic, 0.0f);
+    m.boxMin = {-1.0f, 0.0f, -1.0f};
+    m.boxMax = {1.0f, 2000.0f, 1.0f};
+    m.density = MediumDensity::Height;
+    m.heightFalloff = 1.0f;
+    Light l;
+    l.type = LightType::Directional;
+    l.direction = {0.0f, -1.0f, 0.0f};
+    MediumCase c = makeCase(l, m);
+    const RayScene scene(c.scene);
+    RenderSettings settings;
+    settings.samplesPerPixel = 8;
+    const Reference r = render(scene, test::repeatedRay({0.0, 2100.0, 0.0}, {0.0, -1.0, 0.0}, 4), SingleScattering{0, false}, settings);
+    for (float v : r.value.pixels) CHECK(std::isfinite(v));
+    // Straight down the whole box: the density integral is (1 - e^-2000) / 1 = 1.
+    CHECK(r.value.at(0, 0, 3) == Approx(std::exp(-0.01)).epsilon(1e-6)); // the image stores float
+}
