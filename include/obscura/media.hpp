@@ -45,10 +45,9 @@
 // to 1024 steps, g = +-0.999, the light on the view ray's line); (1 - e^-x)/x is a series near
 // 0; the analytic form has finite limits where the light lies on the view ray's line (gamma ->
 // 0 or pi, d_lv -> 0), and saturates at 65504 only where the integral is infinite (a light of
-// radius 0 on the ray inside the segment). There it bounds a light of radius r > 0 by
-// 1/(x'^2 + max(h, r)^2), not 1/max(d^2, r^2): at most 2x off at the foot of a ray passing
-// within r of the light. Shadow maps are fitted to the meshes: media points off a map's
-// extent or past its far plane count as lit.
+// radius 0 on the ray inside the segment). Lights of radius r give 1/max(d^2, r^2), as the
+// reference. Shadow maps are fitted to the meshes: media points off a map's extent or past its
+// far plane count as lit.
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/scene.hpp"

@@ -20,6 +20,7 @@
 // bounded (pi/2 - v at u = 0, cos^2 v / u for large u), so bilinear interpolation in float
 // (texelFetch, not the sampler's fixed-point weights) keeps its error small (media.hpp states
 // the bound); beyond the table's last u, three terms of its asymptotic series.
+// A light of radius r: within r of its centre 1/r^2, as the reference (x' uniform intervals).
 // Near the line (h < 0.1 |x'| over the whole segment, the light off it: gamma -> 0 or pi)
 // both take `steps` nodes in w = 1 / |x'|, where 1/d^2 dx' = |x'|^2 / d^2 dw is smooth: no
 // 0/0 from h -> 0. A light on the ray inside the segment with h = 0 is a true singularity
@@ -66,9 +67,9 @@ vec3 analyticInterval(int m, LightData light, vec3 sigmaT, float a, float h, flo
            oneMinusExpOverX(sigmaT * max(e1 - e0, 0.0));
 }
 
-// Near the line (a and b on one side of the foot, h << |x'|): `steps` intervals uniform in
-// w = 1/|x'|, where Integral dx'/d^2 = Integral |x'|^2 / d^2 dw is smooth (no 0/0 as h -> 0).
-vec3 analyticNearLine(int m, LightData light, vec3 sigmaT, float a, float b, float h, vec3 foot, vec3 direction) {
+// Near the line (a and b on one side of the foot, h << |x'|; a0 the segment's start, where
+// the view side's exponent counts from): `steps` intervals uniform in w = 1/|x'|, where Integral dx'/d^2 = Integral |x'|^2 / d^2 dw is smooth (no 0/0 as h -> 0).
+vec3 analyticNearLine(int m, LightData light, vec3 sigmaT, float a0, float a, float b, float h, vec3 foot, vec3 direction) {
     const float side = b > 0.0 ? 1.0 : -1.0;
     const float sFar = max(abs(a), abs(b));
     const float sNear = min(max(min(abs(a), abs(b)), max(light.radius, 1e-30 * sFar)), sFar);
@@ -80,7 +81,7 @@ vec3 analyticNearLine(int m, LightData light, vec3 sigmaT, float a, float b, flo
         const float geometry = dw * (sM * sM) / (sM * sM + h * h);
         // Offsets in the ray's order: from a toward b.
         const float x0 = side > 0.0 ? side * sB : side * sA, x1 = side > 0.0 ? side * sA : side * sB;
-        sum += analyticInterval(m, light, sigmaT, a, h, x0, x1, side * sM, geometry, foot, direction);
+        sum += analyticInterval(m, light, sigmaT, a0, h, x0, x1, side * sM, geometry, foot, direction);
     }
     return sum;
 }
@@ -109,18 +110,17 @@ float analyticG(float u, float e) {
 }
 #endif
 
-// One point or spot light's airlight over [a, b] (offsets from the foot), per channel, before
-// sigma_s I.
-vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 foot, vec3 direction) {
+// The airlight over the piece [a, b] of the segment that starts at a0 (offsets from the foot),
+// where 1/max(d^2, r^2) is 1/d^2, per channel, before sigma_s I.
+vec3 analyticPiece(int m, LightData light, float a0, float a, float b, float h, vec3 foot, vec3 direction) {
     const vec3 sigmaT = media.media[m].extinction;
     if (!(a < 0.0 && b > 0.0) && h < kNearLine * min(abs(a), abs(b)))
-        return analyticNearLine(m, light, sigmaT, a, b, h, foot, direction);
-    // A light of radius r bounds 1/d^2 by 1/(x'^2 + max(h, r)^2) here (media.hpp); on the line
-    // with radius 0 the result saturates.
-    const float hh = max(h, max(light.radius, 1e-30));
+        return analyticNearLine(m, light, sigmaT, a0, a, b, h, foot, direction);
+    // On the line with radius 0 the result saturates (the integral is infinite).
+    const float hh = max(h, 1e-30);
     const float phiA = atan(a, hh), phiB = atan(b, hh);
 #ifdef TABLE
-    // The phase and the cone at the segment's point nearest the light (exact for an isotropic
+    // The phase and the cone at the piece's point nearest the light (exact for an isotropic
     // medium and a point light, Sun et al.'s case).
     const float xNear = clamp(0.0, a, b);
     const float nearFactor = analyticAngular(m, light, xNear, length(vec2(xNear, hh)), foot, direction);
@@ -132,7 +132,7 @@ vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 
     vec3 sum;
     for (int c = 0; c < (grey ? 1 : 3); ++c) {
         const float u = sigmaT[c] * hh;
-        sum[c] = exp(-sigmaT[c] * dA) * analyticG(u, eA) - exp(-sigmaT[c] * ((b - a) + dB)) * analyticG(u, eB);
+        sum[c] = exp(-sigmaT[c] * ((a - a0) + dA)) * analyticG(u, eA) - exp(-sigmaT[c] * ((b - a0) + dB)) * analyticG(u, eB);
     }
     if (grey) sum = vec3(sum.r);
     return max(sum, vec3(0.0)) * (2.0 / hh) * nearFactor;
@@ -144,10 +144,34 @@ vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 
         const float p0 = phiA + float(i) * dPhi;
         // The ends exactly: tan near +-pi/2 of a rounded angle is far off.
         const float x0 = i == 0 ? a : hh * tan(p0), x1 = i + 1 == media.steps ? b : hh * tan(p0 + dPhi);
-        sum += analyticInterval(m, light, sigmaT, a, hh, x0, x1, hh * tan(p0 + 0.5 * dPhi), dPhi / hh, foot, direction);
+        sum += analyticInterval(m, light, sigmaT, a0, hh, x0, x1, hh * tan(p0 + 0.5 * dPhi), dPhi / hh, foot, direction);
     }
     return sum;
 #endif
+}
+
+// One point or spot light's airlight over the segment [a, b] (offsets from the foot), per
+// channel, before sigma_s I. A light of radius r gives 1/r^2 within r of its centre (the
+// reference's 1/max(d^2, r^2)): where the ray passes that close (h < r), the piece
+// |x'| < sqrt(r^2 - h^2) takes `steps` intervals uniform in x' with the exponential's exact
+// mean, the pieces before and after it the forms above.
+vec3 analyticPointLight(int m, LightData light, float a, float b, float h, vec3 foot, vec3 direction) {
+    const float r = light.radius;
+    if (!(h < r)) return analyticPiece(m, light, a, a, b, h, foot, direction);
+    const float c = sqrt(max(r * r - h * h, 0.0));
+    vec3 sum = vec3(0.0);
+    if (a < -c) sum += analyticPiece(m, light, a, a, min(b, -c), h, foot, direction);
+    if (b > c) sum += analyticPiece(m, light, a, max(a, c), b, h, foot, direction);
+    const float lo = max(a, -c), hi = min(b, c);
+    if (hi > lo) {
+        const float dx = (hi - lo) / float(media.steps);
+        for (int i = 0; i < media.steps; ++i) {
+            const float x0 = lo + float(i) * dx;
+            sum += analyticInterval(m, light, media.media[m].extinction, a, h, x0, x0 + dx, x0 + 0.5 * dx, dx / (r * r), foot,
+                                    direction);
+        }
+    }
+    return sum;
 }
 
 // A directional light over the segment [t0, t1] of world ray (ow, ww): T toward the light

@@ -2,7 +2,8 @@
 // times slices of view depth z_k = froxelRange (k / slices)^2, denser near the camera).
 // INJECT: per froxel, at its centre, the light scattered toward the camera per unit length
 //   S = Sum_lights sigma_s p L_i T(x, light) V(x) and sigma_t (many lights, one evaluation
-//   per froxel instead of per pixel and step).
+//   per froxel instead of per pixel and step), each times the slice's length along the tile's
+//   centre ray (what a half float holds at any scene scale).
 // INTEGRATE: per tile column, front to back with the energy-conserving step along the
 //   tile's centre ray: texel k holds the radiance scattered between the camera and z_k
 //   (texel 0: none), in place.
@@ -59,10 +60,14 @@ void main() {
         const vec3 tau = mediaOpticalDepth(xw, mediaDirectionToWorld(toLight), distance);
         source += mediaScatteringPhase(xw, dot(toLight, viewDirection)) * e * (mediaLightVisibility(i, x, toLight) * exp(-tau));
     }
-    // Texel k + 1 holds slice k: texel 0 is the camera's end, which INTEGRATE zeroes.
+    // Texel k + 1 holds slice k: texel 0 is the camera's end, which INTEGRATE zeroes. Both are
+    // stored times the slice's length along the tile's ray (radiance, and optical depth): per
+    // unit length they scale with the scene's unit, and a half float would round a large
+    // scene's 1e-6 per unit to its subnormals.
+    const float sliceLength = (froxelZ(float(froxel.z + 1)) - froxelZ(float(froxel.z))) * length(ray);
     const ivec3 texel = froxel + ivec3(0, 0, 1);
-    imageStore(sourceOut, texel, roundedToHalf(vec4(clampRadiance(source), 1.0)));
-    imageStore(extinctionOut, texel, roundedToHalf(vec4(clamp(extinction, vec3(0.0), vec3(kHalfMax)), 1.0)));
+    imageStore(sourceOut, texel, roundedToHalf(vec4(clampRadiance(source * sliceLength), 1.0)));
+    imageStore(extinctionOut, texel, roundedToHalf(vec4(clamp(extinction * sliceLength, vec3(0.0), vec3(kHalfMax)), 1.0)));
 }
 #endif
 
@@ -74,16 +79,13 @@ layout(binding = MEDIA_DEPTH_OUT_IMAGE, rgba16f) readonly uniform image3D extinc
 void main() {
     const ivec2 tile = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(tile, media.froxels.xy))) return;
-    vec3 origin;
-    const float rayPerZ = length(froxelRay(froxelTileUv(tile), origin)); // ray length per unit of view distance
     vec3 radiance = vec3(0.0), tau = vec3(0.0);
     imageStore(grid, ivec3(tile, 0), vec4(0.0, 0.0, 0.0, 1.0));
     for (int k = 0; k < media.froxels.z; ++k) {
         const ivec3 texel = ivec3(tile, k + 1);
-        const vec3 source = imageLoad(grid, texel).rgb, extinction = imageLoad(extinctionGrid, texel).rgb;
-        const float length = (froxelZ(float(k + 1)) - froxelZ(float(k))) * rayPerZ;
-        const vec3 stepTau = extinction * length;
-        radiance += exp(-tau) * source * (length * oneMinusExpOverX(stepTau));
+        // The slice's source times its length, and its optical depth (INJECT).
+        const vec3 source = imageLoad(grid, texel).rgb, stepTau = imageLoad(extinctionGrid, texel).rgb;
+        radiance += exp(-tau) * source * oneMinusExpOverX(stepTau);
         tau += stepTau;
         imageStore(grid, texel, roundedToHalf(vec4(clampRadiance(radiance), 1.0)));
     }
