@@ -30,6 +30,41 @@ float srgbDecode(float encoded) {
 } // namespace
 
 #ifdef OBSCURA_WITH_OPENIMAGEIO
+namespace {
+
+// Where channel `name` stood when written with OpenImageIO's default names (R, G, B, A,
+// channel4, channel5, ...), or -1 for any other name.
+int defaultChannelIndex(const std::string& name) {
+    static const char* const first[] = {"R", "G", "B", "A"};
+    for (int i = 0; i < 4; ++i)
+        if (name == first[i]) return i;
+    if (name.size() > 7 && name.compare(0, 7, "channel") == 0 &&
+        name.find_first_not_of("0123456789", 7) == std::string::npos)
+        return std::stoi(name.substr(7));
+    return -1;
+}
+
+// OpenEXR stores channels sorted by name, so a file written with the default names of more
+// than 10 channels reads back as R, G, B, A, channel10, channel11, channel4, ...: put them
+// back in the order they were written (the reference cache packs 12 for RGBA quantities).
+void restoreDefaultChannelOrder(const OIIO::ImageSpec& spec, Image& img) {
+    const int c = img.channels;
+    if (c <= 4 || int(spec.channelnames.size()) != c) return;
+    std::vector<int> from(std::size_t(c), -1);
+    for (int k = 0; k < c; ++k) {
+        const int at = defaultChannelIndex(spec.channelnames[std::size_t(k)]);
+        if (at < 0 || at >= c || from[std::size_t(at)] != -1) return; // not the default names: leave as read
+        from[std::size_t(at)] = k;
+    }
+    std::vector<float> row(static_cast<std::size_t>(c));
+    for (std::size_t p = 0; p < img.pixels.size(); p += std::size_t(c)) {
+        for (int k = 0; k < c; ++k) row[std::size_t(k)] = img.pixels[p + std::size_t(from[std::size_t(k)])];
+        std::copy(row.begin(), row.end(), img.pixels.begin() + std::ptrdiff_t(p));
+    }
+}
+
+} // namespace
+
 Image readImage(const std::filesystem::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw Error(ErrorCode::Io, "cannot read image " + path.string() + ": " + OIIO::geterror());
@@ -42,6 +77,7 @@ Image readImage(const std::filesystem::path& path) {
                       static_cast<std::size_t>(spec.nchannels));
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
         throw Error(ErrorCode::Io, "cannot read image " + path.string() + ": " + in->geterror());
+    restoreDefaultChannelOrder(spec, img);
     // 8- and 16-bit files are display-encoded (sRGB); float files are linear already.
     const bool linearize = spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16;
     if (linearize)

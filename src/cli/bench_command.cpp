@@ -92,6 +92,23 @@ Image channelsOf(const Image& image, const std::vector<int>& channels) {
     return out;
 }
 
+// MSE(A, B) / 4 of the reference's halves over `channels` of the pixels `mask` marks: the
+// noise floor of a measurement that compares those (Reference::noiseMse takes every channel of
+// every evaluated pixel).
+double halvesNoise(const reference::Reference& ref, const std::vector<int>& channels, const Image& mask) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (int y = 0; y < ref.halfA.height; ++y)
+        for (int x = 0; x < ref.halfA.width; ++x)
+            for (int c : channels) {
+                if (mask.at(x, y, 0) == 0.0f) continue;
+                const double d = double(ref.halfA.at(x, y, c)) - ref.halfB.at(x, y, c);
+                sum += d * d;
+                ++n;
+            }
+    return n ? sum / double(n) / 4.0 : 0.0;
+}
+
 // Fractions of the masked pixels that a hard mask gets wrong.
 struct Misclassified {
     double falseShadow = 0.0, falseLight = 0.0;
@@ -486,7 +503,10 @@ private:
                 noise = ref.noiseMse;
                 spp = ref.samplesPerPixel;
                 if (m.shadowMask) expected = shadowReference(ref.value, mask);
-                if (!m.referenceChannels.empty()) expected = channelsOf(expected, m.referenceChannels);
+                if (!m.referenceChannels.empty()) {
+                    expected = channelsOf(expected, m.referenceChannels);
+                    noise = halvesNoise(ref, m.referenceChannels, mask); // the compared pixels' and channels' own noise
+                }
             }
             metrics::Options mo;
             mo.mask = &mask;

@@ -46,13 +46,15 @@ double densityIntegral(const Medium& m, const glm::dvec3& p, const glm::dvec3& w
 // Transmittance per channel along the segment: exact for Constant and Height media; for a
 // Grid, ratio tracking (Novak, Selle and Jarosz 2014) against the majorant max sigma_t times
 // the grid's largest density: unbiased, each channel weighted by 1 - sigma_t,c d(x) / majorant.
-glm::dvec3 transmittance(const Medium& m, const glm::dvec3& p, const glm::dvec3& w, double length, PixelSampler& s) {
+// `maxDensity`: mediumMaxDensity(m), found once per medium (a grid's is a scan of its values).
+glm::dvec3 transmittance(const Medium& m, double maxDensity, const glm::dvec3& p, const glm::dvec3& w, double length,
+                         PixelSampler& s) {
     const glm::dvec3 sigmaT = glm::dvec3(m.scattering) + glm::dvec3(m.absorption);
     if (m.density != MediumDensity::Grid) return glm::exp(-sigmaT * densityIntegral(m, p, w, length));
     double t0, t1;
     if (!boxInterval(p, w, glm::dvec3(m.boxMin), glm::dvec3(m.boxMax), t0, t1)) return glm::dvec3(1.0);
     t1 = std::min(t1, length);
-    const double majorant = std::max({sigmaT.x, sigmaT.y, sigmaT.z}) * mediumMaxDensity(m);
+    const double majorant = std::max({sigmaT.x, sigmaT.y, sigmaT.z}) * maxDensity;
     if (!(t1 > t0) || !(majorant > 0.0)) return glm::dvec3(1.0);
     glm::dvec3 t(1.0);
     for (double at = t0;;) {
@@ -142,7 +144,8 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
     const Medium medium = scene.scene.media[q.medium];
     // Its box, coefficients, phase and anisotropy were checked when the RayScene was made
     // (validateScene).
-    return [&scene, q, medium](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
+    const double maxDensity = mediumMaxDensity(medium);
+    return [&scene, q, medium, maxDensity](const ShadingPoint& p, int n, PixelSampler& s, std::uint64_t& rays) {
         const glm::dvec3 sigmaS(medium.scattering), sigmaT = sigmaS + glm::dvec3(medium.absorption);
         double t0, t1;
         if (!boxInterval(p.origin, p.direction, glm::dvec3(medium.boxMin), glm::dvec3(medium.boxMax), t0, t1))
@@ -150,7 +153,7 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
         t1 = std::min(t1, p.distance);
         if (!(t1 > t0)) return glm::dvec4(0, 0, 0, 1);
         const glm::dvec3 entry = p.origin + t0 * p.direction;
-        const glm::dvec3 viewT = transmittance(medium, entry, p.direction, t1 - t0, s);
+        const glm::dvec3 viewT = transmittance(medium, maxDensity, entry, p.direction, t1 - t0, s);
         glm::dvec3 sum(0.0);
         for (const Light& l : scene.scene.lights) {
             if (l.type == LightType::Rect || l.type == LightType::Sphere) continue; // area lights: not in this quantity
@@ -187,8 +190,8 @@ Estimator scatteringEstimator(const RayScene::Impl& scene, const SingleScatterin
                 const double phase = phaseFunction(medium.phase, medium.anisotropy, glm::dot(-w, -p.direction));
                 const double density = mediumDensity(medium, x);
                 if (density == 0.0) continue;
-                const glm::dvec3 toLightT = transmittance(medium, x, w, distance, s);
-                const glm::dvec3 viewSideT = transmittance(medium, entry, p.direction, t - t0, s);
+                const glm::dvec3 toLightT = transmittance(medium, maxDensity, x, w, distance, s);
+                const glm::dvec3 viewSideT = transmittance(medium, maxDensity, entry, p.direction, t - t0, s);
                 sum += sigmaS * density * viewSideT * phase * radiance * falloff * toLightT / pdf;
             }
         }

@@ -257,3 +257,16 @@ TEST_CASE("validateScene refuses a light type, environment or medium outside its
     bad([](Medium& m) { m.phase = static_cast<PhaseFunction>(5); }, ".phase");
     bad([](Medium& m) { m.anisotropy = 1.0f; }, ".anisotropy");
 }
+
+TEST_CASE("An EXR of more than ten channels reads back in the order it was written", "[unit][scenes]") {
+    // OpenEXR sorts channels by name: OpenImageIO's default names put channel10 before
+    // channel4, which garbled the reference cache's halves of RGBA quantities (12 channels).
+    Image img{2, 1, 12, {}};
+    for (int i = 0; i < 24; ++i) img.pixels.push_back(float(i));
+    const auto path = std::filesystem::temp_directory_path() / "obscura_twelve_channels.exr";
+    assets::writeImage(path, img);
+    const Image back = assets::readImage(path);
+    std::filesystem::remove(path);
+    REQUIRE(back.channels == 12);
+    CHECK(back.pixels == img.pixels);
+}
