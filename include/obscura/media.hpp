@@ -12,12 +12,13 @@
 // Methods (MediaSettings::method):
 //   RayMarch  `steps` samples over the view ray's part inside the media, jittered per pixel,
 //             each integrated with the energy-conserving step (Hillaire 2015), the shadow maps
-//             tested at every sample (MediaInputs::shadows). Error: O(1/steps) for smooth
+//             tested at every sample (MediaInputs::shadows). Error: with jitter, noise of
+//             O(1/steps) per pixel (unbiased over frames); without, O(1/steps^2) for smooth
 //             integrands; a dense medium tends to sigma_s/sigma_t of the source (never above it).
 //   Analytic  Sun et al. 2005's airlight closed form per box and light, no shadows, the
 //             light's whole path taken as inside the box (exact for a light inside it).
-//             integral Quadrature: `steps` nodes in the equiangular variable, the phase and a
-//             spot's cone exact at each; Table: a tabulated integral (tableSize^2 texels,
+//             integral Quadrature: `steps` intervals in the equiangular variable, the phase and
+//             a spot's cone at their middles, the exponential's exact mean over each; Table: a tabulated integral (tableSize^2 texels,
 //             bilinear in float), the phase and cone at the segment's point nearest the
 //             light (exact for isotropic media and point lights). Relative error of the
 //             tabulated integral: below 6e-3 at tableSize 64 and 3e-3 at 128
