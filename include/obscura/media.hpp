@@ -13,7 +13,7 @@
 //   RayMarch  `steps` samples over the view ray's part inside the media, jittered per pixel,
 //             each integrated with the energy-conserving step (Hillaire 2015), the shadow maps
 //             tested at every sample (MediaInputs::shadows). Error: with jitter, noise of
-//             O(1/steps) per pixel (unbiased over frames); without, O(1/steps^2) for smooth
+//             O(1/steps) per pixel; without, O(1/steps^2) for smooth
 //             integrands; a dense medium tends to sigma_s/sigma_t of the source (never above it).
 //   Analytic  Sun et al. 2005's airlight closed form per box and light, no shadows, the
 //             light's whole path taken as inside the box (exact for a light inside it).
