@@ -254,9 +254,26 @@ private:
         return m;
     }
 
+    // A grid from an EXR of z slices stacked top to bottom: width size.x, height size.y *
+    // size.z; slice z is rows z * size.y to (z + 1) * size.y - 1, row j of it holding y = j;
+    // channel 0.
+    DensityGrid exrSlices(const std::filesystem::path& path, glm::ivec3 n, const std::string& where) const {
+        const Image img = readImage(path);
+        if (img.width != n.x || img.height != n.y * n.z)
+            fail(where, path.string() + " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                            "; slices of size [x, y, z] need x by y * z");
+        DensityGrid g{n, std::vector<float>(std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z))};
+        for (int z = 0; z < n.z; ++z)
+            for (int y = 0; y < n.y; ++y)
+                for (int x = 0; x < n.x; ++x)
+                    g.values[(std::size_t(z) * std::size_t(n.y) + std::size_t(y)) * std::size_t(n.x) + std::size_t(x)] =
+                        img.at(x, z * n.y + y, 0);
+        return g;
+    }
+
     // "density": {"type": "height", "falloff": k} | {"type": "grid", "size": [x, y, z],
-    // "file": raw little-endian float32, x fastest} | {"type": "noise", "size": [x, y, z],
-    // "seed": n, "octaves": o}.
+    // "file": raw little-endian float32, x fastest, or an EXR of stacked z slices} |
+    // {"type": "noise", "size": [x, y, z], "seed": n, "octaves": o}.
     void density(const json& j, const std::string& where, Medium& m) const {
         if (!j.is_object() || !j.contains("type") || !j["type"].is_string()) fail(where, "expected {\"type\": ...}");
         const std::string type = j["type"].get<std::string>();
@@ -280,6 +297,10 @@ private:
             return;
         }
         const std::filesystem::path path = dir_ / j.at("file").get<std::string>();
+        if (lowerExtension(path) == ".exr") {
+            m.grid = std::make_shared<DensityGrid>(exrSlices(path, n, where + ".file"));
+            return;
+        }
         std::ifstream in(path, std::ios::binary);
         if (!in) fail(where + ".file", "cannot open " + path.string());
         DensityGrid g{n, std::vector<float>(std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z))};

@@ -270,3 +270,36 @@ TEST_CASE("An EXR of more than ten channels reads back in the order it was writt
     REQUIRE(back.channels == 12);
     CHECK(back.pixels == img.pixels);
 }
+
+TEST_CASE("JSON media densities: height fog, a raw grid, EXR slices and noise", "[unit][scenes]") {
+    // A 3 x 2 x 2 grid whose value is its index, as raw float32 and as EXR slices (width 3,
+    // height 2 * 2): both give the same values in x-fastest order.
+    std::vector<float> values(12);
+    for (int i = 0; i < 12; ++i) values[std::size_t(i)] = float(i);
+    const auto raw = std::filesystem::temp_directory_path() / "obscura_test_grid.raw";
+    std::ofstream(raw, std::ios::binary).write(reinterpret_cast<const char*>(values.data()), std::streamsize(12 * sizeof(float)));
+    Image slices{3, 4, 1, values}; // slice z = rows 2z, 2z + 1; row j of a slice: y = j
+    const auto exr = std::filesystem::temp_directory_path() / "obscura_test_grid.exr";
+    assets::writeImage(exr, slices);
+    const auto scene = [](const std::string& density) {
+        return "{\"media\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1], \"scattering\": 1, \"density\": " + density + "}]}";
+    };
+    const Scene fromRaw = assets::loadJsonScene(writeTemp("grid_raw.json", scene(R"({"type": "grid", "size": [3, 2, 2], "file": ")" +
+                                                                                  raw.string() + "\"}"))).scene;
+    const Scene fromExr = assets::loadJsonScene(writeTemp("grid_exr.json", scene(R"({"type": "grid", "size": [3, 2, 2], "file": ")" +
+                                                                                  exr.string() + "\"}"))).scene;
+    REQUIRE(fromRaw.media.at(0).grid);
+    REQUIRE(fromExr.media.at(0).grid);
+    CHECK(fromRaw.media[0].grid->values == values);
+    CHECK(fromExr.media[0].grid->values == values);
+    const Scene fog = assets::loadJsonScene(writeTemp("fog.json", scene(R"({"type": "height", "falloff": 0.5})"))).scene;
+    CHECK(fog.media.at(0).density == MediumDensity::Height);
+    CHECK(mediumDensity(fog.media[0], {0.5, 1.0, 0.5}) == Approx(std::exp(-0.5)));
+    const Scene noise = assets::loadJsonScene(writeTemp("noise.json", scene(R"({"type": "noise", "size": [8, 8, 8], "seed": 2})"))).scene;
+    CHECK(noise.media.at(0).grid->values.size() == 512);
+    CHECK_THROWS_WITH(assets::loadJsonScene(writeTemp("bad_grid.json", scene(R"({"type": "grid", "size": [4, 2, 2], "file": ")" +
+                                                                              exr.string() + "\"}"))),
+                      Catch::Contains("need x by y * z"));
+    std::filesystem::remove(raw);
+    std::filesystem::remove(exr);
+}
