@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt, media_section, ssdo_options_section, ssdo_overhead_section,  # noqa: E402
+from report_tables import (PRESET_ORDER, RESOLUTION_HEADER, default_runs, falloff_section, fmt, media_filters_section, media_section, ssdo_options_section, ssdo_overhead_section,  # noqa: E402
                            lanes_section, march_section, own_ms, quarter_section, refine_section, resolution_rows,
                            resolution_section, thickness_section, tiles_section)
 
@@ -270,7 +270,8 @@ def shown(path):
 
 def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=(), march_rows=(), gpu_provenance=(),
                  lanes_rows=(), tiles_rows=(), gpu_study_rows=(), thickness_rows=(), falloff_rows=(),
-                 refine_rows=(), ssdo_rows=(), ssdo_option_rows=(), media_rows=()):
+                 refine_rows=(), ssdo_rows=(), ssdo_option_rows=(), media_rows=(),
+                 media_filter_rows=()):
     os.makedirs(os.path.join(out_dir, "results"), exist_ok=True)
     lines = [
         "# Results",
@@ -339,6 +340,7 @@ def write_report(rows, perf, out_dir, sources, voxel, study_rows=(), gpu_rows=()
     lines += ssdo_overhead_section(list(ssdo_rows))
     lines += ssdo_options_section(list(ssdo_option_rows))
     lines += media_section(list(media_rows))
+    lines += media_filters_section(list(media_filter_rows))
     lines += shadow_section(rows)
     lines += voxel_section(voxel, out_dir)
     lines += gpu_section(list(gpu_rows), list(rows) + list(study_rows), gpu_provenance, gpu_study_rows)
@@ -371,6 +373,9 @@ def main():
     parser.add_argument("--ssdo-options-study", action="append", default=[],
                         help="bench.json of ssdo with --variant extra_views=2 and thickness_mode=depth_peeling "
                              "(SSDO options table only)")
+    parser.add_argument("--media-filters-study", action="append", default=[],
+                        help="bench.json of media.raymarch and media.bounded with --variant blur_radius=2, "
+                             "resolution=half and resolution=half,blur_radius=1 (media blur and half-resolution table only)")
     parser.add_argument("--media-study", action="append", default=[],
                         help="bench.json of the media techniques' presets at one size (one file per size; the "
                              "media time-against-steps table only)")
@@ -405,6 +410,7 @@ def main():
     ssdo_rows = study(args.ssdo_overhead_study, "SSDO overhead study")
     ssdo_option_rows = study(args.ssdo_options_study, "SSDO options study")
     media_rows = study(args.media_study, "media study")
+    media_filter_rows = study(args.media_filters_study, "media filters study")
     gpu_rows = study(args.gpu, "GPU")
     gpu_study_rows = study(args.gpu_study, "GPU study")
     provenance = []
@@ -414,7 +420,8 @@ def main():
             with open(path) as f:
                 provenance.append(f.read())
     write_report(rows, perf, args.out, sources, voxel, study_rows, gpu_rows, march_rows, provenance, lanes_rows, tiles_rows,
-                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows, ssdo_rows, ssdo_option_rows, media_rows)
+                 gpu_study_rows, thickness_rows, falloff_rows, refine_rows, ssdo_rows, ssdo_option_rows, media_rows,
+                 media_filter_rows)
     print(f"wrote {os.path.join(args.out, 'results.md')} ({len(rows)} rows)")
 
 

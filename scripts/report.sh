@@ -144,13 +144,18 @@ ssdo+=(--ssdo-options-study "$out/ssdo_options/bench.json")
 # Participating media: every method's presets against the reference on the god-ray scene (a
 # spot light through a lattice, shadowed), the Cornell box filled with fog and the one filled
 # with smoke (a noise density grid); then the thesis's table, time against steps at two
-# sizes on the fogged box (times only: references of 16 samples).
+# sizes on the fogged box and the god-ray scene (times only: references of 16 samples).
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene god_rays --scene cornell_fog --scene cornell_smoke --techniques 'media.*' --size 128x128 --frames 20 \
   --spp 1024 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/media"
-media=()
+# Marching blurred, at half resolution, and both, against each preset as run (timed in turn).
+"$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
+  --scene god_rays --scene cornell_fog --techniques 'media.[rb]*' --size 128x128 --frames 20 --spp 1024 \
+  --variant blur_radius=2 --variant resolution=half --variant resolution=half,blur_radius=1 \
+  --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/media_filters"
+media=(--media-filters-study "$out/media_filters/bench.json")
 for size in 256x256 512x512; do
-  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene cornell_fog --techniques 'media.*' --size "$size" --frames 20 \
+  "$OBSCURA_BUILD_DIR/src/cli/obscura" bench --scene cornell_fog --scene god_rays --techniques 'media.*' --size "$size" --frames 20 \
     --spp 16 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/media_steps/$size"
   media+=(--media-study "$out/media_steps/$size/bench.json")
 done

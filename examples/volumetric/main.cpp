@@ -1,6 +1,6 @@
 // Volumetric example: single scattering in the scene's media (the god-ray scene by default:
-// a spot light through a lattice into fog) by ray marching, Sun et al.'s closed form or a
-// froxel grid, shown as the lit frame seen through the media, the in-scattered light alone or
+// a spot light through a lattice into fog) by ray marching, Sun et al.'s closed form, a
+// froxel grid or marching within the spot's shadow volume, shown as the lit frame seen through the media, the in-scattered light alone or
 // the transmittance, on the example's own context (headless EGL, or a GLFW window with an
 // ImGui panel).
 //
@@ -12,8 +12,10 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 using namespace obscura;
 
@@ -25,8 +27,8 @@ int main(int argc, char** argv) {
     std::string methodName = "raymarch", viewName = "frame";
     int steps = 64;
     float exposure = 1.0f;
-    parser.add_option("--method", methodName, "raymarch, analytic (no shadows) or froxel")
-        ->check(CLI::IsMember({"raymarch", "analytic", "froxel"}))
+    parser.add_option("--method", methodName, "raymarch, analytic (no shadows), froxel or bounded (within shadow volumes)")
+        ->check(CLI::IsMember({"raymarch", "analytic", "froxel", "bounded"}))
         ->capture_default_str();
     parser.add_option("--steps", steps, "March samples, quadrature intervals or froxel slices, [1, 1024]")
         ->check(CLI::Range(1, 1024))
@@ -43,14 +45,16 @@ int main(int argc, char** argv) {
         const examples::ExampleScene example = examples::loadExampleScene(options, app.width(), app.height());
         const Scene& scene = example.loaded.scene;
         if (scene.media.empty()) throw Error(ErrorCode::InvalidArgument, "the scene has no media (try god_rays or cornell_fog)");
-        static const char* const kMethods[] = {"raymarch", "analytic", "froxel"};
+        static const char* const kMethods[] = {"raymarch", "analytic", "froxel", "bounded"};
+        static const MediaMethod kMethodValues[] = {MediaMethod::RayMarch, MediaMethod::Analytic, MediaMethod::Froxel,
+                                                    MediaMethod::Bounded};
         static const char* const kViews[] = {"frame", "scattering", "transmittance"};
-        int method = methodName == "raymarch" ? 0 : methodName == "analytic" ? 1 : 2;
+        int method = int(std::find(std::begin(kMethods), std::end(kMethods), methodName) - std::begin(kMethods));
         int view = viewName == "frame" ? 0 : viewName == "scattering" ? 1 : 2;
         bool changed = true;
         app.setPanel([&] {
             ImGui::Begin("volumetric");
-            changed |= ImGui::Combo("method", &method, kMethods, 3);
+            changed |= ImGui::Combo("method", &method, kMethods, 4);
             changed |= ImGui::SliderInt("steps", &steps, 1, 256);
             changed |= ImGui::Combo("view", &view, kViews, 3);
             changed |= ImGui::DragFloat("exposure", &exposure, 0.01f, 0.0f, 1e3f, "%.3f");
@@ -68,7 +72,7 @@ int main(int argc, char** argv) {
             const GBufferView gview = gbuffer.render(scene, example.camera, g);
             shown = app.presentUntilDone(changed, [&] {
                 MediaSettings s;
-                s.method = method == 0 ? MediaMethod::RayMarch : method == 1 ? MediaMethod::Analytic : MediaMethod::Froxel;
+                s.method = kMethodValues[method];
                 s.steps = steps;
                 const MediaView result = media.run(gview, {scene.media, scene.lights, &maps}, s);
                 Image picture = readTexture(ctx, view == 0 ? media.apply(result, gview.directRadiance)

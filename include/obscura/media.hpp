@@ -15,6 +15,11 @@
 //             tested at every sample (MediaInputs::shadows). Error: with jitter, noise of
 //             O(1/steps) per pixel; without, O(1/steps^2) for smooth
 //             integrands; a dense medium tends to sigma_s/sigma_t of the source (never above it).
+//             `resolution` half or quarter marches one pixel in 2x2 or 4x4 and upsamples by
+//             depth (joint bilateral, background pixels at a depth past the media, so fog in
+//             front of the sky blends as any other); `blurRadius` blurs the march's jitter
+//             at its resolution, weighted by depth (no blur across depth edges). The optical
+//             depth stays per pixel.
 //   Analytic  Sun et al. 2005's airlight closed form per box and light, no shadows, the
 //             light's whole path taken as inside the box (exact for a light inside it).
 //             integral Quadrature: `steps` intervals in the equiangular variable, the phase and
@@ -29,6 +34,16 @@
 //             `steps` nodes in 1/distance, where the closed form would divide 0 by 0.
 //             Directional lights: exact while the segment's light paths leave the box through
 //             one face.
+//   Bounded   RayMarch within the lit part of each view ray: every spot light's lit volume is
+//             rebuilt from its shadow map as a closed mesh (McCool 2000; a height field over
+//             cells of volumeCell^2 texels, conservative: each cell at its farthest depth plus
+//             the map's bias), drawn from the camera to find each pixel's first and last
+//             crossing, and the `steps` samples go between them (or from the camera where it
+//             lies in a spot's frustum). Rays that cross no volume cost nothing. The same
+//             integrand as RayMarch, so the same error for the same sample spacing; the
+//             spacing is finer by the ratio of the media's span to the lit one. Only when
+//             every light is a spot with a map (MediaInputs::shadows); otherwise, as there is
+//             no bound to take from a point or directional light, it is RayMarch.
 //   Froxel    Volumetric fog in a grid of screen tiles (froxelTile pixels) times `steps` depth
 //             slices out to froxelRange: lights (and shadow maps) evaluated once per froxel,
 //             integrated front to back with the energy-conserving step, read per pixel at its
@@ -49,6 +64,7 @@
 // radius 0 on the ray inside the segment). Lights of radius r give 1/max(d^2, r^2), as the
 // reference. Shadow maps are fitted to the meshes: media points off a map's extent or past its
 // far plane count as lit.
+#include "obscura/ambient_occlusion.hpp"
 #include "obscura/export.hpp"
 #include "obscura/gbuffer.hpp"
 #include "obscura/scene.hpp"
@@ -65,7 +81,7 @@ namespace obscura {
 
 class Context;
 
-enum class MediaMethod { RayMarch, Analytic, Froxel };
+enum class MediaMethod { RayMarch, Analytic, Froxel, Bounded };
 enum class AnalyticIntegral { Quadrature, Table };
 
 struct MediaSettings {
@@ -77,6 +93,10 @@ struct MediaSettings {
     int froxelTile = 8;
     float froxelRange = 0.0f;
     int densitySteps = 16;
+    int volumeCell = 8;
+    AoResolution resolution = AoResolution::Full;
+    int blurRadius = 0;
+    float blurDepthSigma = 0.05f;
     std::uint32_t frameIndex = 0;
 
     static const SettingsTable<MediaSettings>& table(); //!< units and ranges (settings_table.hpp)
@@ -87,11 +107,14 @@ inline const SettingsTable<MediaSettings>& MediaSettings::table() {
     using namespace settings;
     static const SettingsTable<S> rows = {
         choice("method", &S::method,
-               {{"raymarch", MediaMethod::RayMarch}, {"analytic", MediaMethod::Analytic}, {"froxel", MediaMethod::Froxel}},
-               "ray marching, Sun et al.'s closed form (no shadows), or a froxel grid"),
+               {{"raymarch", MediaMethod::RayMarch},
+                {"analytic", MediaMethod::Analytic},
+                {"froxel", MediaMethod::Froxel},
+                {"bounded", MediaMethod::Bounded}},
+               "ray marching, Sun et al.'s closed form (no shadows), a froxel grid, or marching within shadow volumes"),
         number("steps", &S::steps, "", "[1, 1024]",
-               "raymarch: samples per view ray; analytic quadrature: nodes; froxel: depth slices"),
-        flag("jitter", &S::jitter, "raymarch: offset each pixel's samples within their steps (else at the steps' centres)"),
+               "raymarch, bounded: samples per view ray; analytic quadrature: nodes; froxel: depth slices"),
+        flag("jitter", &S::jitter, "raymarch, bounded: offset each pixel's samples within their steps (else at the steps' centres)"),
         choice("integral", &S::integral, {{"quadrature", AnalyticIntegral::Quadrature}, {"table", AnalyticIntegral::Table}},
                "analytic: nodes in the shader, or the tabulated integral"),
         number("tableSize", &S::tableSize, "texels per side", "[16, 256]",
@@ -100,8 +123,17 @@ inline const SettingsTable<MediaSettings>& MediaSettings::table() {
         number("froxelRange", &S::froxelRange, "world units", "[0, inf)",
                "froxel: view depth the last slice ends at (0: the media boxes' farthest corner)"),
         number("densitySteps", &S::densitySteps, "", "[1, 256]",
-               "raymarch, froxel: midpoint steps of a density grid's optical depth along each segment"),
-        number("frameIndex", &S::frameIndex, "", "[0, 4294967295]", "raymarch: shifts the jitter per frame"),
+               "raymarch, bounded, froxel: midpoint steps of a density grid's optical depth along each segment"),
+        number("volumeCell", &S::volumeCell, "shadow-map texels per side", "[1, 64]",
+               "bounded: the shadow volumes' cells (coarser: fewer triangles, a looser bound)"),
+        choice("resolution", &S::resolution,
+               {{"full", AoResolution::Full}, {"half", AoResolution::Half}, {"quarter", AoResolution::Quarter}},
+               "raymarch, bounded: the march's resolution; reduced, it is upsampled by depth"),
+        number("blurRadius", &S::blurRadius, "pixels at the march's resolution", "[0, 16]",
+               "raymarch, bounded: depth-aware blur taps each side (smooths the jitter); 0: none"),
+        number("blurDepthSigma", &S::blurDepthSigma, "", "(0, 1]",
+               "raymarch, bounded: relative view-depth difference the blur and the upsampling weight e^-1/2"),
+        number("frameIndex", &S::frameIndex, "", "[0, 4294967295]", "raymarch, bounded: shifts the jitter per frame"),
     };
     return rows;
 }
@@ -115,7 +147,8 @@ struct MediaInputs {
     //! Point, spot and directional lights (others are left out), in Scene::lights' units.
     std::span<const Light> lights{};
     //! Maps of some of `lights` (ShadowMaps::render with the same lights, in order), tested
-    //! with one hard comparison per sample by RayMarch and Froxel (Analytic has no shadows).
+    //! with one hard comparison per sample by RayMarch, Bounded and Froxel (Analytic has no
+    //! shadows); Bounded's volumes come from the spot lights' maps.
     //! Null: unshadowed.
     const ShadowMapSet* shadows = nullptr;
 };
@@ -131,7 +164,10 @@ public:
     explicit Media(Context& context);
     ~Media();
 
-    //! Passes "media.raymarch", "media.analytic", or "media.froxel.inject",
+    //! Passes "media.raymarch", "media.analytic", "media.bounded.volume",
+    //! "media.bounded.interval" and "media.bounded", or "media.froxel.inject",
+    //! (marches at reduced resolution: "media.optical_depth"; blurred: "media.blur"; reduced:
+    //! "media.upsample"),
     //! "media.froxel.integrate" and "media.froxel.resolve". Reads the G-buffer's depth only.
     //! Throws Error{InvalidArgument} for settings out of range, more than 8 media, media or
     //! lights that validateScene refuses, shadow maps that do not fit the lights or the camera,

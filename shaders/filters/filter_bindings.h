@@ -56,7 +56,7 @@ struct FilterParams {
     float background;      // the value of background pixels
     float refineThreshold; // REFINE: the share of the bilinear weight
     int flags;             // FILTER_FLAG_*
-    int pad0;
+    float backgroundZ;     // 0, or the view z background pixels stand at (GuidedFilterSettings)
     int pad1;
     int pad2;
 };

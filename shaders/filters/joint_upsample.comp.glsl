@@ -2,7 +2,9 @@
 // around each G-buffer pixel, weighted bilinearly and by guideWeight against the pixel's own
 // view depth and normal. Where no neighbour is similar, the one nearest in depth is taken
 // (for directions, its offset from its normal, see directionOffset).
-// Background pixels get the background value (and no direction). MODULATE: each written
+// Background pixels get the background value (and no direction); with a background z
+// (GuidedFilterSettings::backgroundZ) they blend at that depth like the others, and the
+// normals are not read (any texture may stand at VIS_NORMAL_UNIT). MODULATE: each written
 // pixel's value times its own texel of the factor (filter_common.glsl). REFINE: pixels whose
 // similar neighbours carry less than the threshold's share of the bilinear weight are listed
 // for the integrator to compute instead (refine_list.glsl); they are written here too, so
@@ -26,6 +28,7 @@
 //! variant: RGB REFINE MODULATE TILES
 //! variant: TILES
 //! variant: HALF
+//! variant: RGB HALF
 //! variant: DIRECTION REFINE TILES HALF
 //! variant: RGB REFINE MODULATE TILES HALF
 #include "../visibility/screen_march.glsl"
@@ -55,6 +58,11 @@ struct Target {
 };
 
 Target makeTarget(float depth, vec4 normalTexel, vec2 f) {
+    // A background z: background pixels blend at it; the normals are unread.
+    if (filterParams.backgroundZ != 0.0) {
+        const float z = isBackground(depth) ? filterParams.backgroundZ : viewZFromDepth(depth);
+        return Target(vec3(0.0, 0.0, 1.0), z, f, false);
+    }
     const bool background = isBackground(depth) || normalTexel.a == 0.0;
     return Target(normalTexel.xyz, background ? 1.0 : viewZFromDepth(depth), f, background);
 }

@@ -14,8 +14,18 @@ OBSCURA_SHADER_BEGIN
 #define MEDIA_LIT_UNIT 2          // apply: the lit frame
 #define MEDIA_SCATTERING_UNIT 3   // apply: in-scattered radiance
 #define MEDIA_OPTICAL_DEPTH_UNIT 4 // apply: optical depth
+#define MEDIA_GUIDE_IMAGE 4    // rgba32f, GUIDE: (0, 0, 1, view z) for the filters (src/filters/guided_filters.hpp)
 #define MEDIA_OUT_IMAGE 0          // rgba16f: in-scattered radiance (or the applied frame, or a froxel grid)
 #define MEDIA_DEPTH_OUT_IMAGE 1    // rgba16f: optical depth per channel (or the froxel grid's)
+
+// Bounded marching (media_volume.*.glsl): the shadow volumes' vertices, and the nearest and
+// farthest view depth where each pixel's ray crosses them (float bits, atomic min and max).
+#define MEDIA_VOLUME_SSBO 3
+#define MEDIA_NEAR_IMAGE 2 // r32ui
+#define MEDIA_FAR_IMAGE 3  // r32ui
+#define MEDIA_CELLS_IMAGE 4 // r32f: each cell's farthest depth (media_volume.comp.glsl)
+#define MEDIA_VOLUME_LOC_GRID 0 // ivec4: shadow record, texels per cell, cells per side, first vertex
+#define MEDIA_VOLUME_LOC_CAP 1  // float: distance along the spot's axis of cells whose map holds nothing
 
 #define MEDIA_MAX_MEDIA 8
 #define MEDIA_WORKGROUP 8
@@ -57,8 +67,8 @@ struct MediaParams {
     float froxelRange; // froxel: view distance the last slice ends at, world units
     float tableMaxU;   // TABLE: u of its last column
     int densitySteps;  // midpoint steps of a grid medium's optical depth along a segment
-    float pad3;
-    float pad4;
+    int scale;         // raymarch, bounded: the G-buffer's resolution over the march's (1, 2 or 4)
+    float backgroundZ; // GUIDE: the view z the guide gives background pixels (< 0)
 };
 
 OBSCURA_SHADER_END

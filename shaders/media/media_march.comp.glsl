@@ -5,9 +5,16 @@
 // so that a dense medium tends to sigma_s/sigma_t times the source, never beyond it. T toward
 // the lights is exact per box; V comes from the shadow maps (SHADOWS). The optical depth
 // stored is the view ray's exact one (the boxes' lengths times sigma_t), whatever the steps.
+// At reduced resolution (MediaSettings::resolution) the march runs per reduced pixel and the
+// optical depth per G-buffer pixel (OPTICAL_DEPTH); the filters blur and upsample the rest.
 //! Every permutation the module compiles (validated by glslangValidator at build time):
 //! variant:
 //! variant: SHADOWS
+//! variant: SHADOWS BOUNDED
+//! variant: GUIDE
+//! variant: SHADOWS GUIDE
+//! variant: SHADOWS BOUNDED GUIDE
+//! variant: OPTICAL_DEPTH
 #include "../common/depth.glsl"
 #include "../common/sampling.glsl"
 #include "../gbuffer/gbuffer_bindings.h"
@@ -22,6 +29,41 @@ layout(local_size_x = MEDIA_WORKGROUP, local_size_y = MEDIA_WORKGROUP, local_siz
 layout(binding = MEDIA_DEPTH_UNIT) uniform sampler2D depthTexture;
 layout(binding = MEDIA_OUT_IMAGE, rgba16f) writeonly uniform image2D scatteringOut;
 layout(binding = MEDIA_DEPTH_OUT_IMAGE, rgba16f) writeonly uniform image2D depthOut;
+#ifdef GUIDE
+layout(binding = MEDIA_GUIDE_IMAGE, rgba32f) writeonly uniform image2D guideOut;
+#endif
+
+#ifdef BOUNDED
+// media.bounded: every light is a mapped spot whose volume (media_volume.*.glsl) the pass
+// drew; its lit points lie between the ray's first and last crossing of the volumes, or from
+// the ray's origin where that lies inside one's frustum (the volume there may hold it).
+layout(binding = MEDIA_NEAR_IMAGE, r32ui) readonly uniform uimage2D nearestCrossing;
+layout(binding = MEDIA_FAR_IMAGE, r32ui) readonly uniform uimage2D farthestCrossing;
+
+bool mediaInsideFrustum(vec3 x) {
+    for (int i = 0; i < media.lightCount; ++i) {
+        const int k = int(lights[i].shadowRecord);
+        const vec4 c = shadowMapCoord(k, x, 0);
+        if (c.w > 0.0 && all(greaterThanEqual(c.xy, vec2(0.0))) && all(lessThanEqual(c.xy, vec2(1.0)))) return true;
+    }
+    return false;
+}
+
+// The part of `span` (distances along r) where the ray may be lit; empty (x >= y) if none.
+// Crossings are view depths: t = depth / -direction.z (the ray starts at view z = 0). The
+// interpolated depths are widened by 1e-4 of themselves for their rounding.
+vec2 mediaLitSpan(ivec2 pixel, MediaRay r, vec2 span) {
+    const float nearest = uintBitsToFloat(imageLoad(nearestCrossing, pixel).r);
+    const float farthest = uintBitsToFloat(imageLoad(farthestCrossing, pixel).r);
+    const float perDepth = 1.0 / max(-r.direction.z, 1e-30);
+    const bool inside = mediaInsideFrustum(r.origin);
+    const bool crossed = nearest <= farthest;
+    if (!inside && !crossed) return vec2(0.0);
+    const float from = inside ? 0.0 : nearest * (1.0 - 1e-4) * perDepth;
+    const float to = crossed ? farthest * (1.0 + 1e-4) * perDepth : span.y;
+    return vec2(max(span.x, from), min(span.y, to));
+}
+#endif
 
 // The light scattered toward the camera at view point x (world xw) per unit length, before
 // the view side's transmittance: Sum_lights sigma_s p L_i T(x, light) V.
@@ -39,17 +81,19 @@ vec3 mediaInScattering(vec3 x, vec3 xw, vec3 viewDirection) {
     return sum;
 }
 
-void main() {
-    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, media.size))) return;
-    const MediaRay r = mediaViewRay(pixel, texelFetch(depthTexture, pixel, 0).r);
-    const vec3 ow = mediaToWorld(r.origin), ww = mediaDirectionToWorld(r.direction);
+// The march along view ray r of G-buffer pixel `pixel`.
+vec3 mediaMarch(ivec2 pixel, MediaRay r, vec3 ow, vec3 ww) {
+#ifdef BOUNDED
+    const vec2 span = mediaLitSpan(pixel, r, mediaSpan(ow, ww, r.end));
+#else
     const vec2 span = mediaSpan(ow, ww, r.end);
+#endif
     vec3 radiance = vec3(0.0);
     if (span.y > span.x) {
         const float dt = (span.y - span.x) / float(media.steps);
         const float jitter = media.jitter != 0 ? pixelJitter(pixel, frame.sampleShift) : 0.5;
-        vec3 tau = vec3(0.0); // from the camera to the current step's start
+        // From the camera to the current step's start (0 before the first medium's entry).
+        vec3 tau = mediaOpticalDepth(ow, ww, span.x);
         for (int s = 0; s < media.steps; ++s) {
             const float t = span.x + (float(s) + jitter) * dt;
             const vec3 xw = ow + t * ww;
@@ -62,6 +106,33 @@ void main() {
             tau += stepTau;
         }
     }
-    imageStore(scatteringOut, pixel, roundedToHalf(vec4(clampRadiance(radiance), 1.0)));
-    imageStore(depthOut, pixel, mediaStoredDepth(mediaOpticalDepth(ow, ww, r.end)));
+    return radiance;
 }
+
+#ifdef OPTICAL_DEPTH
+// A march at reduced resolution: the optical depth of every G-buffer pixel, on its own.
+void main() {
+    const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, frameSize()))) return;
+    const MediaRay r = mediaViewRay(pixel, texelFetch(depthTexture, pixel, 0).r);
+    imageStore(depthOut, pixel, mediaStoredDepth(mediaOpticalDepth(mediaToWorld(r.origin), mediaDirectionToWorld(r.direction), r.end)));
+}
+#else
+// Output pixel `target` marches G-buffer pixel out * scale (the filters' convention: a reduced
+// pixel covers [i s, i s + s) and is computed at i s). At full resolution it also stores the
+// optical depth; GUIDE: the filters' guide, (0, 0, 1, view z), background at media.backgroundZ.
+void main() {
+    const ivec2 target = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(target, media.size))) return;
+    const ivec2 pixel = target * media.scale;
+    const float depth = texelFetch(depthTexture, pixel, 0).r;
+    const MediaRay r = mediaViewRay(pixel, depth);
+    const vec3 ow = mediaToWorld(r.origin), ww = mediaDirectionToWorld(r.direction);
+    imageStore(scatteringOut, target, roundedToHalf(vec4(clampRadiance(mediaMarch(pixel, r, ow, ww)), 1.0)));
+    if (media.scale == 1) imageStore(depthOut, pixel, mediaStoredDepth(mediaOpticalDepth(ow, ww, r.end)));
+#ifdef GUIDE
+    const float z = isBackground(depth) ? media.backgroundZ : viewZFromDepth(depth);
+    imageStore(guideOut, target, vec4(0.0, 0.0, 1.0, z));
+#endif
+}
+#endif

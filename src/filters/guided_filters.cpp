@@ -94,6 +94,7 @@ void GuidedFilters::upload(ContextImpl& ctx, const FilterImages& images, const G
     p.background = s.background;
     p.refineThreshold = s.refineThreshold;
     p.flags = s.unitRange ? FILTER_FLAG_UNIT_RANGE : 0;
+    p.backgroundZ = s.backgroundZ;
     uploadUniformBlock(ctx, params_, p, FILTER_PARAMS_UBO_BINDING, "filters.params");
     bindImage(ctx, FILTER_GUIDE_IN_IMAGE, images.guide, GL_READ_ONLY, GL_RGBA32F);
 }

@@ -26,6 +26,10 @@ struct GuidedFilterSettings {
     //! GuidedFilters::findGeometryTiles listed this frame (geometry_tiles.glsl), its list
     //! still bound
     bool geometryTiles = false;
+    //! 0: background pixels hold nothing (guide w = 0; the upsampling writes `background`).
+    //! Else the view z (< 0) they stand at: the blur and the upsampling weigh them by depth as
+    //! any other pixel, the normals unread (normalPower 0). Media: fog in front of the sky.
+    float backgroundZ = 0.0f;
 };
 
 //! The images one integrator filters: a value (GL_R16F, or GL_RGBA16F with `rgb`) and an

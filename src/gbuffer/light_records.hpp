@@ -34,6 +34,8 @@ public:
     //! Writes the lights, in view space, with the records bindShadows() found, and binds them.
     void upload(ContextImpl& ctx, std::span<const Light> lights, const glm::dmat4& view, const char* label);
     std::size_t memoryBytes() const;
+    //! The shadow record (ShadowParams index) of light i, or -1 without maps.
+    int recordOf(std::size_t i) const { return i < recordOf_.size() ? recordOf_[i] : -1; }
 
 private:
     std::vector<int> recordOf_;

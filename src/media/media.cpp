@@ -8,7 +8,10 @@
 #include "core/texture_info.hpp"
 #include "core/validate.hpp"
 #include "gbuffer/light_records.hpp"
+#include "filters/guided_filters.hpp"
 #include "media/airlight_table.hpp"
+#include "media/shadow_volumes.hpp"
+#include "shaders/visibility/visibility_bindings.h"
 #include "obscura/context.hpp"
 #include "shaders/media/media_bindings.h"
 #include "visibility/screen_inputs.hpp"
@@ -91,7 +94,41 @@ float farthestMediaDepth(std::span<const Medium> media, const glm::mat4& view) {
 }
 
 const char* passName(MediaMethod m) {
-    return m == MediaMethod::RayMarch ? "media.raymarch" : m == MediaMethod::Analytic ? "media.analytic" : "media.froxel";
+    switch (m) {
+    case MediaMethod::RayMarch: return "media.raymarch";
+    case MediaMethod::Analytic: return "media.analytic";
+    case MediaMethod::Bounded: return "media.bounded";
+    case MediaMethod::Froxel: return "media.froxel";
+    }
+    return "media";
+}
+
+bool marches(MediaMethod m) { return m == MediaMethod::RayMarch || m == MediaMethod::Bounded; }
+
+// A march blurred or at reduced resolution: the filters run on it.
+bool filtered(const MediaSettings& s) { return marches(s.method) && filtersRun(static_cast<int>(s.resolution), s.blurRadius); }
+
+// The view z (< 0) the filters give background pixels: past every medium, so that their fog
+// blends with the background's and not with surfaces in front.
+float backgroundZ(std::span<const Medium> media, const glm::mat4& view) { return -2.0f * farthestMediaDepth(media, view); }
+
+// The march's program: shadowed, bounded, and writing the filters' guide.
+std::vector<std::string> marchDefines(const MediaSettings& s, bool shadowed, bool bounded) {
+    std::vector<std::string> defines;
+    if (shadowed) defines.push_back("SHADOWS");
+    if (bounded) defines.push_back("BOUNDED");
+    if (filtered(s)) defines.push_back("GUIDE");
+    return defines;
+}
+
+// Depth-aware only: the guide's normals are all (0, 0, 1) (media have none).
+GuidedFilterSettings filterSettings(const MediaSettings& s, float background) {
+    GuidedFilterSettings f;
+    f.taps = s.blurRadius;
+    f.depthSigma = s.blurDepthSigma;
+    f.normalPower = 0.0f;
+    f.backgroundZ = background;
+    return f;
 }
 
 } // namespace
@@ -112,6 +149,9 @@ struct Media::Impl {
     Texture grid;                               // the density grid, R32F
     std::weak_ptr<const DensityGrid> gridSource; // what `grid` holds (not kept alive)
     std::size_t gridBytes = 0;
+    ShadowVolumes volumes;          // Bounded
+    GuidedFilters filters;          // marches at reduced resolution or blurred
+    SizedTexture lowScattering, guide;
 
     // Uploads the one grid medium's values (once per grid), binds it linear and clamped.
     void bindGrid(std::span<const Medium> media) {
@@ -164,6 +204,12 @@ struct Media::Impl {
             table.reset();
             tableSize = 0;
         }
+        if (s.method != MediaMethod::Bounded) volumes.release();
+        if (!marches(s.method) || s.resolution == AoResolution::Full) lowScattering.release();
+        if (!filtered(s)) {
+            guide.release();
+            filters = GuidedFilters{};
+        }
         if (s.method != MediaMethod::Froxel) {
             froxelSource.reset();
             froxelExtinction.reset();
@@ -185,6 +231,10 @@ struct Media::Impl {
         p.densitySteps = s.densitySteps;
         p.froxels = {(g.width + s.froxelTile - 1) / s.froxelTile, (g.height + s.froxelTile - 1) / s.froxelTile, s.steps};
         p.froxelRange = s.froxelRange > 0.0f ? s.froxelRange : farthestMediaDepth(in.media, g.camera.view);
+        p.scale = marches(s.method) ? static_cast<int>(s.resolution) : 1;
+        // The march's own output size: the G-buffer's divided by its scale, rounded up.
+        p.size = (p.size + p.scale - 1) / p.scale;
+        p.backgroundZ = backgroundZ(in.media, g.camera.view);
         current = p;
         uploadUniformBlock(ctx, params, current, MEDIA_PARAMS_UBO_BINDING, "media.params");
     }
@@ -200,21 +250,56 @@ struct Media::Impl {
         ctx.state.bindImage(ctx, MEDIA_DEPTH_OUT_IMAGE, d, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
 
-    void runPerPixel(const GBufferView& g, const MediaSettings& s, bool shadowed) {
+    void runAnalytic(const GBufferView& g, const MediaSettings& s) {
         // The table is computed on the CPU once per size, outside the pass's timing.
-        if (s.method == MediaMethod::Analytic && s.integral == AnalyticIntegral::Table) ensureTable(s.tableSize);
+        const bool tabled = s.integral == AnalyticIntegral::Table;
+        if (tabled) ensureTable(s.tableSize);
         PassScope pass(ctx, passName(s.method));
-        std::vector<std::string> defines;
-        if (s.method == MediaMethod::RayMarch) {
-            defines = shadowDefines(shadowed);
-            ctx.gl.UseProgram(ctx.shaders->program({"media/media_march.comp.glsl"}, defines));
-        } else {
-            const bool tabled = s.integral == AnalyticIntegral::Table;
-            if (tabled) bindNearest(ctx, MEDIA_TABLE_UNIT, table.get());
-            ctx.gl.UseProgram(ctx.shaders->program({"media/media_analytic.comp.glsl"}, {tabled ? "TABLE" : "QUADRATURE"}));
-        }
+        if (tabled) bindNearest(ctx, MEDIA_TABLE_UNIT, table.get());
+        ctx.gl.UseProgram(ctx.shaders->program({"media/media_analytic.comp.glsl"}, {tabled ? "TABLE" : "QUADRATURE"}));
         bindOutputs(g.width, g.height);
         dispatchCompute2D(ctx, g.width, g.height, MEDIA_WORKGROUP);
+        barrierForReaders(ctx);
+    }
+
+    // RayMarch and Bounded: the march at its resolution (Bounded with a light it cannot bound,
+    // or unshadowed, is the plain march, as documented), then the optical depth per pixel, the
+    // blur and the upsampling where the settings ask for them.
+    void runMarch(const GBufferView& g, const MediaInputs& in, const MediaSettings& s, bool shadowed) {
+        const bool bounded = s.method == MediaMethod::Bounded && shadowed && everyLightBounded(in);
+        if (bounded) volumes.draw(ctx, in, lights, s.volumeCell, g.width, g.height);
+        else volumes.release();
+        const int scale = static_cast<int>(s.resolution);
+        const glm::ivec2 low = current.size;
+        bindOutputs(g.width, g.height);
+        const GLuint value = scale > 1 ? lowScattering.ensure(ctx, GL_RGBA16F, low.x, low.y, "media.scattering_reduced")
+                                       : scattering.get();
+        const GLuint guideImage = filtered(s) ? guide.ensure(ctx, GL_RGBA32F, low.x, low.y, "media.guide") : 0;
+        {
+            PassScope pass(ctx, passName(s.method));
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_march.comp.glsl"}, marchDefines(s, shadowed, bounded)));
+            ctx.state.bindImage(ctx, MEDIA_OUT_IMAGE, value, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            if (guideImage) ctx.state.bindImage(ctx, MEDIA_GUIDE_IMAGE, guideImage, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            dispatchCompute2D(ctx, low.x, low.y, MEDIA_WORKGROUP);
+            ctx.gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        if (scale > 1) {
+            PassScope pass(ctx, "media.optical_depth");
+            ctx.gl.UseProgram(ctx.shaders->program({"media/media_march.comp.glsl"}, {"OPTICAL_DEPTH"}));
+            dispatchCompute2D(ctx, g.width, g.height, MEDIA_WORKGROUP);
+        }
+        if (guideImage) {
+            const FilterImages images{guideImage, value, 0, true, low, scale, 0};
+            const GuidedFilterSettings f = filterSettings(s, current.backgroundZ);
+            filters.blur(ctx, images, f, "media.blur");
+            if (scale > 1) {
+                // The upsampling reads the depth; the normals it does not read (backgroundZ):
+                // the depth stands at their unit too.
+                bindNearest(ctx, VIS_DEPTH_UNIT, g.depth.name);
+                bindNearest(ctx, VIS_NORMAL_UNIT, g.depth.name);
+                filters.upsample(ctx, images, f, scattering.get(), 0, {g.width, g.height}, "media.upsample");
+            }
+        }
         barrierForReaders(ctx);
     }
 
@@ -264,6 +349,10 @@ struct Media::Impl {
         grid.reset();
         gridSource.reset();
         gridBytes = 0;
+        volumes.release();
+        filters = GuidedFilters{};
+        lowScattering.release();
+        guide.release();
     }
 };
 
@@ -299,7 +388,8 @@ MediaView Media::run(const GBufferView& g, const MediaInputs& in, const MediaSet
     bindNearest(ctx, MEDIA_DEPTH_UNIT, g.depth.name);
     d.bindGrid(in.media);
     if (s.method == MediaMethod::Froxel) d.runFroxels(view, shadowed);
-    else d.runPerPixel(view, s, shadowed);
+    else if (marches(s.method)) d.runMarch(view, in, s, shadowed);
+    else d.runAnalytic(view, s);
     return {{d.scattering.get(), GL_RGBA16F, view.width, view.height},
             {d.opticalDepth.get(), GL_RGBA16F, view.width, view.height},
             view.width,
@@ -336,9 +426,19 @@ void Media::prepare(const MediaSettings& s) {
     auto& ctx = impl_->ctx;
     StateScope scope(ctx);
     // With and without shadow maps: which one run() takes depends on its inputs.
-    if (s.method == MediaMethod::RayMarch)
-        for (const std::vector<std::string>& defines : {std::vector<std::string>{}, std::vector<std::string>{"SHADOWS"}})
-            ctx.shaders->program({"media/media_march.comp.glsl"}, defines);
+    if (marches(s.method)) {
+        const bool bounded = s.method == MediaMethod::Bounded;
+        for (const bool shadowed : {false, true}) ctx.shaders->program({"media/media_march.comp.glsl"}, marchDefines(s, shadowed, false));
+        if (bounded) {
+            ctx.shaders->program({"media/media_march.comp.glsl"}, marchDefines(s, true, true));
+            ctx.shaders->program({"media/media_volume.comp.glsl"});
+            ctx.shaders->program({"media/media_volume.comp.glsl"}, {"CELLS"});
+            ctx.shaders->program({"media/media_volume.vert.glsl", "media/media_volume.frag.glsl"});
+        }
+        if (s.resolution != AoResolution::Full) ctx.shaders->program({"media/media_march.comp.glsl"}, {"OPTICAL_DEPTH"});
+        if (filtered(s))
+            GuidedFilters::prepare(ctx, {1, 1, 0, true, {1, 1}, static_cast<int>(s.resolution), 0}, filterSettings(s, 0.0f));
+    }
     if (s.method == MediaMethod::Analytic) {
         ctx.shaders->program({"media/media_analytic.comp.glsl"}, {s.integral == AnalyticIntegral::Table ? "TABLE" : "QUADRATURE"});
         if (s.integral == AnalyticIntegral::Table) impl_->ensureTable(s.tableSize);
@@ -355,8 +455,8 @@ std::size_t Media::memoryBytes() const {
     const std::size_t froxels = std::size_t(d.froxelSize.x) * std::size_t(d.froxelSize.y) * std::size_t(d.froxelSize.z);
     return d.scattering.bytes() + d.opticalDepth.bytes() + d.applied.bytes() + d.frame.memoryBytes() + d.lights.memoryBytes() +
            (d.params ? sizeof(shader::MediaParams) : 0) + std::size_t(d.tableSize) * std::size_t(d.tableSize) * 4 +
-           froxels * 2 * bytesPerTexel(GL_RGBA16F) +
-           d.gridBytes;
+           froxels * 2 * bytesPerTexel(GL_RGBA16F) + d.gridBytes + d.volumes.memoryBytes() + d.filters.memoryBytes() +
+           d.lowScattering.bytes() + d.guide.bytes();
 }
 
 } // namespace obscura

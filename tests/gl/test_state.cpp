@@ -338,7 +338,7 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         ssdo->run(view, {environment.get(), s.scene.lights}, d);
     });
     auto media = std::make_unique<Media>(*ctx);
-    check("Media::prepare, run (each method) and apply", [&] {
+    check("Media::prepare, run (each method; the march at half resolution, blurred) and apply", [&] {
         Medium fog;
         fog.boxMin = glm::vec3(-5.0f);
         fog.boxMax = glm::vec3(5.0f);
@@ -348,6 +348,10 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
             MediaSettings m;
             m.method = method;
             m.steps = 8;
+            if (method == MediaMethod::RayMarch) { // through the filters
+                m.resolution = AoResolution::Half;
+                m.blurRadius = 1;
+            }
             media->prepare(m);
             const MediaView out = media->run(view, {fogs, s.scene.lights}, m);
             media->apply(out, out.scattering);
@@ -397,6 +401,21 @@ void forEachEntryPoint(test::GlFixture& gl, StatePolicy policy, const StateScene
         GBufferSettings shadowed{40, 32, true, {}};
         shadowed.shadows = maps;
         view = gbuffer->render(s.scene, s.camera, shadowed);
+    });
+    check("Media::run (bounded: spot shadow volumes drawn from the camera)", [&] {
+        Scene spots = s.scene;
+        std::erase_if(spots.lights, [](const Light& l) { return l.type != LightType::Spot; });
+        Medium fog;
+        fog.boxMin = glm::vec3(-5.0f);
+        fog.boxMax = glm::vec3(5.0f);
+        fog.scattering = glm::vec3(0.1f);
+        const std::vector<Medium> fogs{fog};
+        const ShadowMapSet& spotMaps = shadows->render(spots, s.camera, {64});
+        MediaSettings m;
+        m.method = MediaMethod::Bounded;
+        m.steps = 8;
+        media->prepare(m);
+        media->run(view, {fogs, spots.lights, &spotMaps}, m);
     });
     check("ShadowMaps::~ShadowMaps", [&] { shadows.reset(); });
     auto composer = std::make_unique<Composer>(*ctx);
@@ -486,7 +505,7 @@ TEST_CASE("Preserve: every entry point leaves the whole listed host state unchan
     GLuint64 elapsed = 0;
     glGetQueryObjectui64v(host.timeQuery, GL_QUERY_RESULT_NO_WAIT, &elapsed);
     CHECK(test::drainGlErrors().empty());
-    CHECK(checked == 52);
+    CHECK(checked == 53);
 }
 
 TEST_CASE("Preserve: results do not depend on the state the host left", "[state][host-contract]") {

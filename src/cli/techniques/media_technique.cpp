@@ -1,4 +1,4 @@
-// "media.raymarch", "media.analytic", "media.froxel": the Media module on the scene's media
+// "media.raymarch", "media.analytic", "media.bounded", "media.froxel": the Media module on the scene's media
 // (Scene::media; a JSON scene's, or a built-in fog scene), lit by the scene's lights with the
 // lit G-buffer's shadow maps. Outputs: "scattering" (the in-scattered radiance alone, as the
 // reference's SingleScattering), "transmittance" (exp(-tau) per channel) and "frame" (the
@@ -23,10 +23,13 @@ std::vector<SettingInfo> methodSettings(MediaMethod method) {
     for (const SettingInfo& s : kSettings) {
         const bool analyticOnly = s.key == "integral" || s.key == "table_size";
         const bool froxelOnly = s.key == "froxel_tile" || s.key == "froxel_range";
-        const bool marchOnly = s.key == "jitter" || s.key == "frame_index";
+        const bool marchOnly = s.key == "jitter" || s.key == "frame_index" || s.key == "resolution" || s.key == "blur_radius" ||
+                               s.key == "blur_depth_sigma";
+        const bool boundedOnly = s.key == "volume_cell";
         if (analyticOnly && method != MediaMethod::Analytic) continue;
         if (froxelOnly && method != MediaMethod::Froxel) continue;
-        if (marchOnly && method != MediaMethod::RayMarch) continue;
+        if (marchOnly && method != MediaMethod::RayMarch && method != MediaMethod::Bounded) continue;
+        if (boundedOnly && method != MediaMethod::Bounded) continue;
         rows.push_back(s);
     }
     return rows;
@@ -129,9 +132,13 @@ public:
 
 private:
     std::string name() const {
-        return settings_.method == MediaMethod::RayMarch ? "media.raymarch"
-               : settings_.method == MediaMethod::Analytic ? "media.analytic"
-                                                            : "media.froxel";
+        switch (settings_.method) {
+        case MediaMethod::RayMarch: return "media.raymarch";
+        case MediaMethod::Analytic: return "media.analytic";
+        case MediaMethod::Bounded: return "media.bounded";
+        case MediaMethod::Froxel: return "media.froxel";
+        }
+        return "media";
     }
 
     Context& ctx_;
@@ -154,6 +161,9 @@ const TechniqueRegistrar raymarch(mediaTechnique(
 const TechniqueRegistrar analytic(mediaTechnique(
     "media.analytic", "Single scattering from Sun et al.'s closed form (no shadows), by quadrature or table",
     MediaMethod::Analytic));
+const TechniqueRegistrar bounded(mediaTechnique(
+    "media.bounded", "Ray marching within the lit part of each view ray, from shadow volumes of the spot lights' maps",
+    MediaMethod::Bounded));
 const TechniqueRegistrar froxel(mediaTechnique(
     "media.froxel", "Volumetric fog in a froxel grid: lights once per froxel, integrated front to back", MediaMethod::Froxel));
 
