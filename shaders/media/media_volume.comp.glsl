@@ -68,11 +68,12 @@ void main() {
 
     // media_shadow.glsl compares the point moved toward the light by the constant bias and
     // one texel (texelSize per unit distance): lit out to (stored + bias) / (1 - texelSize)
-    // along the axis. 1e-3 more for the float rounding of the stored and compared depths.
+    // along the axis. 1e-3 more for the float rounding of the stored and compared depths. A
+    // texel of half a unit or more (a map of a few texels over a wide cone) bounds nothing.
     const float stored = farthestAround(corner);
     const float texel = shadowLights[k].cascades[0].texelSize;
-    const float along = stored == volumeCap ? volumeCap
-                                            : (stored + shadowLights[k].constantBias) / max(1.0 - texel, 0.5) * (1.0 + 1e-3);
+    const bool bounded = stored != volumeCap && texel < 0.5;
+    const float along = bounded ? min((stored + shadowLights[k].constantBias) / (1.0 - texel) * (1.0 + 1e-3), volumeCap) : volumeCap;
     // The corner's direction: the point of the map's ray through it on the far plane (window
     // depth b / far - a), back in view space; a point far from the light keeps the direction's
     // rounding small.

@@ -6,6 +6,7 @@
 #include "core/shader_library.hpp"
 #include "core/state_guard.hpp"
 #include "gbuffer/light_records.hpp"
+#include "obscura/error.hpp"
 #include "shaders/media/media_bindings.h"
 #include "shaders/shadows/shadow_bindings.h"
 
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace obscura::detail {
@@ -32,6 +34,21 @@ float capDistance(const Light& light, const ShadowMapInfo& info, std::span<const
     return static_cast<float>(1.01 * farthest);
 }
 
+// The vertices live in a storage buffer the vertex shader reads: GL 4.5 may allow none there,
+// and a block as small as 2^27 bytes.
+void checkLimits(ContextImpl& ctx, std::size_t bytes) {
+    GLint blocks = 0, most = 0;
+    ctx.gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &blocks);
+    ctx.gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &most);
+    if (blocks < 1)
+        throw Error(ErrorCode::UnsupportedFeature, "MediaMethod::Bounded reads storage buffers in a vertex shader, and this "
+                                                   "context allows none there (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0)");
+    if (bytes > std::size_t(std::max(most, 0)))
+        throw Error(ErrorCode::InvalidArgument, "MediaSettings::volumeCell: the shadow volumes' vertices (" + std::to_string(bytes) +
+                                                    " bytes) exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE = " + std::to_string(most) +
+                                                    ": raise volumeCell or lower the shadow maps' resolution");
+}
+
 } // namespace
 
 bool everyLightBounded(const MediaInputs& in) {
@@ -47,6 +64,7 @@ void ShadowVolumes::draw(ContextImpl& ctx, const MediaInputs& in, const LightRec
     const int cells = (in.shadows->resolution + cellTexels - 1) / cellTexels;
     const int perLight = (cells + 1) * (cells + 1) + 1;
     const std::size_t bytes = std::size_t(perLight) * in.lights.size() * sizeof(float) * 4;
+    checkLimits(ctx, bytes);
     if (!vertices_ || vertexBytes_ < bytes) {
         vertices_ = createBuffer(ctx, static_cast<GLsizeiptr>(bytes), nullptr, 0, "media.shadow_volumes");
         vertexBytes_ = bytes;
