@@ -33,12 +33,13 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
 # The half-resolution trade-off at a size where the per-pixel work, not the fixed cost of a
 # pass, dominates: presets medium and high, each at full and half resolution, and both at
 # quarter resolution (--variant: timed in turn with them), on the Cornell box and the finest
-# model; the integrators ([!s]*.*: not shadow.*, whose `resolution` is its map's size), then
+# model; the integrators ([!sm]*.*: not shadow.*, whose `resolution` is its map's size, nor media.*,
+# whose own study follows), then
 # the shadow techniques at the same size, which the GPU section compares with llvmpipe.
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-  --techniques '[!s]*.*' --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
+  --techniques '[!sm]*.*' --presets medium,medium_half,high,high_half --size 512x512 --frames 20 --spp 1024 \
   --variant resolution=quarter --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/resolution"
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene cornell \
@@ -51,7 +52,7 @@ out=${OBSCURA_BENCH_OUT:-$OBSCURA_BUILD_DIR/bench}
 "$OBSCURA_BUILD_DIR/src/cli/obscura" bench \
   --scene "$models/OBJ/spider.obj" \
   --scene "$models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" \
-  --techniques '[!s]*.*' --presets medium,medium_half,high,high_half --size 128x128 --frames 20 --spp 1024 \
+  --techniques '[!sm]*.*' --presets medium,medium_half,high,high_half --size 128x128 --frames 20 --spp 1024 \
   --variant refine_threshold=0 --cache "$OBSCURA_BUILD_DIR/reference-cache" --out "$out/refine"
 # The half-resolution presets with geometry tiles and over every tile (geometryTiles off),
 # their frames timed in turn (--variant): what skipping the background's tiles saves, and that
